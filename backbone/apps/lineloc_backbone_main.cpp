@@ -1,0 +1,46 @@
+// lineloc-backbone: answers every robot's LineSet with a PoseFix.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <iostream>
+
+#include "backbone/service/backbone_service.h"
+#include "common/config/program_options.h"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void requestStop(int) { g_stop = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  lineloc::BackboneConfig config;
+  lineloc::ProgramOptions options("lineloc-backbone", "lineloc backbone matching service");
+  options.add("domain_id", config.domain_id, "DDS domain id");
+  options.add("dds_config", config.dds_config,
+              "Cyclone DDS XML configuration file (empty: CYCLONEDDS_URI / defaults)");
+  options.add("db", config.db, "libpq connection string of the building database");
+  options.add("site", config.site, "name of the site in the database");
+  options.add("query_radius_m", config.query_radius_m,
+              "model lines within this distance of the predicted position are used (m)");
+  options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
+  options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
+  options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
+  options.add("stats_period_s", config.stats_period_s, "how often the stats file is rewritten");
+  if (const auto exit_code = options.parse(argc, argv)) {
+    return *exit_code;
+  }
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  try {
+    const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
+    std::cout << fmt::format(
+        "lineloc-backbone: {} received, {} answered, {} dropped as invalid, {} map errors\n",
+        counters.received, counters.answered, counters.dropped_invalid, counters.map_errors);
+    return 0;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,78 @@
+#include "backbone/service/backbone_service.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "common/messages/topics.h"
+#include "common/time/clock.h"
+
+namespace lineloc {
+namespace {
+
+constexpr int kHistoryDepth = 32;
+constexpr int64_t kWaitNs = 100'000'000;
+
+}  // namespace
+
+void writeCountersJson(const BackboneCounters& counters, const std::string& path) {
+  const nlohmann::json json = {{"received", counters.received},
+                               {"answered", counters.answered},
+                               {"dropped_invalid", counters.dropped_invalid},
+                               {"map_errors", counters.map_errors},
+                               {"last_drop_reason", counters.last_drop_reason}};
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream stream(temporary);
+    if (!stream) {
+      throw std::runtime_error(fmt::format("cannot write stats file '{}'", temporary));
+    }
+    stream << json.dump(2) << '\n';
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    throw std::runtime_error(fmt::format("cannot rename '{}' to '{}'", temporary, path));
+  }
+}
+
+BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
+  if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0) {
+    throw std::runtime_error("max_segments and query_radius_m must be positive");
+  }
+  MessageLimits limits;
+  limits.max_segments = static_cast<uint32_t>(config.max_segments);
+  limits.max_corners = static_cast<uint32_t>(config.max_corners);
+  ModelMap map(config.db, config.site);
+  LineSetHandler handler(map, limits, config.query_radius_m);
+
+  dds::Domain domain(config.domain_id, config.dds_config);
+  dds::Participant participant(domain);
+  dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
+  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::Qos(kHistoryDepth));
+  spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
+
+  const int64_t stats_period_ns = static_cast<int64_t>(config.stats_period_s * 1e9);
+  int64_t next_stats_ns = steadyClockNs();
+  while (!stop) {
+    if (reader.waitForData(kWaitNs)) {
+      reader.takeEach([&](const lineloc_msg_LineSet& message) {
+        if (const auto fix = handler.handle(message)) {
+          writer.write(toMessage(*fix));
+        }
+      });
+    }
+    if (!config.stats_file.empty() && steadyClockNs() >= next_stats_ns) {
+      writeCountersJson(handler.counters(), config.stats_file);
+      next_stats_ns = steadyClockNs() + stats_period_ns;
+    }
+  }
+  if (!config.stats_file.empty()) {
+    writeCountersJson(handler.counters(), config.stats_file);
+  }
+  return handler.counters();
+}
+
+}  // namespace lineloc

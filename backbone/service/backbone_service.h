@@ -1,0 +1,31 @@
+// lineloc-backbone's service loop: subscribe to the LineSets of every robot,
+// answer each with one PoseFix on the same DDS domain, until asked to stop.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "backbone/service/line_set_handler.h"
+
+namespace lineloc {
+
+struct BackboneConfig {
+  int domain_id = 0;
+  std::string dds_config;
+  std::string db = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
+  std::string site = "delft";
+  double query_radius_m = 150.0;
+  int max_segments = 2048;
+  int max_corners = 2048;
+  // Written on exit (and every stats_period_s): counters as JSON; empty: none.
+  std::string stats_file;
+  double stats_period_s = 1.0;
+};
+
+// Serves until `stop` is true; returns the final counters.
+BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
+
+// Writes the counters as a JSON object to `path` (atomically, by rename).
+void writeCountersJson(const BackboneCounters& counters, const std::string& path);
+
+}  // namespace lineloc

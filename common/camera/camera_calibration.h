@@ -1,0 +1,37 @@
+// A calibrated camera: pinhole intrinsics plus lens distortion, read and written
+// in OpenCV's YAML layout (camera_matrix, distortion_coefficients, image_width,
+// image_height) so files from cv::calibrateCamera and lineloc-calibrate are
+// interchangeable.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace lineloc {
+
+// Pinhole intrinsics: u = fx x/z + skew y/z + cx, v = fy y/z + cy.
+struct PinholeCamera {
+  double fx = 0.0;
+  double fy = 0.0;
+  double cx = 0.0;
+  double cy = 0.0;
+  double skew = 0.0;
+  int width = 0;
+  int height = 0;
+
+  Eigen::Matrix3d K() const;
+  // Projects a point in the camera frame (z > 0) to pixels.
+  Eigen::Vector2d project(const Eigen::Vector3d& p_camera) const;
+};
+
+struct CameraCalibration {
+  PinholeCamera camera;
+  // OpenCV order: k1 k2 p1 p2 [k3 [k4 k5 k6]]; empty means no distortion.
+  std::vector<double> distortion;
+};
+
+// Throws std::runtime_error naming the file and the missing or invalid key.
+CameraCalibration readCameraCalibration(const std::string& path);
+
+}  // namespace lineloc

@@ -1,0 +1,73 @@
+#include "common/config/program_options.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <stdexcept>
+
+namespace lineloc {
+
+ProgramOptions::ProgramOptions(const std::string& program, const std::string& description)
+    : app_(description, program) {
+  app_.add_option("--config", config_path_,
+                  "YAML file with any of these options as keys (flags override it)");
+}
+
+std::string ProgramOptions::flagFor(const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+void ProgramOptions::throwBadValue(const std::string& file, const std::string& key,
+                                   const YAML::Node& node, const std::string& why) {
+  throw std::runtime_error(fmt::format("{}:{}: key '{}' has an invalid value: {}", file,
+                                       node.Mark().line + 1, key, why));
+}
+
+void ProgramOptions::applyConfigFile(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error(fmt::format("cannot read config file '{}'", path));
+  } catch (const YAML::Exception& error) {
+    throw std::runtime_error(fmt::format("{}: not valid YAML: {}", path, error.what()));
+  }
+  if (root.IsNull()) {
+    return;
+  }
+  if (!root.IsMap()) {
+    throw std::runtime_error(fmt::format("{}: expected a map of option keys", path));
+  }
+  for (const auto& entry : root) {
+    const std::string key = entry.first.as<std::string>();
+    const auto binding = std::find_if(bindings_.begin(), bindings_.end(),
+                                      [&](const Binding& b) { return b.key == key; });
+    if (binding == bindings_.end()) {
+      throw std::runtime_error(fmt::format("{}:{}: unknown key '{}'", path,
+                                           entry.first.Mark().line + 1, key));
+    }
+    binding->apply(entry.second, path);
+  }
+}
+
+std::optional<int> ProgramOptions::parse(int argc, const char* const* argv) {
+  try {
+    app_.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app_.exit(error);
+  }
+  if (config_path_.empty()) {
+    return std::nullopt;
+  }
+  try {
+    applyConfigFile(config_path_);
+  } catch (const std::exception& error) {
+    std::cerr << app_.get_name() << ": " << error.what() << '\n';
+    return 2;
+  }
+  return std::nullopt;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,61 @@
+// Program options: one YAML file per program, overridden by command-line flags.
+//
+// Each option is declared once, with its default (the variable's current value)
+// and its documentation: YAML key `robot_id` is also flag `--robot-id`. The
+// YAML file is named by `--config FILE`; keys it does not know are an error, so
+// a typo never silently leaves a default in force.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+#include <yaml-cpp/yaml.h>
+
+namespace lineloc {
+
+class ProgramOptions {
+ public:
+  ProgramOptions(const std::string& program, const std::string& description);
+
+  // Declares an option. T is anything both CLI11 and yaml-cpp convert
+  // (numbers, strings, bool, std::vector of those).
+  template <typename T>
+  void add(const std::string& key, T& value, const std::string& help) {
+    CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
+    bindings_.push_back({key, [option, &value, key](const YAML::Node& node, const std::string& file) {
+                           if (option->count() > 0) {
+                             return;
+                           }
+                           try {
+                             value = node.as<T>();
+                           } catch (const YAML::Exception& error) {
+                             throwBadValue(file, key, node, error.what());
+                           }
+                         }});
+  }
+
+  // Parses argv and the config file. Returns an exit code when the program
+  // should stop now (after --help, or with an error already printed).
+  std::optional<int> parse(int argc, const char* const* argv);
+
+  CLI::App& app() { return app_; }
+
+ private:
+  struct Binding {
+    std::string key;
+    std::function<void(const YAML::Node&, const std::string&)> apply;
+  };
+
+  static std::string flagFor(const std::string& key);
+  [[noreturn]] static void throwBadValue(const std::string& file, const std::string& key,
+                                         const YAML::Node& node, const std::string& why);
+  void applyConfigFile(const std::string& path);
+
+  CLI::App app_;
+  std::string config_path_;
+  std::vector<Binding> bindings_;
+};
+
+}  // namespace lineloc

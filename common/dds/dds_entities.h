@@ -1,0 +1,169 @@
+// RAII ownership of Cyclone DDS C API handles.
+//
+// Every handle is deleted exactly once, children before parents. Errors from
+// the C API become DdsError carrying dds_strretcode()'s text and what failed.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace lineloc::dds {
+
+class DdsError : public std::runtime_error {
+ public:
+  DdsError(const std::string& what_failed, dds_return_t code);
+};
+
+// Throws DdsError when `code` is negative; returns it otherwise.
+dds_return_t check(dds_return_t code, const char* what_failed);
+
+// A uniquely owned DDS entity handle.
+class Entity {
+ public:
+  Entity() = default;
+  Entity(dds_entity_t handle, const char* what_created);
+  ~Entity();
+  Entity(Entity&& other) noexcept;
+  Entity& operator=(Entity&& other) noexcept;
+  Entity(const Entity&) = delete;
+  Entity& operator=(const Entity&) = delete;
+
+  dds_entity_t handle() const { return handle_; }
+
+ private:
+  dds_entity_t handle_ = 0;
+};
+
+// A DDS domain created with an explicit configuration, so tests and programs
+// do not depend on the environment. `config_file` empty: Cyclone's defaults
+// and the CYCLONEDDS_URI environment variable apply, as for any DDS program.
+class Domain {
+ public:
+  Domain(uint32_t domain_id, const std::string& config_file);
+  uint32_t id() const { return id_; }
+
+ private:
+  uint32_t id_;
+  Entity domain_;
+};
+
+class Participant {
+ public:
+  explicit Participant(const Domain& domain);
+  dds_entity_t handle() const { return participant_.handle(); }
+
+ private:
+  Entity participant_;
+};
+
+// QoS of lineloc's data topics: reliable, volatile, keep the last `depth`
+// samples per robot (instance).
+class Qos {
+ public:
+  explicit Qos(int32_t history_depth);
+  ~Qos();
+  Qos(const Qos&) = delete;
+  Qos& operator=(const Qos&) = delete;
+  const dds_qos_t* get() const { return qos_; }
+
+ private:
+  dds_qos_t* qos_;
+};
+
+// Message type traits, specialised next to each IDL type (common/messages/topics.h).
+template <typename Message>
+struct TopicTraits;
+
+template <typename Message>
+class Writer {
+ public:
+  Writer(const Participant& participant, const Qos& qos)
+      : topic_(dds_create_topic(participant.handle(), TopicTraits<Message>::descriptor(),
+                                TopicTraits<Message>::kName, nullptr, nullptr),
+               "topic"),
+        writer_(dds_create_writer(participant.handle(), topic_.handle(), qos.get(), nullptr),
+                "writer") {}
+
+  void write(const Message& sample) { check(dds_write(writer_.handle(), &sample), "dds_write"); }
+
+  // Readers currently matched with this writer.
+  uint32_t matchedReaders() const {
+    dds_publication_matched_status_t status;
+    check(dds_get_publication_matched_status(writer_.handle(), &status), "matched status");
+    return status.current_count;
+  }
+
+ private:
+  Entity topic_;
+  Entity writer_;
+};
+
+template <typename Message>
+class Reader {
+ public:
+  Reader(const Participant& participant, const Qos& qos)
+      : topic_(dds_create_topic(participant.handle(), TopicTraits<Message>::descriptor(),
+                                TopicTraits<Message>::kName, nullptr, nullptr),
+               "topic"),
+        reader_(dds_create_reader(participant.handle(), topic_.handle(), qos.get(), nullptr),
+                "reader"),
+        waitset_(dds_create_waitset(participant.handle()), "waitset"),
+        condition_(dds_create_readcondition(reader_.handle(), DDS_ANY_STATE), "read condition") {
+    check(dds_waitset_attach(waitset_.handle(), condition_.handle(), 0), "waitset attach");
+  }
+
+  ~Reader() {
+    if (waitset_.handle() > 0 && condition_.handle() > 0) {
+      dds_waitset_detach(waitset_.handle(), condition_.handle());
+    }
+  }
+
+  // Blocks until a sample is available or the timeout passes; true when data is there.
+  bool waitForData(int64_t timeout_ns) {
+    return check(dds_waitset_wait(waitset_.handle(), nullptr, 0, timeout_ns), "waitset wait") > 0;
+  }
+
+  // Takes every available sample and calls `handle(const Message&)` on each
+  // valid one (not on disposal notices). Returns the number handled.
+  template <typename Handler>
+  int takeEach(Handler&& handle) {
+    constexpr int kBatch = 16;
+    void* samples[kBatch] = {};
+    dds_sample_info_t infos[kBatch];
+    int handled = 0;
+    for (;;) {
+      const dds_return_t count =
+          check(dds_take(reader_.handle(), samples, infos, kBatch, kBatch), "dds_take");
+      for (int i = 0; i < count; ++i) {
+        if (infos[i].valid_data) {
+          handle(*static_cast<const Message*>(samples[i]));
+          ++handled;
+        }
+      }
+      if (count > 0) {
+        dds_return_loan(reader_.handle(), samples, count);
+      }
+      if (count < kBatch) {
+        return handled;
+      }
+    }
+  }
+
+  // Writers currently matched with this reader.
+  uint32_t matchedWriters() const {
+    dds_subscription_matched_status_t status;
+    check(dds_get_subscription_matched_status(reader_.handle(), &status), "matched status");
+    return status.current_count;
+  }
+
+ private:
+  Entity topic_;
+  Entity reader_;
+  Entity waitset_;
+  Entity condition_;
+};
+
+}  // namespace lineloc::dds

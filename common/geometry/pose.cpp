@@ -1,0 +1,28 @@
+#include "common/geometry/pose.h"
+
+namespace lineloc {
+
+Eigen::Isometry3d makePose(const Eigen::Vector3d& translation,
+                           const Eigen::Quaterniond& rotation) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = rotation.normalized().toRotationMatrix();
+  pose.translation() = translation;
+  return pose;
+}
+
+Matrix6d diagonalPoseCovariance(double position_sigma_m, double rotation_sigma_rad) {
+  Matrix6d covariance = Matrix6d::Zero();
+  covariance.diagonal().head<3>().setConstant(position_sigma_m * position_sigma_m);
+  covariance.diagonal().tail<3>().setConstant(rotation_sigma_rad * rotation_sigma_rad);
+  return covariance;
+}
+
+bool isFinitePose(const PoseWithCovariance& pose, double tolerance) {
+  if (!pose.pose.matrix().allFinite() || !pose.covariance.allFinite()) {
+    return false;
+  }
+  const Eigen::Matrix3d R = pose.pose.linear();
+  return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < tolerance;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,31 @@
+// Rigid poses with covariance, the one representation every module shares.
+//
+// A pose T_a_b maps points from frame b to frame a: p_a = R_a_b p_b + t_a_b.
+// Its uncertainty is the covariance of the error vector e = [dp; dtheta] in
+// frame a, with t = t_est + dp and R = Exp(dtheta) R_est (left perturbation,
+// Solà, "A micro Lie theory for state estimation in robotics", 2018, eq. 27).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace lineloc {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct PoseWithCovariance {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Matrix6d covariance = Matrix6d::Identity();
+};
+
+// Builds a pose from translation (x, y, z) and unit quaternion (x, y, z, w).
+Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quaterniond& rotation);
+
+// Translation-then-rotation standard deviations on the diagonal: diag(sp^2 I3, sr^2 I3).
+Matrix6d diagonalPoseCovariance(double position_sigma_m, double rotation_sigma_rad);
+
+// True when every entry of the pose and covariance is finite and the rotation is
+// orthonormal to within `tolerance`.
+bool isFinitePose(const PoseWithCovariance& pose, double tolerance = 1e-6);
+
+}  // namespace lineloc

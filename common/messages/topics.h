@@ -1,0 +1,27 @@
+// Topic names and type descriptors of lineloc's DDS messages (idl/lineloc.idl).
+#pragma once
+
+#include "common/dds/dds_entities.h"
+#include "lineloc.h"
+
+namespace lineloc::dds {
+
+template <>
+struct TopicTraits<lineloc_msg_LineSet> {
+  static constexpr const char* kName = "lineloc_LineSet";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_LineSet_desc; }
+};
+
+template <>
+struct TopicTraits<lineloc_msg_PoseFix> {
+  static constexpr const char* kName = "lineloc_PoseFix";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_PoseFix_desc; }
+};
+
+template <>
+struct TopicTraits<lineloc_msg_RobotState> {
+  static constexpr const char* kName = "lineloc_RobotState";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_RobotState_desc; }
+};
+
+}  // namespace lineloc::dds

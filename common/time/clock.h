@@ -1,0 +1,23 @@
+// Time stamps: int64 nanoseconds since the Unix epoch (CLOCK_REALTIME), the one
+// clock that separate processes on a robot and a backbone can compare.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+
+namespace lineloc {
+
+inline int64_t wallClockNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Monotonic nanoseconds for measuring durations inside one process.
+inline int64_t steadyClockNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace lineloc

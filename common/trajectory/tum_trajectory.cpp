@@ -1,0 +1,101 @@
+#include "common/trajectory/tum_trajectory.h"
+
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <sstream>
+#include <stdexcept>
+
+namespace lineloc {
+namespace {
+
+constexpr int kFieldCount = 8;
+constexpr double kQuaternionNormTolerance = 1e-3;
+
+// Seconds with 9 decimals -> nanoseconds, without the rounding of a double.
+int64_t parseSecondsToNs(const std::string& text, const std::string& where) {
+  const auto dot = text.find('.');
+  const std::string whole = text.substr(0, dot);
+  std::string fraction = dot == std::string::npos ? "" : text.substr(dot + 1);
+  if (whole.empty() || fraction.size() > 9 ||
+      whole.find_first_not_of("-0123456789") != std::string::npos ||
+      fraction.find_first_not_of("0123456789") != std::string::npos) {
+    throw std::runtime_error(fmt::format("{}: time '{}' is not a decimal number", where, text));
+  }
+  fraction.resize(9, '0');
+  const bool negative = whole[0] == '-';
+  const int64_t seconds = std::stoll(whole);
+  const int64_t nanos = std::stoll(fraction);
+  return seconds * 1'000'000'000 + (negative ? -nanos : nanos);
+}
+
+}  // namespace
+
+TumWriter::TumWriter(const std::string& path) : path_(path), stream_(path) {
+  if (!stream_) {
+    throw std::runtime_error(fmt::format("cannot open trajectory file '{}' for writing", path));
+  }
+  stream_ << "# t tx ty tz qx qy qz qw\n";
+}
+
+void TumWriter::write(const StampedPose& stamped) {
+  stream_ << formatTumLine(stamped) << '\n';
+  stream_.flush();
+}
+
+std::string formatTumLine(const StampedPose& stamped) {
+  const Eigen::Vector3d t = stamped.pose.translation();
+  const Eigen::Quaterniond q(stamped.pose.linear());
+  const int64_t abs_ns = std::llabs(stamped.stamp_ns);
+  return fmt::format("{}{}.{:09d} {:.6f} {:.6f} {:.6f} {:.9f} {:.9f} {:.9f} {:.9f}",
+                     stamped.stamp_ns < 0 ? "-" : "", abs_ns / 1'000'000'000,
+                     abs_ns % 1'000'000'000, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+}
+
+StampedPose parseTumLine(const std::string& line, const std::string& where) {
+  std::istringstream fields(line);
+  std::string time_text;
+  fields >> time_text;
+  std::array<double, kFieldCount - 1> values{};
+  for (double& value : values) {
+    if (!(fields >> value)) {
+      throw std::runtime_error(fmt::format("{}: expected {} numbers 't tx ty tz qx qy qz qw'",
+                                           where, kFieldCount));
+    }
+    if (!std::isfinite(value)) {
+      throw std::runtime_error(fmt::format("{}: non-finite value", where));
+    }
+  }
+  std::string extra;
+  if (fields >> extra) {
+    throw std::runtime_error(fmt::format("{}: more than {} fields", where, kFieldCount));
+  }
+  const Eigen::Quaterniond q(values[6], values[3], values[4], values[5]);
+  if (std::abs(q.norm() - 1.0) > kQuaternionNormTolerance) {
+    throw std::runtime_error(fmt::format("{}: quaternion norm {} is not 1", where, q.norm()));
+  }
+  StampedPose stamped;
+  stamped.stamp_ns = parseSecondsToNs(time_text, where);
+  stamped.pose.linear() = q.normalized().toRotationMatrix();
+  stamped.pose.translation() = Eigen::Vector3d(values[0], values[1], values[2]);
+  return stamped;
+}
+
+std::vector<StampedPose> readTumFile(const std::string& path) {
+  std::ifstream stream(path);
+  if (!stream) {
+    throw std::runtime_error(fmt::format("cannot open trajectory file '{}'", path));
+  }
+  std::vector<StampedPose> poses;
+  std::string line;
+  for (int line_number = 1; std::getline(stream, line); ++line_number) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') {
+      continue;
+    }
+    poses.push_back(parseTumLine(line, fmt::format("{}:{}", path, line_number)));
+  }
+  return poses;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# A private PostgreSQL 15 + PostGIS cluster for lineloc: its own data directory
+# and port, run as an unprivileged OS user when invoked as root. Nothing here
+# touches a system-wide cluster.
+#
+#   deploy/pg.sh start    initialise (first time) and start; idempotent
+#   deploy/pg.sh stop     stop, keeping the data
+#   deploy/pg.sh status   exit 0 when running
+#   deploy/pg.sh conninfo print the libpq connection string of database 'lineloc'
+#   deploy/pg.sh destroy  stop and delete the data directory
+#
+# Environment: LINELOC_PG_PORT (default 55432), LINELOC_PG_DIR (default
+# /tmp/lineloc-pg-<port>), LINELOC_PG_USER (OS user when run as root; default lineloc).
+set -euo pipefail
+
+PORT="${LINELOC_PG_PORT:-55432}"
+DATA_DIR="${LINELOC_PG_DIR:-${TMPDIR:-/tmp}/lineloc-pg-${PORT}}"
+OS_USER="${LINELOC_PG_USER:-lineloc}"
+PG_BIN="$(ls -d /usr/lib/postgresql/15/bin 2>/dev/null || true)"
+DB_ROLE="lineloc"
+DB_NAME="lineloc"
+
+die() { echo "pg.sh: $*" >&2; exit 1; }
+[ -x "$PG_BIN/pg_ctl" ] || die "PostgreSQL 15 server not found; run deploy/install-deps.sh"
+
+as_owner() {
+  if [ "$(id -u)" -eq 0 ]; then
+    runuser -u "$OS_USER" -- "$@"
+  else
+    "$@"
+  fi
+}
+
+ensure_os_user() {
+  if [ "$(id -u)" -eq 0 ] && ! id "$OS_USER" >/dev/null 2>&1; then
+    useradd --system --no-create-home --shell /usr/sbin/nologin "$OS_USER"
+  fi
+}
+
+psql_as_owner() {
+  as_owner "$PG_BIN/psql" -X -q -v ON_ERROR_STOP=1 -h 127.0.0.1 -p "$PORT" -U "$DB_ROLE" "$@"
+}
+
+is_running() {
+  [ -f "$DATA_DIR/PG_VERSION" ] && as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" status >/dev/null 2>&1
+}
+
+initialise() {
+  ensure_os_user
+  mkdir -p "$DATA_DIR"
+  if [ "$(id -u)" -eq 0 ]; then
+    chown "$OS_USER" "$DATA_DIR"
+  fi
+  chmod 700 "$DATA_DIR"
+  as_owner "$PG_BIN/initdb" -D "$DATA_DIR" -U "$DB_ROLE" --auth=trust -E UTF8 \
+    --locale=C.UTF-8 >"$DATA_DIR.initdb.log" 2>&1 || { cat "$DATA_DIR.initdb.log" >&2; die "initdb failed"; }
+  cat >>"$DATA_DIR/postgresql.conf" <<CONF
+listen_addresses = '127.0.0.1'
+port = $PORT
+unix_socket_directories = '$DATA_DIR'
+max_connections = 200
+shared_buffers = 256MB
+fsync = on
+CONF
+}
+
+start() {
+  if is_running; then
+    echo "pg.sh: running on port $PORT ($DATA_DIR)"
+    return 0
+  fi
+  [ -f "$DATA_DIR/PG_VERSION" ] || initialise
+  as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -l "$DATA_DIR/server.log" -w -t 60 start >/dev/null \
+    || { tail -20 "$DATA_DIR/server.log" >&2; die "server did not start"; }
+  # Extensions in template1 so every database created later (tests) has them.
+  psql_as_owner -d template1 -c "CREATE EXTENSION IF NOT EXISTS postgis; CREATE EXTENSION IF NOT EXISTS postgis_sfcgal;"
+  if ! psql_as_owner -d postgres -tAc "SELECT 1 FROM pg_database WHERE datname = '$DB_NAME'" | grep -q 1; then
+    psql_as_owner -d postgres -c "CREATE DATABASE $DB_NAME"
+  fi
+  echo "pg.sh: started on port $PORT ($DATA_DIR)"
+}
+
+stop() {
+  if is_running; then
+    as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -m fast -w stop >/dev/null
+    echo "pg.sh: stopped"
+  else
+    echo "pg.sh: not running"
+  fi
+}
+
+case "${1:-}" in
+  start) start ;;
+  stop) stop ;;
+  status) if is_running; then echo "pg.sh: running on port $PORT"; else echo "pg.sh: not running"; exit 1; fi ;;
+  conninfo) echo "host=127.0.0.1 port=$PORT user=$DB_ROLE dbname=$DB_NAME" ;;
+  destroy) stop; rm -rf "$DATA_DIR" "$DATA_DIR.initdb.log"; echo "pg.sh: removed $DATA_DIR" ;;
+  *) echo "usage: $0 start|stop|status|conninfo|destroy" >&2; exit 2 ;;
+esac

@@ -34,3 +34,34 @@ function(lineloc_add_benchmark name)
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
 endfunction()
+
+# lineloc_add_module_directories(): add_subdirectory() for every immediate
+# subfolder that has a CMakeLists.txt, so a new module is one new folder.
+function(lineloc_add_module_directories)
+  file(GLOB children LIST_DIRECTORIES true CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  foreach(child ${children})
+    if(IS_DIRECTORY ${child} AND EXISTS ${child}/CMakeLists.txt)
+      add_subdirectory(${child})
+    endif()
+  endforeach()
+endfunction()
+
+# lineloc_add_fuzz_target(NAME SOURCES... LIBS ... [CORPUS dir]): a fuzz target
+# defining LLVMFuzzerTestOneInput. With clang and LINELOC_FUZZ=ON it is a
+# libFuzzer binary; otherwise it links tests/fuzz/fuzz_replay_main.cpp, which
+# replays the seed corpus plus a fixed number of deterministic mutations of it,
+# and is registered as a CTest test (label "fuzz") so every build exercises it.
+option(LINELOC_FUZZ "Build fuzz targets as libFuzzer binaries (needs clang)" OFF)
+function(lineloc_add_fuzz_target name)
+  cmake_parse_arguments(ARG "" "CORPUS" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS})
+  if(LINELOC_FUZZ)
+    target_compile_options(${name} PRIVATE -fsanitize=fuzzer)
+    target_link_options(${name} PRIVATE -fsanitize=fuzzer)
+  else()
+    target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_replay_main.cpp)
+    add_test(NAME ${name} COMMAND ${name} ${ARG_CORPUS})
+    set_tests_properties(${name} PROPERTIES LABELS "unit;fuzz")
+  endif()
+endfunction()

@@ -16,6 +16,7 @@ constexpr float kInverseSobelGain = 1.0f / 8.0f;
 
 ForstnerDetector::ForstnerDetector(const ForstnerOptions& options) : options_(options) {
   if (options.window_radius_px < 1 || options.suppression_radius_px < 1 ||
+      options.refine_radius_px < 1 || !(options.core_radius_px >= 0.0) ||
       !(options.min_roundness >= 0.0 && options.min_roundness <= 1.0) ||
       !(options.weight_factor >= 0.0) || !(options.min_weight > 0.0) || options.max_corners < 0) {
     throw std::invalid_argument(
@@ -33,7 +34,7 @@ void ForstnerDetector::detect(const cv::Mat& gradient_x, const cv::Mat& gradient
   const float min_weight = std::max(static_cast<float>(options_.min_weight),
                                     static_cast<float>(options_.weight_factor) * mean_weight);
   cv::dilate(weight_, dilated_, suppression_kernel_);
-  const int margin = options_.window_radius_px + 1;
+  const int margin = std::max(options_.window_radius_px, options_.refine_radius_px) + 1;
   for (int y = margin; y < weight_.rows - margin; ++y) {
     const float* w = weight_.ptr<float>(y);
     const float* w_max = dilated_.ptr<float>(y);
@@ -93,44 +94,67 @@ float ForstnerDetector::computeWeights() {
   return static_cast<float>(weight_sum / static_cast<double>(tensor_.total()));
 }
 
-bool ForstnerDetector::refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, int x, int y,
-                              ForstnerCorner& corner) const {
-  const int r = options_.window_radius_px;
+// Normal equations of the gradient-line intersection over the pixels of the
+// (2r+1)^2 window at (x, y) that lie at least `core_px` from `core`.
+struct GradientLines {
   Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
   Eigen::Vector2d right_side = Eigen::Vector2d::Zero();
+  int pixels = 0;
+};
+
+template <typename Visit>
+void forEachGradient(const cv::Mat& gradient_x, const cv::Mat& gradient_y, int x, int y, int r,
+                     const Eigen::Vector2d& core, double core_px, Visit visit) {
+  const double core_squared = core_px * core_px;
   for (int v = y - r; v <= y + r; ++v) {
     const int16_t* gx = gradient_x.ptr<int16_t>(v);
     const int16_t* gy = gradient_y.ptr<int16_t>(v);
     for (int u = x - r; u <= x + r; ++u) {
-      const Eigen::Vector2d g(gx[u] * kInverseSobelGain, gy[u] * kInverseSobelGain);
-      const Eigen::Matrix2d ggT = g * g.transpose();
-      normal += ggT;
-      right_side += ggT * Eigen::Vector2d(u, v);
+      const Eigen::Vector2d p(u, v);
+      if ((p - core).squaredNorm() >= core_squared) {
+        visit(Eigen::Vector2d(gx[u] * kInverseSobelGain, gy[u] * kInverseSobelGain), p);
+      }
     }
   }
-  const double det = normal.determinant();
-  if (!(det > 0.0)) {
-    return false;
-  }
-  const Eigen::Matrix2d inverse = normal.inverse();
-  const Eigen::Vector2d position = inverse * right_side;
-  if (std::abs(position.x() - x) > r || std::abs(position.y() - y) > r) {
-    return false;
+}
+
+bool ForstnerDetector::refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, int x, int y,
+                              ForstnerCorner& corner) const {
+  const int r = options_.refine_radius_px;
+  Eigen::Vector2d position(x, y);
+  double core_px = 0.0;
+  Eigen::Matrix2d inverse;
+  int pixels = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d right_side = Eigen::Vector2d::Zero();
+    pixels = 0;
+    forEachGradient(gradient_x, gradient_y, x, y, r, position, core_px,
+                    [&](const Eigen::Vector2d& g, const Eigen::Vector2d& p) {
+                      const Eigen::Matrix2d ggT = g * g.transpose();
+                      normal += ggT;
+                      right_side += ggT * p;
+                      ++pixels;
+                    });
+    if (!(normal.determinant() > 0.0) || pixels < 3) {
+      return false;
+    }
+    inverse = normal.inverse();
+    position = inverse * right_side;
+    if (std::abs(position.x() - x) > r || std::abs(position.y() - y) > r) {
+      return false;
+    }
+    core_px = options_.core_radius_px;
   }
   double residual_sum = 0.0;
-  for (int v = y - r; v <= y + r; ++v) {
-    const int16_t* gx = gradient_x.ptr<int16_t>(v);
-    const int16_t* gy = gradient_y.ptr<int16_t>(v);
-    for (int u = x - r; u <= x + r; ++u) {
-      const Eigen::Vector2d g(gx[u] * kInverseSobelGain, gy[u] * kInverseSobelGain);
-      const double residual = g.dot(position - Eigen::Vector2d(u, v));
-      residual_sum += residual * residual;
-    }
-  }
+  forEachGradient(gradient_x, gradient_y, x, y, r, position, 0.0,
+                  [&](const Eigen::Vector2d& g, const Eigen::Vector2d& p) {
+                    const double residual = g.dot(position - p);
+                    residual_sum += residual * residual;
+                  });
   const int window_pixels = (2 * r + 1) * (2 * r + 1);
-  const double sigma0_squared = residual_sum / (window_pixels - 2);
   corner.position = position.cast<float>();
-  corner.covariance = (sigma0_squared * inverse).cast<float>();
+  corner.covariance = (residual_sum / (window_pixels - 2) * inverse).cast<float>();
   return true;
 }
 

@@ -11,7 +11,12 @@
 // the weighted least-squares intersection of the lines through each pixel p
 // of W normal to g(p):
 //   x = N^-1 sum_W g g^T p,
-// with covariance sigma0^2 N^-1, sigma0^2 = sum_W (g^T (x - p))^2 / (|W| - 2).
+// with covariance sigma0^2 N^-1, sigma0^2 = sum_W (g^T (x - p))^2 / (|W| - 2),
+// over a (2 refine_radius + 1)^2 window W.
+// On a blurred corner the gradients near the tip point between the two edge
+// normals and pull x along the bisector by a fraction of the blur; so x is
+// solved again without the pixels within core_radius of the first estimate,
+// leaving the straight edge flanks, whose lines pass through the corner.
 // Gradients and tensor sums are SIMD (OpenCV box filter); buffers are reused.
 #pragma once
 
@@ -24,6 +29,8 @@ namespace lineloc {
 struct ForstnerOptions {
   int window_radius_px = 2;       // r: the tensor window is (2r+1)^2
   int suppression_radius_px = 3;  // s
+  int refine_radius_px = 5;       // window of the sub-pixel intersection
+  double core_radius_px = 2.5;    // left out around the first estimate
   double min_roundness = 0.5;     // q threshold, Förstner's 0.5..0.75
   double weight_factor = 2.0;     // w threshold relative to the mean w
   double min_weight = 4.0;        // absolute w floor, (grey levels / px)^2

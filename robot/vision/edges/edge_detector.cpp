@@ -96,12 +96,12 @@ void EdgeDetector::suppressNonMaxima() {
       if (!(m[x] > before && m[x] >= after)) {
         continue;
       }
-      const float m_before = std::sqrt(static_cast<float>(before));
-      const float m_here = std::sqrt(static_cast<float>(m[x]));
-      const float m_after = std::sqrt(static_cast<float>(after));
-      const float curvature = m_before - 2.0f * m_here + m_after;
+      const float log_before = std::log(static_cast<float>(std::max<int32_t>(before, 1)));
+      const float log_here = std::log(static_cast<float>(std::max<int32_t>(m[x], 1)));
+      const float log_after = std::log(static_cast<float>(std::max<int32_t>(after, 1)));
+      const float curvature = log_before - 2.0f * log_here + log_after;
       const float delta = curvature < 0.0f
-                              ? std::clamp(0.5f * (m_before - m_after) / curvature, -0.5f, 0.5f)
+                              ? std::clamp(0.5f * (log_before - log_after) / curvature, -0.5f, 0.5f)
                               : 0.0f;
       const int step_offset = 2 * (d.dy * smoothed_stride + d.dx);
       EdgePoint point;

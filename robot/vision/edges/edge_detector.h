@@ -4,9 +4,10 @@
 // Gaussian pre-smoothing and the 3x3 Sobel gradient g = (gx, gy) come from
 // OpenCV (SIMD). A pixel is an edge point when |g| >= min_gradient and |g| is
 // a strict maximum along the gradient direction quantised to 0, 45, 90 or 135
-// degrees (non-maximum suppression). Its sub-pixel position is the vertex of
-// the parabola through the three magnitudes along that direction d:
-//   p = pixel + delta d,  delta = (m- - m+) / (2 (m- - 2 m0 + m+)),  |delta| <= 1/2,
+// degrees (non-maximum suppression). Its sub-pixel position is the peak of the
+// Gaussian through the three magnitudes along that direction d (a parabola
+// through l = ln |g|^2, exact for a blurred step, whose |g| is a Gaussian):
+//   p = pixel + delta d,  delta = (l- - l+) / (2 (l- - 2 l0 + l+)),  |delta| <= 1/2,
 // which lies on the edge for any d that crosses it, because |g| across a
 // straight blurred step is symmetric about the step. The grey-level step is
 // I(p + 2d) - I(p - 2d) in the smoothed image, d pointing dark -> bright.

@@ -25,7 +25,7 @@ struct PointRange {
 };
 
 struct EdgeLinkerOptions {
-  double max_turn_rad = 0.6;  // largest gradient turn between linked neighbours
+  double max_turn_rad = 0.3;  // largest gradient turn between linked neighbours
   int min_points = 8;
 };
 

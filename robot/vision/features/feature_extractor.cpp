@@ -104,8 +104,29 @@ void FeatureExtractor::exportCorners() {
     corner.position = undistortion_.undistort(found.position);
     corner.covariance = J * found.covariance * J.transpose();
     corner.strength = found.weight;
+    if (const Junction* junction = nearestJunction(corner.position)) {
+      corner.position = junction->position.cast<float>();
+      corner.covariance = junction->covariance.cast<float>();
+    }
     features_.corners.push_back(corner);
   }
+}
+
+}  // namespace lineloc
+
+namespace lineloc {
+
+const Junction* FeatureExtractor::nearestJunction(const Eigen::Vector2f& position) const {
+  const Junction* nearest = nullptr;
+  double nearest_distance = options_.junction_radius_px;
+  for (const Junction& junction : line_extractor_.junctions()) {
+    const double distance = (junction.position - position.cast<double>()).norm();
+    if (distance <= nearest_distance) {
+      nearest = &junction;
+      nearest_distance = distance;
+    }
+  }
+  return nearest;
 }
 
 }  // namespace lineloc

@@ -7,7 +7,11 @@
 // lookup, split-and-merge, TLS refit, gap merge, corner snapping
 // (lines/line_extractor.h); Förstner corners on the same gradients
 // (corners/forstner_detector.h), undistorted through the same table with
-// their covariance carried by its Jacobian: Sigma_u = J Sigma J^T.
+// their covariance carried by its Jacobian: Sigma_u = J Sigma J^T. Where a
+// corner is also a junction of two fitted lines (within junction_radius),
+// it takes the junction's position and covariance: the lines' intersection
+// is free of the bias blur gives the gradient-line intersection at a corner
+// tip, and rests on many more pixels.
 // Every buffer is kept between frames: no allocation in steady state.
 #pragma once
 
@@ -30,6 +34,7 @@ struct FeatureExtractorOptions {
   LineExtractorOptions lines;
   ForstnerOptions corners;
   bool detect_corners = true;
+  double junction_radius_px = 3.0;
 };
 
 // Fit quality of segments[i], beyond what ImageSegment carries.
@@ -64,6 +69,7 @@ class FeatureExtractor {
   const cv::Mat& toGrey(const cv::Mat& image);
   void exportSegments();
   void exportCorners();
+  const Junction* nearestJunction(const Eigen::Vector2f& position) const;
 
   CameraCalibration calibration_;
   FeatureExtractorOptions options_;

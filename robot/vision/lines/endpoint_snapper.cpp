@@ -1,5 +1,6 @@
 #include "robot/vision/lines/endpoint_snapper.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -33,6 +34,7 @@ EndpointSnapper::EndpointSnapper(const EndpointSnapOptions& options)
 
 void EndpointSnapper::snap(std::vector<LineSegment>& segments) {
   endpoints_.clear();
+  junctions_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(segments.size()); ++i) {
     endpoints_.push_back({segments[i].start(), i, true, false});
     endpoints_.push_back({segments[i].end(), i, false, false});
@@ -52,7 +54,7 @@ void EndpointSnapper::snap(std::vector<LineSegment>& segments) {
   }
 }
 
-bool EndpointSnapper::trySnap(std::vector<LineSegment>& segments, Endpoint& a, Endpoint& b) const {
+bool EndpointSnapper::trySnap(std::vector<LineSegment>& segments, Endpoint& a, Endpoint& b) {
   if (a.segment == b.segment) {
     return false;
   }
@@ -80,6 +82,11 @@ bool EndpointSnapper::trySnap(std::vector<LineSegment>& segments, Endpoint& a, E
                std::sqrt(line_b.fit.normalVariance(u)) / std::abs(sin_angle));
   moveEndpoint(line_b, b.is_start, u,
                std::sqrt(line_a.fit.normalVariance(s)) / std::abs(sin_angle));
+  Eigen::Matrix2d normals;
+  normals << line_a.fit.normal.transpose(), line_b.fit.normal.transpose();
+  const Eigen::Matrix2d inverse = normals.inverse();
+  const Eigen::Vector2d normal_variance(line_a.fit.normalVariance(s), line_b.fit.normalVariance(u));
+  junctions_.push_back({x, inverse * normal_variance.asDiagonal() * inverse.transpose()});
   a.snapped = true;
   b.snapped = true;
   return true;

@@ -7,7 +7,9 @@
 // cross at an angle alpha >= min_angle and the intersection x lies within
 // radius of both. The snapped endpoint's position along A is then fixed by
 // B's normal position at x: sigma_along_A = sqrt(var_normal_B(x)) / sin(alpha).
-// Each endpoint snaps at most once, to the first partner found.
+// Each endpoint snaps at most once, to the first partner found. Every snap is
+// kept as a junction: x with covariance A^-1 diag(var_A(x), var_B(x)) A^-T,
+// A = [n_A^T; n_B^T] the two line normals.
 #pragma once
 
 #include <cstdint>
@@ -18,8 +20,13 @@
 namespace lineloc {
 
 struct EndpointSnapOptions {
-  double radius_px = 3.0;
+  double radius_px = 6.0;
   double min_angle_rad = 0.35;
+};
+
+struct Junction {
+  Eigen::Vector2d position;
+  Eigen::Matrix2d covariance;
 };
 
 class EndpointSnapper {
@@ -28,6 +35,9 @@ class EndpointSnapper {
 
   void snap(std::vector<LineSegment>& segments);
 
+  // Where the last snap() met pairs of lines.
+  const std::vector<Junction>& junctions() const { return junctions_; }
+
  private:
   struct Endpoint {
     Eigen::Vector2d position;
@@ -35,11 +45,12 @@ class EndpointSnapper {
     bool is_start;
     bool snapped;
   };
-  bool trySnap(std::vector<LineSegment>& segments, Endpoint& a, Endpoint& b) const;
+  bool trySnap(std::vector<LineSegment>& segments, Endpoint& a, Endpoint& b);
 
   EndpointSnapOptions options_;
   double min_sin_angle_;
   std::vector<Endpoint> endpoints_;
+  std::vector<Junction> junctions_;
 };
 
 }  // namespace lineloc

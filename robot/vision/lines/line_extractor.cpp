@@ -5,6 +5,12 @@
 #include <stdexcept>
 
 namespace lineloc {
+namespace {
+
+// Refit-and-trim rounds: the bent ends near a corner go in one or two.
+constexpr int kTrimPasses = 3;
+
+}  // namespace
 
 LineExtractor::LineExtractor(const LineExtractorOptions& options)
     : options_(options),
@@ -47,20 +53,43 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
                                                   static_cast<size_t>(chain.size()));
   pieces_.clear();
   split_and_merge_.approximate(polyline, pieces_);
-  for (const PointRange& piece : pieces_) {
+  for (PointRange piece : pieces_) {
     LineSegment segment;
     for (int i = piece.begin; i < piece.end; ++i) {
-      const EdgePoint& point = points[chain_points[chain.begin + i]];
       segment.moments.add(polyline[i]);
-      segment.gradient_sum += point.gradient.cast<double>();
-      segment.step_sum += std::abs(point.step);
     }
     segment.fit = fitLine(segment.moments, options_.fit);
+    trimEnds(polyline, piece, segment);
     if (segment.fit.status != LineFitStatus::kOk) {
       continue;
     }
+    for (int i = piece.begin; i < piece.end; ++i) {
+      const EdgePoint& point = points[chain_points[chain.begin + i]];
+      segment.gradient_sum += point.gradient.cast<double>();
+      segment.step_sum += std::abs(point.step);
+    }
     segment.setExtent(polyline[piece.begin].cast<double>(), polyline[piece.end - 1].cast<double>());
     segments_.push_back(segment);
+  }
+}
+
+void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
+                             LineSegment& segment) const {
+  for (int pass = 0; pass < kTrimPasses && segment.fit.status == LineFitStatus::kOk; ++pass) {
+    const PointRange before = piece;
+    const auto off_line = [&](int i) {
+      return std::abs(segment.fit.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
+    };
+    while (piece.size() > 0 && off_line(piece.begin)) {
+      segment.moments.remove(polyline[piece.begin++]);
+    }
+    while (piece.size() > 0 && off_line(piece.end - 1)) {
+      segment.moments.remove(polyline[--piece.end]);
+    }
+    if (piece.begin == before.begin && piece.end == before.end) {
+      return;
+    }
+    segment.fit = fitLine(segment.moments, options_.fit);
   }
 }
 

@@ -1,10 +1,12 @@
 // Straight line segments from edge chains (Persa & Jonker §3): edge points
 // undistorted through the lookup table, split-and-merge of every chain, a
-// total-least-squares refit of every piece, collinear pieces merged across
-// small gaps, weak and short segments dropped, and endpoints that meet at a
-// corner snapped to the intersection of their lines.
+// total-least-squares refit of every piece (after trimming end points that
+// bend away near a corner: farther than trim_distance from the line), collinear pieces merged
+// across small gaps, weak and short segments dropped, and endpoints that meet at a corner snapped
+// to the intersection of their lines.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "robot/vision/edges/edge_detector.h"
@@ -19,7 +21,8 @@ namespace lineloc {
 
 struct LineExtractorOptions {
   double split_distance_px = 1.0;
-  int min_points = 6;  // edge points per split-and-merge piece
+  double trim_distance_px = 0.25;  // end points farther from the refitted line are dropped
+  int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;
   double min_contrast = 10.0;  // mean grey-level step
   int max_segments = 1024;     // the longest are kept
@@ -38,10 +41,14 @@ class LineExtractor {
                const UndistortionTable& undistortion);
 
   const std::vector<LineSegment>& segments() const { return segments_; }
+  // Where segment endpoints met at a corner (see EndpointSnapper).
+  const std::vector<Junction>& junctions() const { return snapper_.junctions(); }
 
  private:
   void fitPieces(const std::vector<EdgePoint>& points, const std::vector<int32_t>& chain_points,
                  PointRange chain);
+  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
+                LineSegment& segment) const;
   void keepSignificant();
 
   LineExtractorOptions options_;

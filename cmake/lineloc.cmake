@@ -40,7 +40,8 @@ function(lineloc_add_benchmark name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
-    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
+    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"
+    LINELOC_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
 endfunction()
 
 # lineloc_add_module_directories(): add_subdirectory() for every immediate

@@ -1,7 +1,8 @@
 #include "common/config/program_options.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
@@ -34,21 +35,25 @@ void ProgramOptions::applyConfigFile(const std::string& path) {
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: not valid YAML: {}", path, error.what()));
   }
+  applyConfig(root, path);
+}
+
+void ProgramOptions::applyConfig(const YAML::Node& root, const std::string& source) {
   if (root.IsNull()) {
     return;
   }
   if (!root.IsMap()) {
-    throw std::runtime_error(fmt::format("{}: expected a map of option keys", path));
+    throw std::runtime_error(fmt::format("{}: expected a map of option keys", source));
   }
   for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
     const auto binding = std::find_if(bindings_.begin(), bindings_.end(),
                                       [&](const Binding& b) { return b.key == key; });
     if (binding == bindings_.end()) {
-      throw std::runtime_error(fmt::format("{}:{}: unknown key '{}'", path,
-                                           entry.first.Mark().line + 1, key));
+      throw std::runtime_error(
+          fmt::format("{}:{}: unknown key '{}'", source, entry.first.Mark().line + 1, key));
     }
-    binding->apply(entry.second, path);
+    binding->apply(entry.second, source);
   }
 }
 

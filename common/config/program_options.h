@@ -6,12 +6,13 @@
 // a typo never silently leaves a default in force.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
 
 namespace lineloc {
 
@@ -24,21 +25,26 @@ class ProgramOptions {
   template <typename T>
   void add(const std::string& key, T& value, const std::string& help) {
     CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
-    bindings_.push_back({key, [option, &value, key](const YAML::Node& node, const std::string& file) {
-                           if (option->count() > 0) {
-                             return;
-                           }
-                           try {
-                             value = node.as<T>();
-                           } catch (const YAML::Exception& error) {
-                             throwBadValue(file, key, node, error.what());
-                           }
-                         }});
+    bindings_.push_back(
+        {key, [option, &value, key](const YAML::Node& node, const std::string& file) {
+           if (option->count() > 0) {
+             return;
+           }
+           try {
+             value = node.as<T>();
+           } catch (const YAML::Exception& error) {
+             throwBadValue(file, key, node, error.what());
+           }
+         }});
   }
 
   // Parses argv and the config file. Returns an exit code when the program
   // should stop now (after --help, or with an error already printed).
   std::optional<int> parse(int argc, const char* const* argv);
+
+  // Applies a parsed YAML map (`source` names it in errors) to the options not
+  // given on the command line. Throws std::runtime_error on unknown keys or bad values.
+  void applyConfig(const YAML::Node& root, const std::string& source);
 
   CLI::App& app() { return app_; }
 

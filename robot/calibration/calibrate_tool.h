@@ -18,7 +18,7 @@ struct CalibrateToolConfig {
   std::string out = "camera.yml";   // calibration file written
   std::string check;                // existing calibration to check instead of calibrating
   std::string report;               // residual plot PNG (empty: none)
-  double report_magnification = 100.0;
+  double report_magnification = 30.0;
   bool fix_skew = false;
   bool fix_aspect_ratio = false;
   double aspect_ratio = 1.0;

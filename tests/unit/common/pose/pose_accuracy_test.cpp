@@ -14,11 +14,6 @@
 namespace lineloc {
 namespace {
 
-using test::makeScene;
-using test::rotationErrorRad;
-using test::SceneOptions;
-using test::translationErrorM;
-
 // Rotation and translation errors of one estimator on the scenes seeded 1..n.
 struct Errors {
   std::vector<double> rotation_rad;
@@ -26,14 +21,16 @@ struct Errors {
 };
 
 template <typename Estimator>
-Errors poseErrors(SceneOptions options, int seeds, Estimator&& estimate) {
+Errors poseErrors(test::SceneOptions options, int seeds, Estimator&& estimate) {
   Errors errors;
   for (int seed = 1; seed <= seeds; ++seed) {
     options.seed = static_cast<uint32_t>(seed);
-    const test::Scene scene = makeScene(options);
+    const test::Scene scene = test::makeScene(options);
     const std::optional<Eigen::Isometry3d> pose = estimate(scene);
-    errors.rotation_rad.push_back(pose ? rotationErrorRad(*pose, scene.T_world_camera) : M_PI);
-    errors.translation_m.push_back(pose ? translationErrorM(*pose, scene.T_world_camera) : 1e3);
+    errors.rotation_rad.push_back(pose ? test::rotationErrorRad(*pose, scene.T_world_camera)
+                                       : M_PI);
+    errors.translation_m.push_back(pose ? test::translationErrorM(*pose, scene.T_world_camera)
+                                        : 1e3);
   }
   return errors;
 }
@@ -93,7 +90,7 @@ class OpenCvComparisonTest : public ::testing::TestWithParam<SweepCase> {};
 // (a one-sided test at ~2.5%: lineloc is not significantly worse than any).
 TEST_P(OpenCvComparisonTest, NoWorseThanAnySolvePnP) {
   const SweepCase sweep = GetParam();
-  const SceneOptions options{sweep.points, 0, sweep.planar, sweep.noise_px, 0};
+  const test::SceneOptions options{sweep.points, 0, sweep.planar, sweep.noise_px, 0};
   std::vector<int> flags = {cv::SOLVEPNP_ITERATIVE, cv::SOLVEPNP_SQPNP};
   if (sweep.planar) {
     flags.push_back(cv::SOLVEPNP_IPPE);
@@ -156,8 +153,8 @@ std::optional<Eigen::Isometry3d> linelocFromNearbyPrior(const test::Scene& scene
 // solution lies nearest the prior.
 TEST(LineAccuracyTest, LinesAloneAreComparableToPoints) {
   for (const int count : {6, 10, 30, 100}) {
-    const SceneOptions lines{0, count, false, 1.0, 0};
-    const SceneOptions points{count, 0, false, 1.0, 0};
+    const test::SceneOptions lines{0, count, false, 1.0, 0};
+    const test::SceneOptions points{count, 0, false, 1.0, 0};
     const Errors with_lines = poseErrors(lines, kSeeds, linelocFromNearbyPrior);
     const Errors with_points = poseErrors(points, kSeeds, linelocFromNearbyPrior);
     EXPECT_LE(mean(with_lines.rotation_rad), 2.5 * mean(with_points.rotation_rad)) << count;
@@ -170,7 +167,7 @@ TEST(LineAccuracyTest, LinesAloneAreComparableToPoints) {
 TEST(LineAccuracyTest, MixturesBeatSolvePnPOnTheirPoints) {
   for (const auto& [points, lines] : {std::pair{6, 3}, {6, 20}, {20, 50}, {4, 10}}) {
     for (const double noise_px : {0.5, 2.0}) {
-      const SceneOptions options{points, lines, points == 4, noise_px, 0};
+      const test::SceneOptions options{points, lines, points == 4, noise_px, 0};
       const Errors ours = poseErrors(options, kSeeds, lineloc);
       const Errors theirs = poseErrors(options, kSeeds, [](const test::Scene& scene) {
         return test::solvePnPOpenCv(scene.problem, cv::SOLVEPNP_ITERATIVE);
@@ -194,23 +191,24 @@ TEST(RobustLossTest, HuberAndCauchyAbsorbOutliers) {
   double huber_error = 0.0;
   double cauchy_error = 0.0;
   for (uint32_t seed = 1; seed <= 10; ++seed) {
-    test::Scene scene = makeScene({30, 0, false, 1.0, seed});
+    test::Scene scene = test::makeScene({30, 0, false, 1.0, seed});
     PoseOptions options;
     options.prior_T_world_camera = scene.T_world_camera;
     PoseProblem clean = scene.problem;
     clean.points.resize(24);
-    clean_error +=
-        rotationErrorRad(estimatePose(clean, options).T_world_camera.pose, scene.T_world_camera);
+    clean_error += test::rotationErrorRad(estimatePose(clean, options).T_world_camera.pose,
+                                          scene.T_world_camera);
     for (size_t i = 24; i < 30; ++i) {
       scene.problem.points[i].pixel += offset_px(random) * Eigen::Vector2d(0.6, -0.8);
     }
-    plain_error += rotationErrorRad(estimatePose(scene.problem, options).T_world_camera.pose,
-                                    scene.T_world_camera);
+    plain_error += test::rotationErrorRad(estimatePose(scene.problem, options).T_world_camera.pose,
+                                          scene.T_world_camera);
     for (const RobustLoss loss : {RobustLoss::kHuber, RobustLoss::kCauchy}) {
       options.refinement.loss = loss;
       const PoseEstimate estimate = estimatePose(scene.problem, options);
       ASSERT_EQ(estimate.status, PoseStatus::kConverged) << estimate.message;
-      const double error = rotationErrorRad(estimate.T_world_camera.pose, scene.T_world_camera);
+      const double error =
+          test::rotationErrorRad(estimate.T_world_camera.pose, scene.T_world_camera);
       (loss == RobustLoss::kHuber ? huber_error : cauchy_error) += error;
       for (size_t i = 24; i < 30; ++i) {
         EXPECT_LT(estimate.point_residuals[i].weight, 0.1);
@@ -233,14 +231,15 @@ TEST(CovarianceTest, NormalizedEstimationErrorSquaredIsChiSquared6) {
   constexpr int kTrials = 200;
   double nees_sum = 0.0;
   for (int trial = 0; trial < kTrials; ++trial) {
-    test::Scene scene = makeScene({12, 6, false, 0.0, 7});
+    test::Scene scene = test::makeScene({12, 6, false, 0.0, 7});
     std::mt19937 random(static_cast<uint32_t>(1000 + trial));
     std::normal_distribution<double> noise(0.0, 1.0);
     const auto add_noise = [&](Eigen::Vector2d& pixel, Eigen::Matrix2d& covariance) {
       pixel += Eigen::Vector2d(noise(random), noise(random));
       covariance = Eigen::Matrix2d::Identity();
     };
-    for (auto& point : scene.problem.points) add_noise(point.pixel, point.covariance);
+    for (auto& point : scene.problem.points)
+      add_noise(point.pixel, point.covariance);
     for (auto& line : scene.problem.lines) {
       add_noise(line.start_pixel, line.start_covariance);
       add_noise(line.end_pixel, line.end_covariance);

@@ -3,8 +3,9 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <cmath>
+
+#include "common/pose/nearest_rotation.h"
 
 namespace lineloc {
 
@@ -97,11 +98,18 @@ PoseStart linearPose(const PoseProblem& problem) {
   Eigen::Matrix<double, 3, 4> P;
   P.leftCols<3>() = normalization.scale * P_normalized.leftCols<3>();
   P.col(3) = P_normalized.col(3) - P.leftCols<3>() * normalization.centroid;
-  if (P.leftCols<3>().determinant() < 0.0) {
+  // The sign of P puts most model points in front: depth ~ P3 [X; 1] > 0.
+  double front_votes = 0.0;
+  for (const auto& point : problem.points) {
+    front_votes += P.row(2).dot(point.p_world.homogeneous()) > 0.0 ? 1.0 : -1.0;
+  }
+  for (const auto& line : problem.lines) {
+    front_votes += P.row(2).dot(line.start_world.homogeneous()) > 0.0 ? 1.0 : -1.0;
+    front_votes += P.row(2).dot(line.end_world.homogeneous()) > 0.0 ? 1.0 : -1.0;
+  }
+  if (front_votes < 0.0) {
     P = -P;
   }
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(P.leftCols<3>(),
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
   // |s R|_F = sqrt(3) |s|.
   const double scale = P.leftCols<3>().norm() / std::sqrt(3.0);
   if (!(scale > 0.0) || !std::isfinite(scale)) {
@@ -110,7 +118,7 @@ PoseStart linearPose(const PoseProblem& problem) {
     return start;
   }
   Eigen::Isometry3d T_camera_world = Eigen::Isometry3d::Identity();
-  T_camera_world.linear() = svd.matrixU() * svd.matrixV().transpose();
+  T_camera_world.linear() = nearestRotation(P.leftCols<3>());
   T_camera_world.translation() = P.col(3) / scale;
   start.status = PoseStatus::kConverged;
   start.T_world_camera = T_camera_world.inverse();

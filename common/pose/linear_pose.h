@@ -10,8 +10,10 @@
 // Every correspondence gives two equations on the 12 entries of P, so six are
 // needed. The model is first moved to its centroid and scaled to unit RMS
 // distance (Hartley's normalization); P is the eigenvector of A^T A with the
-// smallest eigenvalue, signed so that det(P_3x3) > 0, its left 3x3 block is
-// projected onto SO(3) by SVD, and t is divided by the scale |P_3x3|_F / sqrt(3).
+// smallest eigenvalue, signed so that most model points are in front of the
+// camera, its left 3x3 block is
+// projected onto SO(3) (common/pose/nearest_rotation.h), and t is divided by the scale |P_3x3|_F /
+// sqrt(3).
 #pragma once
 
 #include <Eigen/Geometry>

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
 #include "common/homography/homography.h"
+#include "common/pose/nearest_rotation.h"
 
 namespace lineloc {
 
@@ -21,15 +21,6 @@ constexpr double kCollinearTolerance = 1e-6;
 // Normals closer than this (radians) to the line of sight give one candidate.
 constexpr double kMinFlipAngleRad = 1e-9;
 
-Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& M) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  if ((U * svd.matrixV().transpose()).determinant() < 0.0) {
-    U.col(2) = -U.col(2);
-  }
-  return U * svd.matrixV().transpose();
-}
-
 double rmsResidualPx(const PinholeCamera& camera, const std::vector<PointCorrespondence>& points,
                      const Eigen::Isometry3d& T_camera_world) {
   double squared = 0.0;
@@ -37,6 +28,23 @@ double rmsResidualPx(const PinholeCamera& camera, const std::vector<PointCorresp
     squared += (camera.project(T_camera_world * point.p_world) - point.pixel).squaredNorm();
   }
   return std::sqrt(squared / static_cast<double>(points.size()));
+}
+
+// When noise folds the exact homography (the line at infinity between model
+// points, as four noisy points can), the weak-perspective start: the
+// least-squares affine map [A b; 0 0 1], each image row u = a^T [x y 1].
+Eigen::Matrix3d affineApproximation(const std::vector<Eigen::Vector2d>& model_points,
+                                    const std::vector<Eigen::Vector2d>& image_points) {
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 2> right_side = Eigen::Matrix<double, 3, 2>::Zero();
+  for (size_t i = 0; i < model_points.size(); ++i) {
+    const Eigen::Vector3d m = model_points[i].homogeneous();
+    normal_matrix.noalias() += m * m.transpose();
+    right_side.noalias() += m * image_points[i].transpose();
+  }
+  Eigen::Matrix3d H = Eigen::Matrix3d::Identity();
+  H.topRows<2>() = normal_matrix.ldlt().solve(right_side).transpose();
+  return H;
 }
 
 // The mirrored candidate: rotate the plane about its centroid (t) so that its
@@ -106,11 +114,14 @@ PlanarPoseStart planarPose(const PinholeCamera& camera,
     image_points.push_back(point.pixel);
   }
   const HomographyEstimate homography = estimateHomographyDlt(model_points, image_points);
-  if (homography.status != HomographyStatus::kOk) {
-    start.message = fmt::format("planar start: homography failed: {}", toString(homography.status));
+  if (homography.status == HomographyStatus::kNonFinite) {
+    start.message = "planar start: homography failed: non-finite";
     return start;
   }
-  const Eigen::Matrix3d B = camera.K().inverse() * homography.H;
+  const Eigen::Matrix3d H = homography.status == HomographyStatus::kOk
+                                ? homography.H
+                                : affineApproximation(model_points, image_points);
+  const Eigen::Matrix3d B = camera.K().inverse() * H;
   const double norm_sum = B.col(0).norm() + B.col(1).norm();
   if (!(norm_sum > 0.0) || !std::isfinite(norm_sum)) {
     start.message = "planar start: the homography has no rotation part";

@@ -21,6 +21,8 @@ using Matrix26d = Eigen::Matrix<double, 2, 6>;
 constexpr double kMinDepthM = 1e-9;
 // A camera farther than this from the world origin has diverged (metres).
 constexpr double kMaxTranslationM = 1e3 * kMaxAbsCoordinate;
+// Cost of a correspondence behind the camera: that of a 1000-sigma residual.
+constexpr double kBehindCameraCost = 0.5 * 1e6;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -173,30 +175,36 @@ LossValue evaluateLoss(RobustLoss loss, double c, double s) {
   return {s, 1.0};
 }
 
-// Calls visit(term, is_line, index) for every correspondence; false as soon as
-// one is not in front of the camera.
+// Calls visit(term, is_line, index) for every correspondence in front of the
+// camera; returns how many are not.
 template <typename Visitor>
-bool visitTerms(const PreparedProblem& problem, const Eigen::Isometry3d& T_camera_world,
-                Visitor&& visit) {
+size_t visitTerms(const PreparedProblem& problem, const Eigen::Isometry3d& T_camera_world,
+                  Visitor&& visit) {
+  size_t behind = 0;
   Term term;
   for (size_t i = 0; i < problem.points.size(); ++i) {
-    if (!pointTerm(problem.camera, T_camera_world, problem.points[i], &term)) {
-      return false;
+    if (pointTerm(problem.camera, T_camera_world, problem.points[i], &term)) {
+      visit(term, false, i);
+    } else {
+      ++behind;
     }
-    visit(term, false, i);
   }
   for (size_t i = 0; i < problem.lines.size(); ++i) {
-    if (!lineTerm(problem.camera, T_camera_world, problem.lines[i], &term)) {
-      return false;
+    if (lineTerm(problem.camera, T_camera_world, problem.lines[i], &term)) {
+      visit(term, true, i);
+    } else {
+      ++behind;
     }
-    visit(term, true, i);
   }
-  return true;
+  return behind;
 }
 
 // The Gauss–Newton system J^T W J, J^T W r of the sqrt(rho')-scaled residuals.
+// A correspondence behind the camera adds the constant kBehindCameraCost and
+// no gradient, so that a start seeing a few features behind the camera (a
+// noisy linear start) can still bring them in front.
 struct Linearization {
-  bool in_front = false;
+  size_t behind = 0;
   double cost = 0.0;
   Matrix6d information = Matrix6d::Zero();
   Vector6d gradient = Vector6d::Zero();
@@ -205,13 +213,14 @@ struct Linearization {
 Linearization linearize(const PreparedProblem& problem, const Eigen::Isometry3d& T_camera_world,
                         const RefinementOptions& options) {
   Linearization result;
-  result.in_front = visitTerms(problem, T_camera_world, [&](const Term& term, bool, size_t) {
+  result.behind = visitTerms(problem, T_camera_world, [&](const Term& term, bool, size_t) {
     const LossValue loss =
         evaluateLoss(options.loss, options.loss_scale, term.normalized.squaredNorm());
     result.cost += 0.5 * loss.rho;
     result.information.noalias() += loss.derivative * term.jacobian.transpose() * term.jacobian;
     result.gradient.noalias() += loss.derivative * term.jacobian.transpose() * term.normalized;
   });
+  result.cost += kBehindCameraCost * static_cast<double>(result.behind);
   return result;
 }
 
@@ -252,22 +261,27 @@ Matrix6d worldCovariance(const Matrix6d& camera_covariance, const Eigen::Matrix3
 PoseEstimate summarize(const PreparedProblem& problem, const Eigen::Isometry3d& T_camera_world,
                        const Linearization& linearization, const RefinementOptions& options,
                        PoseStatus status, int iterations) {
+  if (linearization.behind > 0) {
+    return poseFailure(PoseStatus::kBehindCamera,
+                       fmt::format("{} model points or segments are not in front of the camera",
+                                   linearization.behind));
+  }
   PoseEstimate estimate;
   estimate.iterations = iterations;
   estimate.cost = linearization.cost;
   estimate.point_residuals.resize(problem.points.size());
   estimate.line_residuals.resize(problem.lines.size());
   double squared_px = 0.0;
-  size_t count = 0;
+  std::vector<double> normalized;
   visitTerms(problem, T_camera_world, [&](const Term& term, bool is_line, size_t i) {
     const double s = term.normalized.squaredNorm();
     auto& residual = is_line ? estimate.line_residuals[i] : estimate.point_residuals[i];
     residual = {term.residual_px, std::sqrt(s),
                 evaluateLoss(options.loss, options.loss_scale, s).derivative};
     squared_px += term.residual_px * term.residual_px;
-    ++count;
+    normalized.push_back(residual.normalized_residual);
   });
-  estimate.rms_residual_px = std::sqrt(squared_px / (2.0 * static_cast<double>(count)));
+  estimate.rms_residual_px = std::sqrt(squared_px / (2.0 * static_cast<double>(normalized.size())));
   estimate.T_world_camera.pose = T_camera_world.inverse();
   estimate.status = status;
   if (status == PoseStatus::kIterationLimit) {
@@ -280,12 +294,12 @@ PoseEstimate summarize(const PreparedProblem& problem, const Eigen::Isometry3d& 
   }
   estimate.T_world_camera.covariance =
       worldCovariance(linearization.information.inverse(), estimate.T_world_camera.pose.linear());
-  // sqrt(2 cost / m) with m = 2 count scalar residuals.
-  const double rms_normalized = std::sqrt(linearization.cost / static_cast<double>(count));
-  if (status == PoseStatus::kConverged && rms_normalized > options.max_rms_normalized_residual) {
+  const auto median = normalized.begin() + static_cast<std::ptrdiff_t>(normalized.size() / 2);
+  std::nth_element(normalized.begin(), median, normalized.end());
+  if (status == PoseStatus::kConverged && *median > options.max_median_normalized_residual) {
     estimate.status = PoseStatus::kInconsistent;
-    estimate.message = fmt::format("RMS normalized residual {} exceeds {}", rms_normalized,
-                                   options.max_rms_normalized_residual);
+    estimate.message = fmt::format("median normalized residual {} exceeds {}", *median,
+                                   options.max_median_normalized_residual);
   }
   if (!isFinitePose(estimate.T_world_camera)) {
     estimate.status = PoseStatus::kDiverged;
@@ -306,9 +320,9 @@ PoseEstimate refineCheckedPose(const PoseProblem& problem,
   const PreparedProblem prepared = prepare(problem);
   Eigen::Isometry3d T_camera_world = T_world_camera_start.inverse();
   Linearization current = linearize(prepared, T_camera_world, options);
-  if (!current.in_front) {
+  if (current.behind == problem.points.size() + problem.lines.size()) {
     return poseFailure(PoseStatus::kBehindCamera,
-                       "start pose: a model point or endpoint is not in front of the camera");
+                       "start pose: no model point or endpoint is in front of the camera");
   }
   double damping = options.initial_damping;
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
@@ -331,7 +345,7 @@ PoseEstimate refineCheckedPose(const PoseProblem& problem,
     }
     const Eigen::Isometry3d candidate = applyStep(T_camera_world, step);
     Linearization trial = linearize(prepared, candidate, options);
-    if (!trial.in_front || !(trial.cost < current.cost)) {
+    if (!(trial.cost < current.cost)) {
       damping *= 10.0;
       if (damping > options.max_damping) {
         return summarize(prepared, T_camera_world, current, options, PoseStatus::kConverged,

@@ -50,15 +50,16 @@ struct RefinementOptions {
   // kDegenerate when the smallest eigenvalue of the Jacobi-scaled information
   // matrix J^T J is below this fraction of the largest.
   double degeneracy_threshold = 1e-12;
-  // kInconsistent when the RMS normalized residual sqrt(2 cost / m), m the
-  // number of scalar residuals, exceeds this: the data do not fit the stated
-  // noise (wrong matches, outliers the loss did not absorb, no valid pose).
-  double max_rms_normalized_residual = 5.0;
+  // kInconsistent when the median over correspondences of the normalized
+  // residual exceeds this (1.18 expected for a 2-vector of unit-variance
+  // residuals): most data do not fit the stated noise (wrong matches, no
+  // valid pose). A median tolerates outliers left to the robust loss.
+  double max_median_normalized_residual = 5.0;
 };
 
 // Refines from T_world_camera_start. Checks the input first (kInvalidInput,
-// kNotEnoughCorrespondences, kDegenerate, kBehindCamera for a start that sees a
-// model point or endpoint at z <= 0).
+// kNotEnoughCorrespondences, kDegenerate; kBehindCamera when the start sees no
+// model feature in front of the camera, or the refined pose still sees one behind).
 PoseEstimate refinePose(const PoseProblem& problem, const Eigen::Isometry3d& T_world_camera_start,
                         const RefinementOptions& options = {});
 

@@ -23,8 +23,8 @@ class LineSearch {
         direction_(direction),
         radius_px_(radius_px) {}
 
-  // Flow of the block, or nullopt when the minimum is on the line's ends or
-  // flat.
+  // Flow of the block, or nullopt when the minimum is not one across the
+  // line too, or flat.
   std::optional<cv::Point2f> run() const {
     const int count = 2 * radius_px_ + 1;
     std::vector<uint32_t> sads(count, UINT32_MAX);
@@ -38,22 +38,39 @@ class LineSearch {
         best = better ? k : best;
       }
     }
-    if (best <= 0 || best >= count - 1 || sads[best - 1] == UINT32_MAX ||
-        sads[best + 1] == UINT32_MAX) {
+    if (best < 0) {
       return std::nullopt;
     }
-    const auto offset = parabolaOffset(sads[best - 1], sads[best], sads[best + 1]);
-    if (!offset) {
+    const cv::Point at = displacement(best - radius_px_);
+    const auto offset_x = axisOffset(at, {1, 0}, sads[best]);
+    const auto offset_y = axisOffset(at, {0, 1}, sads[best]);
+    if (!offset_x || !offset_y) {
       return std::nullopt;
     }
-    const float t = static_cast<float>(best - radius_px_) + *offset;
-    return direction_ * t;
+    return cv::Point2f(static_cast<float>(at.x) + *offset_x, static_cast<float>(at.y) + *offset_y);
   }
 
  private:
-  std::optional<uint32_t> sadAt(int t) const {
-    const int x = block_.x + static_cast<int>(std::lround(t * direction_.x));
-    const int y = block_.y + static_cast<int>(std::lround(t * direction_.y));
+  cv::Point displacement(int t) const {
+    return {static_cast<int>(std::lround(t * direction_.x)),
+            static_cast<int>(std::lround(t * direction_.y))};
+  }
+
+  // Parabola offset along `axis` around the integer displacement `at`.
+  std::optional<float> axisOffset(cv::Point at, cv::Point axis, uint32_t centre) const {
+    const auto minus = sadAt(at - axis);
+    const auto plus = sadAt(at + axis);
+    if (!minus || !plus || *minus < centre || *plus < centre) {
+      return std::nullopt;
+    }
+    return parabolaOffset(*minus, centre, *plus);
+  }
+
+  std::optional<uint32_t> sadAt(int t) const { return sadAt(displacement(t)); }
+
+  std::optional<uint32_t> sadAt(cv::Point offset) const {
+    const int x = block_.x + offset.x;
+    const int y = block_.y + offset.y;
     if (x < 0 || y < 0 || x + block_.width > current_.cols || y + block_.height > current_.rows) {
       return std::nullopt;
     }

@@ -4,8 +4,11 @@
 // (motion_detector.h), either over the full +-R window (block_matcher.h) or,
 // when the expected direction u of the motion is known (the robot's own
 // motion, or last frame's flow), along the line t u, t in [-R, R], with the
-// displacement (round(t u_x), round(t u_y)) and a parabola through t - 1, t,
-// t + 1 for the sub-pixel t.
+// displacement (round(t u_x), round(t u_y)). Sub-pixel: a parabola per axis
+// through the SADs at -1, 0, +1 pixel around the best displacement (on the
+// line's rounded pixels the SAD is not smooth in t). A 1-D minimum that is not
+// a minimum across the line (the motion is off the expected direction) gives
+// unknown flow.
 //
 // Blocks without detected motion get flow 0. A block whose minimum is on the
 // window's edge or flat (textureless) gets no flow: unknown.

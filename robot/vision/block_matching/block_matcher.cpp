@@ -6,6 +6,8 @@
 #include <array>
 #include <stdexcept>
 
+#include "robot/vision/block_matching/parabola_fit.h"
+
 namespace lineloc {
 namespace {
 
@@ -17,18 +19,6 @@ uint64_t rankOf(uint32_t sad, int dx, int dy) {
   return (static_cast<uint64_t>(sad) << 32) | (length2 << 16) |
          (static_cast<uint64_t>(dy + kMaxSearchRadiusPx) << 8) |
          static_cast<uint64_t>(dx + kMaxSearchRadiusPx);
-}
-
-// Vertex of the parabola through (-1, minus), (0, centre), (+1, plus), where
-// centre is the least of the three; false when the SAD is flat there.
-bool parabolaOffset(uint32_t minus, uint32_t centre, uint32_t plus, float& offset) {
-  const double curvature = static_cast<double>(minus) - 2.0 * centre + plus;
-  if (curvature <= 0.0) {
-    return false;
-  }
-  offset = static_cast<float>(
-      std::clamp((static_cast<double>(minus) - plus) / (2.0 * curvature), -0.5, 0.5));
-  return true;
 }
 
 }  // namespace
@@ -205,7 +195,10 @@ class BlockMatcher::Search {
       at_edge = true;
       return false;
     }
-    return parabolaOffset(sadAt(dx - ux, dy - uy), best_.sad, sadAt(dx + ux, dy + uy), offset);
+    const std::optional<float> vertex =
+        parabolaOffset(sadAt(dx - ux, dy - uy), best_.sad, sadAt(dx + ux, dy + uy));
+    offset = vertex.value_or(0.0f);
+    return vertex.has_value();
   }
 
   void refine() {

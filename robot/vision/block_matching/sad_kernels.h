@@ -41,7 +41,14 @@ struct SadKernels {
                          ptrdiff_t stride, int count, uint32_t* sads);
   // out[i] = |a[i] - b[i]| for i < width.
   void (*absDiffRow)(const uint8_t* a, const uint8_t* b, int width, uint8_t* out);
+  // Throughput probe for benchmarks: runs kPsadbwProbeChains independent
+  // chains of `loops` psadbw each on registers (no memory operands), so that
+  // instructions / cycles is the instruction's peak throughput. Null for the
+  // scalar reference. The result only keeps the work from being optimised out.
+  uint64_t (*psadbwProbe)(int64_t loops);
 };
+
+inline constexpr int kPsadbwProbeChains = 12;
 
 // Paths this build contains and this processor runs, scalar first.
 std::vector<SimdPath> supportedSimdPaths();

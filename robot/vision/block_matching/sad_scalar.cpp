@@ -42,8 +42,8 @@ void absDiffRow(const uint8_t* a, const uint8_t* b, int width, uint8_t* out) {
 }  // namespace
 
 const SadKernels& scalarKernels() {
-  static const SadKernels kernels{SimdPath::kScalar, sad16x16,  sad8x8, sad,
-                                  sadColumn16x16,    absDiffRow};
+  static const SadKernels kernels{SimdPath::kScalar, sad16x16,   sad8x8, sad,
+                                  sadColumn16x16,    absDiffRow, nullptr};
   return kernels;
 }
 

@@ -131,8 +131,27 @@ struct VectorKernels {
     }
   }
 
+  static uint64_t psadbwProbe(int64_t loops) {
+    alignas(64) uint8_t seed_bytes[V::kBytes] = {3, 1, 4, 1, 5, 9, 2, 6};
+    const auto seed = V::load(seed_bytes);
+    typename V::Reg chains[kPsadbwProbeChains];
+    std::fill_n(chains, kPsadbwProbeChains, seed);
+    for (int64_t i = 0; i < loops; ++i) {
+#pragma GCC unroll 16
+      for (int c = 0; c < kPsadbwProbeChains; ++c) {
+        chains[c] = V::sad(chains[c], seed);
+      }
+    }
+    auto total = V::zero();
+    for (const auto& chain : chains) {
+      total = V::add64(total, chain);
+    }
+    return V::sum(total);
+  }
+
   static const SadKernels& table(SimdPath path) {
-    static const SadKernels kernels{path, sad16x16, sad8x8, sad, sadColumn16x16, absDiffRow};
+    static const SadKernels kernels{path,           sad16x16,   sad8x8,     sad,
+                                    sadColumn16x16, absDiffRow, psadbwProbe};
     return kernels;
   }
 };

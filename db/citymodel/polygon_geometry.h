@@ -24,7 +24,9 @@ Eigen::Vector3d faceNormal(const Face& face);
 SurfaceKind surfaceKindFromNormal(const Eigen::Vector3d& unit_normal);
 
 struct FaceValidation {
-  double min_area_m2 = 1e-6;  // smaller faces are degenerate (1 mm x 1 mm, the usual quantum)
+  // Smaller faces are degenerate: collinear vertices. Real models hold slivers of
+  // 1e-7 m² (a triangle of 1 mm-quantised vertices), which are valid.
+  double min_area_m2 = 1e-9;
   double planarity_tolerance_m = 0.05;  // max distance of a vertex from the face's plane
 };
 

@@ -30,6 +30,16 @@ struct FaceValidation {
   double planarity_tolerance_m = 0.05;  // max distance of a vertex from the face's plane
 };
 
+// True when the face has collapsed: a ring with fewer than 3 distinct vertices,
+// or an exterior ring with less than the minimum area.
+bool isDegenerate(const Face& face, const FaceValidation& validation);
+
+// Removes collapsed faces (real models carry them: a triangle whose vertices
+// fell onto one another when quantised), recording each in `skipped` as
+// "degenerate face dropped". Throws ModelError when no face is left.
+void dropDegenerateFaces(Building& building, const FaceValidation& validation,
+                         const std::string& source, SkippedObjects& skipped);
+
 // Throws ModelError naming `source` and `object_id` when a face has a
 // non-finite coordinate, fewer than 3 distinct vertices, no area, or a vertex
 // farther than the tolerance from its plane.

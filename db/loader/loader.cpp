@@ -67,6 +67,7 @@ void validateAll(CityModel& model, const std::string& source, const LoadOptions&
   valid.reserve(model.buildings.size());
   for (citymodel::Building& building : model.buildings) {
     try {
+      citymodel::dropDegenerateFaces(building, options.validation, source, model.skipped);
       citymodel::validateFaces(building.faces, options.validation, source, building.id);
       valid.push_back(std::move(building));
     } catch (const ModelError& error) {

@@ -24,18 +24,13 @@ class ProgramOptions {
   // (numbers, strings, bool, std::vector of those).
   template <typename T>
   void add(const std::string& key, T& value, const std::string& help) {
-    CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
-    const auto apply = [option, &value, key](const YAML::Node& node, const std::string& file) {
-      if (option->count() > 0) {
-        return;
-      }
-      try {
-        value = node.as<T>();
-      } catch (const YAML::Exception& error) {
-        throwBadValue(file, key, node, error.what());
-      }
-    };
-    bindings_.push_back({key, option, apply, [&value] { return YAML::Node(value); }});
+    bind(key, app_.add_option(flagFor(key), value, help)->capture_default_str(), value);
+  }
+
+  // Declares a boolean that is a bare flag on the command line (`--dry-run`)
+  // and a true/false key in the YAML file.
+  void addFlag(const std::string& key, bool& value, const std::string& help) {
+    bind(key, app_.add_flag(flagFor(key), value, help)->capture_default_str(), value);
   }
 
   // Parses argv and the config file. Returns an exit code when the program
@@ -57,6 +52,22 @@ class ProgramOptions {
     std::function<void(const YAML::Node&, const std::string&)> apply;
     std::function<YAML::Node()> current;
   };
+
+  // The YAML key `key` sets `value` unless the command line gave `option`.
+  template <typename T>
+  void bind(const std::string& key, CLI::Option* option, T& value) {
+    const auto apply = [option, &value, key](const YAML::Node& node, const std::string& file) {
+      if (option->count() > 0) {
+        return;
+      }
+      try {
+        value = node.as<T>();
+      } catch (const YAML::Exception& error) {
+        throwBadValue(file, key, node, error.what());
+      }
+    };
+    bindings_.push_back({key, option, apply, [&value] { return YAML::Node(value); }});
+  }
 
   static std::string flagFor(const std::string& key);
   [[noreturn]] static void throwBadValue(const std::string& file, const std::string& key,

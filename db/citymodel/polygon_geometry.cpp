@@ -100,6 +100,40 @@ SurfaceKind surfaceKindFromNormal(const Eigen::Vector3d& unit_normal) {
   return unit_normal.z() > 0.0 ? SurfaceKind::kRoof : SurfaceKind::kGround;
 }
 
+bool isDegenerate(const Face& face, const FaceValidation& validation) {
+  if (face.rings.empty()) {
+    return true;
+  }
+  for (const auto& ring : face.rings) {
+    if (countDistinctVertices(ring) < 3) {
+      return true;
+    }
+  }
+  return !(0.5 * newellVector(face.rings.front()).norm() >= validation.min_area_m2);
+}
+
+void dropDegenerateFaces(Building& building, const FaceValidation& validation,
+                         const std::string& source, SkippedObjects& skipped) {
+  if (building.faces.empty()) {
+    return;
+  }
+  std::vector<Face> kept;
+  kept.reserve(building.faces.size());
+  for (size_t index = 0; index < building.faces.size(); ++index) {
+    if (isDegenerate(building.faces[index], validation)) {
+      skipped.add("degenerate face dropped",
+                  fmt::format("{}: object '{}': face {} is degenerate, dropped", source,
+                              building.id, index));
+    } else {
+      kept.push_back(std::move(building.faces[index]));
+    }
+  }
+  if (kept.empty()) {
+    throw ModelError(source, building.id, "degenerate polygon", "every face is degenerate");
+  }
+  building.faces = std::move(kept);
+}
+
 void validateFaces(const std::vector<Face>& faces, const FaceValidation& validation,
                    const std::string& source, const std::string& object_id) {
   for (size_t index = 0; index < faces.size(); ++index) {

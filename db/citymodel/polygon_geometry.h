@@ -24,9 +24,21 @@ Eigen::Vector3d faceNormal(const Face& face);
 SurfaceKind surfaceKindFromNormal(const Eigen::Vector3d& unit_normal);
 
 struct FaceValidation {
-  double min_area_m2 = 1e-6;  // smaller faces are degenerate (1 mm x 1 mm, the usual quantum)
+  // Smaller faces are degenerate: collinear vertices. Real models hold slivers of
+  // 1e-7 m² (a triangle of 1 mm-quantised vertices), which are valid.
+  double min_area_m2 = 1e-9;
   double planarity_tolerance_m = 0.05;  // max distance of a vertex from the face's plane
 };
+
+// True when the face has collapsed: a ring with fewer than 3 distinct vertices,
+// or an exterior ring with less than the minimum area.
+bool isDegenerate(const Face& face, const FaceValidation& validation);
+
+// Removes collapsed faces (real models carry them: a triangle whose vertices
+// fell onto one another when quantised), recording each in `skipped` as
+// "degenerate face dropped". Throws ModelError when no face is left.
+void dropDegenerateFaces(Building& building, const FaceValidation& validation,
+                         const std::string& source, SkippedObjects& skipped);
 
 // Throws ModelError naming `source` and `object_id` when a face has a
 // non-finite coordinate, fewer than 3 distinct vertices, no area, or a vertex

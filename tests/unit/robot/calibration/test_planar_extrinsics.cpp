@@ -1,0 +1,35 @@
+#include <gtest/gtest.h>
+
+#include "robot/calibration/planar_extrinsics.h"
+#include "synthetic_views.h"
+
+namespace lineloc {
+namespace {
+
+TEST(PlanarExtrinsics, RecoversPoseFromExactHomography) {
+  const testing::SyntheticViews synthetic = testing::makeSyntheticViews(6, {}, 0.0, 1);
+  const PinholeCamera& camera = synthetic.truth.calibration.camera;
+  for (const Eigen::Isometry3d& T_true : synthetic.truth.T_camera_model) {
+    // Any scale and sign of H gives the same pose.
+    const Eigen::Matrix3d H = -3.7 * testing::viewHomography(camera, T_true);
+    const Eigen::Isometry3d T = planePoseFromHomography(camera.K(), H);
+    EXPECT_LT((T.linear() - T_true.linear()).norm(), 1e-12);
+    EXPECT_LT((T.translation() - T_true.translation()).norm(), 1e-12);
+  }
+}
+
+TEST(PlanarExtrinsics, NearestRotationIsOrthonormal) {
+  Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Q(0, 1) += 0.05;
+  Q(2, 0) -= 0.03;
+  const Eigen::Matrix3d R = nearestRotation(Q);
+  EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-14);
+  EXPECT_NEAR(R.determinant(), 1.0, 1e-14);
+  EXPECT_LT((R - Q).norm(), 0.07);
+  const Eigen::Matrix3d reflection = -Eigen::Matrix3d::Identity();
+  EXPECT_NEAR(nearestRotation(reflection).determinant(), 1.0, 1e-14);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -17,7 +17,8 @@ constexpr float kWindowFrame_m = 0.08f;
 constexpr float kWindowSill_m = 0.9f;
 constexpr float kDoorWidth_m = 1.1f;
 constexpr float kDoorHeight_m = 2.3f;
-constexpr float kGroundCell_m = 0.25f;
+constexpr float kGroundGrain_m = 0.12f;
+constexpr float kGroundPatch_m = 1.6f;
 constexpr float kFoliageCell_m = 0.3f;
 
 // A well-mixed 32-bit hash (Wellons' lowbias32) of up to three integers.
@@ -38,6 +39,23 @@ float unit(uint32_t h) {
 
 uint32_t cell(float coordinate, float size) {
   return static_cast<uint32_t>(static_cast<int32_t>(std::floor(coordinate / size)));
+}
+
+// Smooth value noise in [0, 1): lattice hashes blended with smoothstep, so
+// the ground has stains but no straight edges for a line detector to find.
+float valueNoise(float x, float y, float cell_m, uint32_t salt) {
+  const float gx = x / cell_m;
+  const float gy = y / cell_m;
+  const float fx = std::floor(gx);
+  const float fy = std::floor(gy);
+  const auto ix = static_cast<uint32_t>(static_cast<int32_t>(fx));
+  const auto iy = static_cast<uint32_t>(static_cast<int32_t>(fy));
+  const float sx = (gx - fx) * (gx - fx) * (3.0f - 2.0f * (gx - fx));
+  const float sy = (gy - fy) * (gy - fy) * (3.0f - 2.0f * (gy - fy));
+  const float bottom = unit(hash(ix, iy, salt)) * (1.0f - sx) + unit(hash(ix + 1, iy, salt)) * sx;
+  const float top =
+      unit(hash(ix, iy + 1, salt)) * (1.0f - sx) + unit(hash(ix + 1, iy + 1, salt)) * sx;
+  return bottom * (1.0f - sy) + top * sy;
 }
 
 // Contrast kept for a pattern of the given period seen at this pixel footprint.
@@ -105,7 +123,7 @@ float SurfaceShader::facadeAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& 
                                   const Eigen::Vector3f& n, float footprint_m) const {
   const FacadeStyle style(tag.object_id);
   // u runs horizontally along the wall, v up from the building's base.
-  const float horizontal = std::hypot(n.x(), n.y());
+  const float horizontal = std::sqrt(n.x() * n.x() + n.y() * n.y());
   const float u = horizontal > 1e-3f ? (-n.y() * p.x() + n.x() * p.y()) / horizontal : p.x();
   const float v = p.z() - tag.base_z;
   const int storey = static_cast<int>(std::floor(v / style.storey_height_m));
@@ -113,7 +131,9 @@ float SurfaceShader::facadeAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& 
   const float column = std::floor(u / style.window_pitch_m);
   const float u_in_pitch = u - column * style.window_pitch_m;
   const float x_in_window = u_in_pitch - 0.5f * (style.window_pitch_m - style.window_width_m);
-  const bool below_roof = tag.base_z + (storey + 1) * style.storey_height_m <= tag.top_z + 0.05f;
+  // A storey gets windows when it ends below the roof line (LoD1 heights are
+  // rounded, so allow a little).
+  const bool below_roof = tag.base_z + (storey + 1) * style.storey_height_m <= tag.top_z + 0.6f;
   if (storey == 0) {
     const bool door = static_cast<int>(column) % style.door_every == 0;
     const float door_x = u_in_pitch - 0.5f * (style.window_pitch_m - kDoorWidth_m);
@@ -169,9 +189,9 @@ float SurfaceShader::meshAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& p,
 }
 
 float SurfaceShader::groundAlbedo(const Eigen::Vector3f& p, float footprint_m) const {
-  const float contrast = detailContrast(footprint_m, kGroundCell_m);
-  const float grain = unit(hash(cell(p.x(), kGroundCell_m), cell(p.y(), kGroundCell_m), 77));
-  return 0.3f + 0.08f * contrast * (grain - 0.5f);
+  const float stains = valueNoise(p.x(), p.y(), kGroundPatch_m, 77) - 0.5f;
+  const float grain = valueNoise(p.x(), p.y(), kGroundGrain_m, 78) - 0.5f;
+  return 0.3f + 0.06f * stains + 0.06f * detailContrast(footprint_m, kGroundGrain_m) * grain;
 }
 
 float SurfaceShader::skyRadiance(const Eigen::Vector3f& d) const {

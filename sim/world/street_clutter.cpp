@@ -1,5 +1,6 @@
 #include "sim/world/street_clutter.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
@@ -49,15 +50,41 @@ void addCar(SceneMesh& mesh, const Eigen::Isometry3d& T, uint32_t id) {
   }
 }
 
-// A trunk under a crown of two crossed boxes (an eight-sided silhouette).
-void addTree(SceneMesh& mesh, const Eigen::Isometry3d& T, uint32_t id, double height_m) {
-  addPart(mesh, T, {0.0, 0.0, 0.5 * height_m * 0.45}, {0.35, 0.35, height_m * 0.45},
-          SurfaceKind::kTreeTrunk, id);
-  const double crown = 0.55 * height_m;
-  const Eigen::Vector3d centre(0.0, 0.0, height_m - 0.5 * crown);
-  addPart(mesh, T, centre, {crown, crown, crown}, SurfaceKind::kFoliage, id);
-  addPart(mesh, T * Eigen::AngleAxisd(std::numbers::pi / 4, Eigen::Vector3d::UnitZ()), centre,
-          {0.8 * crown, 0.8 * crown, 1.15 * crown}, SurfaceKind::kFoliage, id);
+// A trunk under a low-poly crown: an icosahedron whose vertices are pushed
+// in and out by up to 20%.
+void addTree(SceneMesh& mesh, const Eigen::Isometry3d& T, uint32_t id, double height_m,
+             std::mt19937& random) {
+  const double trunk_m = 0.45 * height_m;
+  addPart(mesh, T, {0.0, 0.0, 0.5 * trunk_m}, {0.35, 0.35, trunk_m}, SurfaceKind::kTreeTrunk, id);
+  const double radius = 0.3 * height_m;
+  const Eigen::Vector3d centre = T * Eigen::Vector3d(0.0, 0.0, height_m - radius);
+  const double phi = 0.5 * (1.0 + std::sqrt(5.0));
+  std::array<Eigen::Vector3d, 12> vertices = {Eigen::Vector3d(-1, phi, 0),
+                                              {1, phi, 0},
+                                              {-1, -phi, 0},
+                                              {1, -phi, 0},
+                                              {0, -1, phi},
+                                              {0, 1, phi},
+                                              {0, -1, -phi},
+                                              {0, 1, -phi},
+                                              {phi, 0, -1},
+                                              {phi, 0, 1},
+                                              {-phi, 0, -1},
+                                              {-phi, 0, 1}};
+  std::uniform_real_distribution<double> jitter(0.8, 1.2);
+  for (Eigen::Vector3d& vertex : vertices) {
+    vertex = centre + radius * jitter(random) * vertex.normalized();
+  }
+  constexpr int kFaces[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  const float base_z = static_cast<float>(T.translation().z());
+  const SurfaceTag foliage{SurfaceKind::kFoliage, id, base_z,
+                           base_z + static_cast<float>(height_m)};
+  for (const auto& face : kFaces) {
+    mesh.addTriangle(vertices[face[0]], vertices[face[1]], vertices[face[2]], foliage);
+  }
 }
 
 // A lamp post: mast, arm and lamp.
@@ -122,6 +149,8 @@ class ClutterPlacer {
     return false;
   }
 
+  std::mt19937& random() { return random_; }
+
   double uniform(double low, double high) {
     return std::uniform_real_distribution<double>(low, high)(random_);
   }
@@ -172,8 +201,7 @@ StreetClutterCounts addStreetClutter(const OccupancyMap& map,
   }
   for (int i = 0; i < targetCount(options.trees_per_100m, length_m); ++i) {
     if (placer.find(kTreePlacement, xy)) {
-      addTree(mesh, placeOnGround(xy, placer.uniform(0.0, 2 * std::numbers::pi), z), id++,
-              placer.uniform(5.0, 9.0));
+      addTree(mesh, placeOnGround(xy, 0.0, z), id++, placer.uniform(5.0, 9.0), placer.random());
       ++counts.trees;
     }
   }

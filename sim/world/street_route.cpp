@@ -34,13 +34,20 @@ StreetCells findStreetCells(const OccupancyMap& map, const StreetRouteOptions& o
       cells.largest = label;
     }
   }
-  const Eigen::AlignedBox2d& bounds = map.buildingBounds();
+  // Goals lie inside the convex hull of the footprints: among the buildings,
+  // not along the outside of the modelled area.
+  std::vector<cv::Point> building_cells;
+  cv::findNonZero(map.occupied(), building_cells);
+  std::vector<cv::Point> hull;
+  cv::convexHull(building_cells, hull);
+  cv::Mat among_buildings = cv::Mat::zeros(map.rows(), map.cols(), CV_8UC1);
+  cv::fillConvexPoly(among_buildings, hull, cv::Scalar(255));
   for (int row = 0; row < map.rows(); ++row) {
     for (int col = 0; col < map.cols(); ++col) {
       const cv::Point cell(col, row);
       if (cells.largest > 0 && cells.labels.at<int>(cell) == cells.largest &&
           map.clearance().at<float>(cell) <= options.max_clearance_m &&
-          bounds.contains(map.centreOf(cell))) {
+          among_buildings.at<uint8_t>(cell) != 0) {
         cells.goals.push_back(cell);
       }
     }
@@ -160,7 +167,8 @@ StreetRoute planStreetRoute(const OccupancyMap& map, const StreetRouteOptions& o
   }
   route.waypoints = simplify(map, path, options.simplify_tolerance_m);
   route.length_m = polylineLength(route.waypoints);
-  route.status = route.length_m >= options.length_m ? RouteStatus::kOk : RouteStatus::kTooShort;
+  // Judged on the searched path: simplification shortens it by cutting corners.
+  route.status = length_m >= options.length_m ? RouteStatus::kOk : RouteStatus::kTooShort;
   return route;
 }
 

@@ -19,7 +19,8 @@ struct StreetRouteOptions {
   double length_m = 120.0;
   // The robot keeps at least this far from façades (m).
   double min_clearance_m = 3.0;
-  // Goals lie at most this far from a building, so the camera sees façades (m).
+  // Goals lie at most this far from a building, so the camera sees façades,
+  // and inside the convex hull of the footprints (m).
   double max_clearance_m = 20.0;
   // Weight w of the clearance term in the step cost (m).
   double centre_weight_m = 6.0;

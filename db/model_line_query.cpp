@@ -2,26 +2,48 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "db/ewkb.h"
+
 namespace lineloc::db {
 namespace {
 
 constexpr const char* kStatement = "lineloc_lines_within";
 
-// $1 site id, $2..$4 centre in site CRS coordinates, $5 radius, $6 SRID.
-// The &&& box test selects candidates through the n-D GiST index; the exact
-// 3D distance test then keeps those really within the radius.
+// $1 site id, $2..$4 centre in site CRS coordinates, $5 radius. The box needs no SRID (&&& compares
+// boxes).
 constexpr const char* kSql = R"sql(
-WITH centre AS (SELECT ST_SetSRID(ST_MakePoint($2::float8, $3::float8, $4::float8), $6::int4) AS p,
-                       $5::float8 AS r)
-SELECT l.id, l.building_id, l.kind,
-       ST_X(ST_StartPoint(l.geom)), ST_Y(ST_StartPoint(l.geom)), ST_Z(ST_StartPoint(l.geom)),
-       ST_X(ST_EndPoint(l.geom)), ST_Y(ST_EndPoint(l.geom)), ST_Z(ST_EndPoint(l.geom))
-FROM line l, centre
-WHERE l.site_id = $1::int4
-  AND l.geom &&& ST_3DMakeBox(ST_Translate(centre.p, -centre.r, -centre.r, -centre.r),
-                              ST_Translate(centre.p, centre.r, centre.r, centre.r))
-  AND ST_3DDWithin(l.geom, centre.p, centre.r)
+SELECT id, building_id, kind, geom, face_a, face_b,
+       normal_a_x, normal_a_y, normal_a_z, normal_b_x, normal_b_y, normal_b_z
+FROM line
+WHERE site_id = $1::int4
+  AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8 - $5::float8, $3::float8 - $5::float8,
+                                         $4::float8 - $5::float8),
+                            ST_MakePoint($2::float8 + $5::float8, $3::float8 + $5::float8,
+                                         $4::float8 + $5::float8))
 )sql";
+
+// Squared distance from p to the segment a-b.
+double squaredDistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
+Eigen::Vector3d optionalVector(const Result& result, int row, int column) {
+  if (result.isNull(row, column)) {
+    return Eigen::Vector3d::Zero();
+  }
+  return {result.binaryFloat8(row, column), result.binaryFloat8(row, column + 1),
+          result.binaryFloat8(row, column + 2)};
+}
+
+int optionalOrdinal(const Result& result, int row, int column) {
+  return result.isNull(row, column) ? -1 : result.binaryInt4(row, column);
+}
 
 std::string number(double value) {
   return fmt::format("{:.17g}", value);
@@ -40,20 +62,32 @@ std::vector<ModelLine> ModelLineQuery::linesWithin(const Eigen::Vector3d& center
   const Result result =
       connection_.execPrepared(kStatement,
                                {std::to_string(site_.id), number(center.x()), number(center.y()),
-                                number(center.z()), number(radius_m), std::to_string(site_.srid)},
+                                number(center.z()), number(radius_m)},
                                true);
-  std::vector<ModelLine> lines(result.rows());
+  const double radius2 = radius_m * radius_m;
+  std::vector<ModelLine> lines;
+  lines.reserve(result.rows());
   for (int row = 0; row < result.rows(); ++row) {
-    ModelLine& line = lines[row];
+    const auto points = decodeEwkbZ(result.bytes(row, 3), result.length(row, 3));
+    if (!points || points->size() != 1 || points->front().size() != 2) {
+      throw DatabaseError(fmt::format("line {}: geometry is not a 2-point LINESTRING Z",
+                                      result.binaryInt8(row, 0)));
+    }
+    const Eigen::Vector3d& start = points->front()[0];
+    const Eigen::Vector3d& end = points->front()[1];
+    if (squaredDistanceToSegment(center, start, end) > radius2) {
+      continue;
+    }
+    ModelLine& line = lines.emplace_back();
     line.id = result.binaryInt8(row, 0);
     line.building_id = result.binaryInt8(row, 1);
     line.kind = static_cast<LineKind>(result.binaryInt2(row, 2));
-    line.start_world = Eigen::Vector3d(result.binaryFloat8(row, 3), result.binaryFloat8(row, 4),
-                                       result.binaryFloat8(row, 5)) -
-                       site_.origin;
-    line.end_world = Eigen::Vector3d(result.binaryFloat8(row, 6), result.binaryFloat8(row, 7),
-                                     result.binaryFloat8(row, 8)) -
-                     site_.origin;
+    line.start_world = start - site_.origin;
+    line.end_world = end - site_.origin;
+    line.face_a = optionalOrdinal(result, row, 4);
+    line.face_b = optionalOrdinal(result, row, 5);
+    line.normal_a = optionalVector(result, row, 6);
+    line.normal_b = optionalVector(result, row, 9);
   }
   return lines;
 }

@@ -1,18 +1,22 @@
-// The backbone's map query: the model's 3D building lines within a radius of a
-// position, through a prepared statement with binary results, decoded straight
-// into world-frame (site-local) Eigen segments.
+// The backbone's map query (paper §3.1: the lines near the robot, fast): the
+// model's 3D building lines within a radius of a position. A prepared
+// statement selects candidates with the n-D GiST index (the &&& box test
+// alone) and returns the geometry as binary EWKB; the exact 3D segment-point
+// distance test runs here while decoding into world-frame (site-local) Eigen
+// segments, which is cheaper than ST_3DDWithin on the server.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
+#include "db/citymodel/line_extraction.h"
 #include "db/connection.h"
 #include "db/site.h"
 
 namespace lineloc::db {
 
-enum class LineKind : int16_t { kOther = 0, kVertical = 1, kEave = 2, kRidge = 3, kGround = 4 };
+using LineKind = citymodel::LineKind;
 
 struct ModelLine {
   int64_t id = 0;
@@ -20,6 +24,13 @@ struct ModelLine {
   LineKind kind = LineKind::kOther;
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  // Ordinals (within the building) and outward unit normals of the faces the
+  // line lies between; -1 and zero when absent (a free border, or a line not
+  // derived from faces).
+  int face_a = -1;
+  int face_b = -1;
+  Eigen::Vector3d normal_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal_b = Eigen::Vector3d::Zero();
 };
 
 class ModelLineQuery {

@@ -53,15 +53,27 @@ struct TruthSample {
   Eigen::Vector3d specific_force_body_mps2 = Eigen::Vector3d::Zero();
 };
 
-class GroundTruthTrajectory {
+// What the sensor synthesisers need of a ground-truth trajectory: the full
+// kinematic state at any time. Implemented by GroundTruthTrajectory (a random
+// drive) and by the simulator's street-following RouteTrajectory.
+class TruthTrajectory {
+ public:
+  virtual ~TruthTrajectory() = default;
+  // The state at `stamp_ns`, clamped to [start, end].
+  virtual TruthSample at(int64_t stamp_ns) const = 0;
+  virtual int64_t startStamp_ns() const = 0;
+  virtual int64_t endStamp_ns() const = 0;
+};
+
+class GroundTruthTrajectory : public TruthTrajectory {
  public:
   explicit GroundTruthTrajectory(const TrajectoryConfig& config);
 
   // The state at `stamp_ns`, clamped to [start, end].
-  TruthSample at(int64_t stamp_ns) const;
+  TruthSample at(int64_t stamp_ns) const override;
 
-  int64_t startStamp_ns() const { return config_.start_stamp_ns; }
-  int64_t endStamp_ns() const;
+  int64_t startStamp_ns() const override { return config_.start_stamp_ns; }
+  int64_t endStamp_ns() const override;
   const TrajectoryConfig& config() const { return config_; }
 
  private:

@@ -41,8 +41,8 @@ std::ofstream openForWriting(const std::string& path) {
 
 }  // namespace
 
-std::vector<SimImuSample> synthesiseImu(const GroundTruthTrajectory& trajectory,
-                                        const ImuModel& model, uint64_t seed) {
+std::vector<SimImuSample> synthesiseImu(const TruthTrajectory& trajectory, const ImuModel& model,
+                                        uint64_t seed) {
   const int64_t period_ns = periodNs(model.rate_hz);
   const double dt = static_cast<double>(period_ns) * 1e-9;
   std::mt19937_64 random(seed);
@@ -74,7 +74,7 @@ std::vector<SimImuSample> synthesiseImu(const GroundTruthTrajectory& trajectory,
   return samples;
 }
 
-std::vector<SimGpsFix> synthesiseGps(const GroundTruthTrajectory& trajectory, const GpsModel& model,
+std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const GpsModel& model,
                                      uint64_t seed) {
   const int64_t period_ns = periodNs(model.rate_hz);
   const double dt = static_cast<double>(period_ns) * 1e-9;
@@ -131,7 +131,7 @@ std::vector<std::string> formatNmeaEpoch(const SimGpsFix& fix, const SiteProject
   return {formatGga(gga), formatRmc(rmc)};
 }
 
-std::vector<SimCompassReading> synthesiseCompass(const GroundTruthTrajectory& trajectory,
+std::vector<SimCompassReading> synthesiseCompass(const TruthTrajectory& trajectory,
                                                  const CompassModel& model,
                                                  double grid_bearing_of_true_north_rad,
                                                  uint64_t seed) {

@@ -46,8 +46,8 @@ struct SimImuSample {
   Eigen::Vector3d true_accel_bias_mps2 = Eigen::Vector3d::Zero();
 };
 
-std::vector<SimImuSample> synthesiseImu(const GroundTruthTrajectory& trajectory,
-                                        const ImuModel& model, uint64_t seed);
+std::vector<SimImuSample> synthesiseImu(const TruthTrajectory& trajectory, const ImuModel& model,
+                                        uint64_t seed);
 
 struct GpsModel {
   double rate_hz = 1.0;
@@ -68,7 +68,7 @@ struct SimGpsFix {
   Eigen::Vector3d true_p_world_antenna = Eigen::Vector3d::Zero();
 };
 
-std::vector<SimGpsFix> synthesiseGps(const GroundTruthTrajectory& trajectory, const GpsModel& model,
+std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const GpsModel& model,
                                      uint64_t seed);
 
 // GGA then RMC of one fix (no position and quality 0 / status V when invalid).
@@ -93,7 +93,7 @@ struct SimCompassReading {
 
 // `grid_bearing_of_true_north_rad` from SiteProjection: magnetic heading =
 // pi/2 - yaw - grid bearing of true north - declination.
-std::vector<SimCompassReading> synthesiseCompass(const GroundTruthTrajectory& trajectory,
+std::vector<SimCompassReading> synthesiseCompass(const TruthTrajectory& trajectory,
                                                  const CompassModel& model,
                                                  double grid_bearing_of_true_north_rad,
                                                  uint64_t seed);

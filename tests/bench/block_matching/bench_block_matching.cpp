@@ -24,6 +24,7 @@
 #include "robot/vision/block_matching/block_matcher.h"
 #include "robot/vision/block_matching/kernel_timing.h"
 #include "robot/vision/stereo/sad_stereo_matcher.h"
+#include "tests/unit/robot/vision/sample_images.h"
 
 namespace lineloc {
 namespace {
@@ -33,12 +34,7 @@ constexpr int kRadiusPx = 16;
 constexpr int64_t kPsadbwLoops = 1 << 20;
 
 cv::Mat readGrey(const std::string& name) {
-  const std::string path = std::string(LINELOC_OPENCV_SAMPLE_DATA_DIR) + "/" + name;
-  cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (image.empty()) {
-    throw std::runtime_error("cannot read " + path + " (Debian package opencv-doc)");
-  }
-  return image;
+  return readSampleImage(name, cv::IMREAD_GRAYSCALE);
 }
 
 struct Frames {

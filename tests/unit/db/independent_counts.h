@@ -31,10 +31,32 @@ inline std::string readSharedCityModel(const std::string& name) {
 }
 
 struct CityModelCounts {
-  int buildings = 0;        // Building and BuildingPart objects
-  int faces = 0;            // surfaces of their geometry at the LoD
-  int collapsed_faces = 0;  // of those, with a ring of fewer than 3 distinct vertices
+  int buildings = 0;  // Building and BuildingPart objects
+  int faces = 0;      // surfaces of their geometry at the LoD
+  // Of those, collapsed: a ring of fewer than 3 distinct vertices, or an
+  // exterior ring of zero area (exact, in the quantised integer coordinates).
+  int collapsed_faces = 0;
 };
+
+// Newell's area vector of a ring of integer vertices, exactly zero or not.
+inline bool hasZeroArea(const nlohmann::json& ring, const nlohmann::json& vertices) {
+  const auto at = [&](size_t i) {
+    return vertices[ring[i % ring.size()].get<size_t>()].get<std::vector<int64_t>>();
+  };
+  const std::vector<int64_t> origin = at(0);
+  int64_t sum[3] = {0, 0, 0};
+  for (size_t i = 0; i < ring.size(); ++i) {
+    std::vector<int64_t> a = at(i), b = at(i + 1);
+    for (int k = 0; k < 3; ++k) {
+      a[k] -= origin[k];
+      b[k] -= origin[k];
+    }
+    sum[0] += a[1] * b[2] - a[2] * b[1];
+    sum[1] += a[2] * b[0] - a[0] * b[2];
+    sum[2] += a[0] * b[1] - a[1] * b[0];
+  }
+  return sum[0] == 0 && sum[1] == 0 && sum[2] == 0;
+}
 
 // In the shared files every Building/BuildingPart has geometry at the chosen
 // LoD or BuildingPart children, so all of them are loaded. Surfaces are found
@@ -62,7 +84,7 @@ inline void countObjects(const nlohmann::json& objects, const nlohmann::json& ve
       }
       for (const nlohmann::json* surfaces : level) {
         for (const nlohmann::json& surface : *surfaces) {
-          bool collapsed = false;
+          bool collapsed = hasZeroArea(surface[0], vertices);
           for (const nlohmann::json& ring : surface) {
             std::set<std::vector<int64_t>> distinct;
             for (const nlohmann::json& index : ring)

@@ -5,16 +5,13 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/unit/robot/vision/sample_images.h"
+
 namespace lineloc {
 namespace {
 
 cv::Mat rubberWhale() {
-  const std::string path = std::string(LINELOC_OPENCV_SAMPLE_DATA_DIR) + "/rubberwhale1.png";
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty()) {
-    throw std::runtime_error("cannot read " + path + " (Debian package opencv-doc)");
-  }
-  return image;
+  return readSampleImage("rubberwhale1.png", cv::IMREAD_COLOR);
 }
 
 // current(x) = reference(x - shift), bilinear.

@@ -6,16 +6,13 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/unit/robot/vision/sample_images.h"
+
 namespace lineloc {
 namespace {
 
 cv::Mat readGrey(const std::string& name) {
-  const std::string path = std::string(LINELOC_OPENCV_SAMPLE_DATA_DIR) + "/" + name;
-  cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (image.empty()) {
-    throw std::runtime_error("cannot read " + path + " (Debian package opencv-doc)");
-  }
-  return image;
+  return readSampleImage(name, cv::IMREAD_GRAYSCALE);
 }
 
 // Middlebury Aloe at half resolution (641x555): images by area averaging, the

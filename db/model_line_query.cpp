@@ -13,9 +13,7 @@ constexpr const char* kStatement = "lineloc_lines_within";
 
 // $1 site id, $2..$4 centre in site CRS coordinates, $5 radius. The box needs no SRID (&&& compares
 // boxes).
-constexpr const char* kSql = R"sql(
-SELECT id, building_id, kind, geom, face_a, face_b,
-       normal_a_x, normal_a_y, normal_a_z, normal_b_x, normal_b_y, normal_b_z
+const std::string kSql = std::string("SELECT ") + kModelLineColumns + R"sql(
 FROM line
 WHERE site_id = $1::int4
   AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8 - $5::float8, $3::float8 - $5::float8,
@@ -51,6 +49,25 @@ std::string number(double value) {
 
 }  // namespace
 
+ModelLine decodeModelLine(const Result& result, int row, const Eigen::Vector3d& origin) {
+  const auto points = decodeEwkbZ(result.bytes(row, 3), result.length(row, 3));
+  if (!points || points->size() != 1 || points->front().size() != 2) {
+    throw DatabaseError(
+        fmt::format("line {}: geometry is not a 2-point LINESTRING Z", result.binaryInt8(row, 0)));
+  }
+  ModelLine line;
+  line.id = result.binaryInt8(row, 0);
+  line.building_id = result.binaryInt8(row, 1);
+  line.kind = static_cast<LineKind>(result.binaryInt2(row, 2));
+  line.start_world = points->front()[0] - origin;
+  line.end_world = points->front()[1] - origin;
+  line.face_a = optionalOrdinal(result, row, 4);
+  line.face_b = optionalOrdinal(result, row, 5);
+  line.normal_a = optionalVector(result, row, 6);
+  line.normal_b = optionalVector(result, row, 9);
+  return line;
+}
+
 ModelLineQuery::ModelLineQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site) {
   connection_.prepare(kStatement, kSql);
@@ -68,26 +85,10 @@ std::vector<ModelLine> ModelLineQuery::linesWithin(const Eigen::Vector3d& center
   std::vector<ModelLine> lines;
   lines.reserve(result.rows());
   for (int row = 0; row < result.rows(); ++row) {
-    const auto points = decodeEwkbZ(result.bytes(row, 3), result.length(row, 3));
-    if (!points || points->size() != 1 || points->front().size() != 2) {
-      throw DatabaseError(fmt::format("line {}: geometry is not a 2-point LINESTRING Z",
-                                      result.binaryInt8(row, 0)));
+    ModelLine line = decodeModelLine(result, row, site_.origin);
+    if (squaredDistanceToSegment(center_world, line.start_world, line.end_world) <= radius2) {
+      lines.push_back(std::move(line));
     }
-    const Eigen::Vector3d& start = points->front()[0];
-    const Eigen::Vector3d& end = points->front()[1];
-    if (squaredDistanceToSegment(center, start, end) > radius2) {
-      continue;
-    }
-    ModelLine& line = lines.emplace_back();
-    line.id = result.binaryInt8(row, 0);
-    line.building_id = result.binaryInt8(row, 1);
-    line.kind = static_cast<LineKind>(result.binaryInt2(row, 2));
-    line.start_world = start - site_.origin;
-    line.end_world = end - site_.origin;
-    line.face_a = optionalOrdinal(result, row, 4);
-    line.face_b = optionalOrdinal(result, row, 5);
-    line.normal_a = optionalVector(result, row, 6);
-    line.normal_b = optionalVector(result, row, 9);
   }
   return lines;
 }

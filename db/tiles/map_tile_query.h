@@ -1,0 +1,42 @@
+// The backbone's tile query: every model line and face of a site whose 3D
+// bounding box meets a square of the ground plane, in one round trip of two
+// prepared statements with binary results, decoded into world-frame (site
+// CRS minus origin) Eigen values. The n-D GiST indexes answer the &&& tests.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "db/connection.h"
+#include "db/model_line_query.h"
+#include "db/site.h"
+
+namespace lineloc::db {
+
+struct ModelFaceRecord {
+  int64_t id = 0;
+  int64_t building_id = 0;
+  int16_t kind = 0;
+  // Exterior ring in world coordinates, without the closing vertex.
+  std::vector<Eigen::Vector3d> ring_world;
+};
+
+struct TileContents {
+  std::vector<ModelLine> lines;
+  std::vector<ModelFaceRecord> faces;
+};
+
+class MapTileQuery {
+ public:
+  // Prepares the statements on `connection`, which must outlive this object.
+  MapTileQuery(Connection& connection, const Site& site);
+
+  // Lines and faces whose bounding box meets `bounds_world` (x, y; any height).
+  TileContents within(const Eigen::AlignedBox2d& bounds_world);
+
+ private:
+  Connection& connection_;
+  Site site_;
+};
+
+}  // namespace lineloc::db

@@ -3,7 +3,8 @@
 // refinement, and its full estimate with the linear start, against
 // cv::solvePnPRefineLM and solvePnP ITERATIVE on the 20 points alone, OpenCV
 // having no line pose). All on the same 16 scenes with 0.5 px noise; medians
-// of 9 repetitions and the ratios lineloc / OpenCV are printed at the end.
+// of 9 repetitions and the ratios lineloc / OpenCV of the median CPU times are
+// printed at the end.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -65,18 +66,22 @@ void BM_Lineloc4Points(benchmark::State& state) {
   }
 }
 
-void openCv4Points(benchmark::State& state, int flag) {
-  std::vector<OpenCvPoints> scenes;
-  for (const auto& scene : fourPointScenes())
-    scenes.push_back(toOpenCv(scene.problem));
+void openCvSolvePnP(benchmark::State& state, const std::vector<test::Scene>& scenes, int flag) {
+  std::vector<OpenCvPoints> points;
+  for (const auto& scene : scenes)
+    points.push_back(toOpenCv(scene.problem));
   int i = 0;
   cv::Vec3d rvec;
   cv::Vec3d tvec;
   for (auto _ : state) {
-    const OpenCvPoints& points = scenes[i++ % kScenes];
-    benchmark::DoNotOptimize(cv::solvePnP(points.object, points.image, points.K, cv::noArray(),
-                                          rvec, tvec, false, flag));
+    const OpenCvPoints& p = points[i++ % kScenes];
+    benchmark::DoNotOptimize(
+        cv::solvePnP(p.object, p.image, p.K, cv::noArray(), rvec, tvec, false, flag));
   }
+}
+
+void openCv4Points(benchmark::State& state, int flag) {
+  openCvSolvePnP(state, fourPointScenes(), flag);
 }
 
 void BM_OpenCvIppe4Points(benchmark::State& state) {
@@ -131,17 +136,7 @@ void BM_OpenCvRefineLM20Points(benchmark::State& state) {
 }
 
 void BM_OpenCvIterative20Points(benchmark::State& state) {
-  std::vector<OpenCvPoints> scenes;
-  for (const auto& scene : lineAndPointScenes())
-    scenes.push_back(toOpenCv(scene.problem));
-  int i = 0;
-  cv::Vec3d rvec;
-  cv::Vec3d tvec;
-  for (auto _ : state) {
-    const OpenCvPoints& points = scenes[i++ % kScenes];
-    benchmark::DoNotOptimize(cv::solvePnP(points.object, points.image, points.K, cv::noArray(),
-                                          rvec, tvec, false, cv::SOLVEPNP_ITERATIVE));
-  }
+  openCvSolvePnP(state, lineAndPointScenes(), cv::SOLVEPNP_ITERATIVE);
 }
 
 constexpr int kRepetitions = 9;
@@ -153,13 +148,14 @@ BENCHMARK(BM_LinelocEstimate50Lines20Points)->Repetitions(kRepetitions)->ReportA
 BENCHMARK(BM_OpenCvRefineLM20Points)->Repetitions(kRepetitions)->ReportAggregatesOnly(true);
 BENCHMARK(BM_OpenCvIterative20Points)->Repetitions(kRepetitions)->ReportAggregatesOnly(true);
 
-// Console output plus the median real time of every benchmark, for the ratios.
+// Console output plus the median CPU time of every benchmark, for the ratios
+// (CPU time: the machine may be shared).
 class MedianCollector : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs) {
       if (run.aggregate_name == "median") {
-        median_ns_[run.run_name.function_name] = run.GetAdjustedRealTime();
+        median_ns_[run.run_name.function_name] = run.GetAdjustedCPUTime();
       }
     }
     ConsoleReporter::ReportRuns(runs);

@@ -40,7 +40,8 @@ function(lineloc_add_benchmark name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
-    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
+    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"
+    LINELOC_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
 endfunction()
 
 # lineloc_add_module_directories(): add_subdirectory() for every immediate
@@ -72,4 +73,25 @@ function(lineloc_add_fuzz_target name)
     add_test(NAME ${name} COMMAND ${name} ${ARG_CORPUS})
     set_tests_properties(${name} PROPERTIES LABELS fuzz)
   endif()
+endfunction()
+
+# lineloc_add_integration_test(NAME SOURCES... LIBS ... DEPENDS programs...):
+# a GoogleTest binary that starts the project's real programs (from
+# LINELOC_BIN_DIR) against the private PostGIS cluster and DDS on loopback;
+# labelled "integration".
+function(lineloc_add_integration_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
+                        GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"
+    LINELOC_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
+  if(ARG_DEPENDS)
+    add_dependencies(${name} ${ARG_DEPENDS})
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS integration
+                       FIXTURES_REQUIRED postgis
+                       ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
 endfunction()

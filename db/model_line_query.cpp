@@ -23,7 +23,9 @@ WHERE l.site_id = $1::int4
   AND ST_3DDWithin(l.geom, centre.p, centre.r)
 )sql";
 
-std::string number(double value) { return fmt::format("{:.17g}", value); }
+std::string number(double value) {
+  return fmt::format("{:.17g}", value);
+}
 
 }  // namespace
 
@@ -35,11 +37,11 @@ ModelLineQuery::ModelLineQuery(Connection& connection, const Site& site)
 std::vector<ModelLine> ModelLineQuery::linesWithin(const Eigen::Vector3d& center_world,
                                                    double radius_m) {
   const Eigen::Vector3d center = center_world + site_.origin;
-  const Result result = connection_.execPrepared(
-      kStatement,
-      {std::to_string(site_.id), number(center.x()), number(center.y()), number(center.z()),
-       number(radius_m), std::to_string(site_.srid)},
-      true);
+  const Result result =
+      connection_.execPrepared(kStatement,
+                               {std::to_string(site_.id), number(center.x()), number(center.y()),
+                                number(center.z()), number(radius_m), std::to_string(site_.srid)},
+                               true);
   std::vector<ModelLine> lines(result.rows());
   for (int row = 0; row < result.rows(); ++row) {
     ModelLine& line = lines[row];

@@ -15,7 +15,7 @@
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/input/image_sequence.h"
-#include "robot/vision/lsd_line_extractor.h"
+#include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
 namespace {
@@ -127,7 +127,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   if (config.max_frames > 0 && static_cast<int>(frames.size()) > config.max_frames) {
     frames.resize(config.max_frames);
   }
-  LsdLineExtractor extractor(calibration, config.min_segment_length_px);
+  FeatureExtractorOptions extractor_options;
+  extractor_options.lines.min_length_px = config.min_segment_length_px;
+  FeatureExtractor extractor(calibration, extractor_options);
 
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
@@ -149,7 +151,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     line_set.sequence_number = static_cast<uint32_t>(index);
     line_set.stamp_ns = frames[index].stamp_ns.value_or(capture_ns);
     line_set.camera = calibration.camera;
-    line_set.segments = extractor.extract(readGreyImage(frames[index].path));
+    const FrameFeatures& features = extractor.extract(readGreyImage(frames[index].path));
+    line_set.segments = features.segments;
+    line_set.corners = features.corners;
     line_set.predicted_T_world_camera = predicted;
     const LineSetMessage message(line_set);
     receiver.expect(line_set.sequence_number);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -14,8 +15,6 @@ namespace fs = std::filesystem;
 namespace lineloc {
 namespace {
 
-constexpr size_t kMaxStampDigits = 18;  // fits int64 nanoseconds
-
 bool isImageFile(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
@@ -23,12 +22,17 @@ bool isImageFile(const fs::path& path) {
          extension == ".pgm" || extension == ".bmp";
 }
 
+// A non-negative decimal integer that fits int64 nanoseconds, or nullopt.
 std::optional<int64_t> parseStampNs(const std::string& text) {
-  if (text.empty() || text.size() > kMaxStampDigits ||
-      text.find_first_not_of("0123456789") != std::string::npos) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
     return std::nullopt;
   }
-  return std::stoll(text);
+  int64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    return std::nullopt;
+  }
+  return value;
 }
 
 std::string trim(const std::string& text) {

@@ -80,6 +80,24 @@ TEST_F(ProgramOptionsTest, MissingOrBrokenFileExitsNonZero) {
   EXPECT_EQ(parse({"--config", broken.c_str()}), 2);
 }
 
+TEST_F(ProgramOptionsTest, PrintedConfigReadsBackToTheSameValues) {
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(parse({"--print-config", "--robot-id", "rover-9", "--pose", "4", "5", "6"}), 0);
+  const std::string printed = testing::internal::GetCapturedStdout();
+  EXPECT_NE(printed.find("# id\nrobot_id: rover-9"), std::string::npos) << printed;
+
+  Options reread;
+  ProgramOptions options("test", "test program");
+  options.add("robot_id", reread.robot_id, "id");
+  options.add("rate_hz", reread.rate_hz, "rate");
+  options.add("domain_id", reread.domain_id, "domain");
+  options.add("pose", reread.pose, "pose");
+  options.applyConfig(YAML::Load(printed), "printed.yml");
+  EXPECT_EQ(reread.robot_id, "rover-9");
+  EXPECT_EQ(reread.pose, (std::vector<double>{4, 5, 6}));
+  EXPECT_DOUBLE_EQ(reread.rate_hz, 10.0);
+}
+
 TEST_F(ProgramOptionsTest, UnknownFlagExitsNonZero) {
   EXPECT_NE(parse({"--no-such-flag"}).value_or(0), 0);
 }

@@ -1,0 +1,132 @@
+#include "robot/vision/features/feature_extractor.h"
+
+#include <fmt/format.h>
+
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace lineloc {
+namespace {
+
+bool sideInRange(int side) {
+  return side >= FeatureExtractor::kMinImageSidePx && side <= FeatureExtractor::kMaxImageSidePx;
+}
+
+const CameraCalibration& checkedSize(const CameraCalibration& calibration) {
+  const PinholeCamera& camera = calibration.camera;
+  if (!sideInRange(camera.width) || !sideInRange(camera.height)) {
+    throw std::invalid_argument(
+        fmt::format("feature extractor: calibration image size {}x{} is outside {}..{} px per side",
+                    camera.width, camera.height, FeatureExtractor::kMinImageSidePx,
+                    FeatureExtractor::kMaxImageSidePx));
+  }
+  return calibration;
+}
+
+}  // namespace
+
+FeatureExtractor::FeatureExtractor(const CameraCalibration& calibration,
+                                   const FeatureExtractorOptions& options)
+    : calibration_(checkedSize(calibration)),
+      options_(options),
+      undistortion_(calibration),
+      edge_detector_(options.edges),
+      linker_(options.linking),
+      line_extractor_(options.lines),
+      corner_detector_(options.corners) {}
+
+const cv::Mat& FeatureExtractor::toGrey(const cv::Mat& image) {
+  const PinholeCamera& camera = calibration_.camera;
+  if (image.empty()) {
+    throw std::invalid_argument("feature extractor: the image is empty");
+  }
+  if (image.dims != 2 || image.depth() != CV_8U) {
+    throw std::invalid_argument(fmt::format(
+        "feature extractor: the image must be 8-bit 2D, got depth {} with {} dimensions",
+        image.depth(), image.dims));
+  }
+  if (image.cols != camera.width || image.rows != camera.height) {
+    throw std::invalid_argument(
+        fmt::format("feature extractor: the image is {}x{}, the calibration is for {}x{}",
+                    image.cols, image.rows, camera.width, camera.height));
+  }
+  switch (image.channels()) {
+    case 1:
+      return image;
+    case 3:
+      cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
+      return grey_;
+    case 4:
+      cv::cvtColor(image, grey_, cv::COLOR_BGRA2GRAY);
+      return grey_;
+    default:
+      throw std::invalid_argument(fmt::format(
+          "feature extractor: the image has {} channels; 1, 3 or 4 expected", image.channels()));
+  }
+}
+
+const FrameFeatures& FeatureExtractor::extract(const cv::Mat& image) {
+  const cv::Mat& grey = toGrey(image);
+  edge_detector_.detect(grey);
+  linker_.link(edge_detector_.points(), edge_detector_.pointIndex());
+  line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
+  exportSegments();
+  features_.corners.clear();
+  if (options_.detect_corners) {
+    corner_detector_.detect(edge_detector_.gradientX(), edge_detector_.gradientY());
+    exportCorners();
+  }
+  return features_;
+}
+
+void FeatureExtractor::exportSegments() {
+  features_.segments.clear();
+  features_.segment_quality.clear();
+  for (const LineSegment& line : line_extractor_.segments()) {
+    ImageSegment segment;
+    segment.start = line.start().cast<float>();
+    segment.end = line.end().cast<float>();
+    segment.start_covariance = line.startCovariance().cast<float>();
+    segment.end_covariance = line.endCovariance().cast<float>();
+    segment.contrast = static_cast<float>(line.contrast());
+    segment.polarity = line.polarity();
+    features_.segments.push_back(segment);
+    features_.segment_quality.push_back({static_cast<float>(line.fit.sigma_offset_px),
+                                         static_cast<float>(line.fit.sigma_angle_rad),
+                                         static_cast<int>(line.moments.n)});
+  }
+}
+
+void FeatureExtractor::exportCorners() {
+  for (const ForstnerCorner& found : corner_detector_.corners()) {
+    const Eigen::Matrix2f J = undistortion_.jacobian(found.position);
+    ImageCorner corner;
+    corner.position = undistortion_.undistort(found.position);
+    corner.covariance = J * found.covariance * J.transpose();
+    corner.strength = found.weight;
+    if (const Junction* junction = nearestJunction(corner.position)) {
+      corner.position = junction->position.cast<float>();
+      corner.covariance = junction->covariance.cast<float>();
+    }
+    features_.corners.push_back(corner);
+  }
+}
+
+}  // namespace lineloc
+
+namespace lineloc {
+
+const Junction* FeatureExtractor::nearestJunction(const Eigen::Vector2f& position) const {
+  const Junction* nearest = nullptr;
+  double nearest_distance = options_.junction_radius_px;
+  for (const Junction& junction : line_extractor_.junctions()) {
+    const double distance = (junction.position - position.cast<double>()).norm();
+    if (distance <= nearest_distance) {
+      nearest = &junction;
+      nearest_distance = distance;
+    }
+  }
+  return nearest;
+}
+
+}  // namespace lineloc

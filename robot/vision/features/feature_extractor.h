@@ -1,0 +1,85 @@
+// The robot's vision front end (Persa & Jonker §3): each camera frame becomes
+// a small set of straight line segments and Förstner corners in undistorted
+// pixel coordinates, with their uncertainty, ready for the LineSet.
+//
+// Pipeline: grey conversion (colour input) -> sub-pixel edges
+// (edges/edge_detector.h) -> chains (edges/edge_linker.h) -> undistortion
+// lookup, split-and-merge, TLS refit, gap merge, corner snapping
+// (lines/line_extractor.h); Förstner corners on the same gradients
+// (corners/forstner_detector.h), undistorted through the same table with
+// their covariance carried by its Jacobian: Sigma_u = J Sigma J^T. Where a
+// corner is also a junction of two fitted lines (within junction_radius),
+// it takes the junction's position and covariance: the lines' intersection
+// is free of the bias blur gives the gradient-line intersection at a corner
+// tip, and rests on many more pixels.
+// Every buffer is kept between frames: no allocation in steady state.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "common/camera/camera_calibration.h"
+#include "common/messages/messages.h"
+#include "robot/vision/corners/forstner_detector.h"
+#include "robot/vision/edges/edge_detector.h"
+#include "robot/vision/edges/edge_linker.h"
+#include "robot/vision/edges/undistortion_table.h"
+#include "robot/vision/lines/line_extractor.h"
+
+namespace lineloc {
+
+struct FeatureExtractorOptions {
+  EdgeDetectorOptions edges;
+  EdgeLinkerOptions linking;
+  LineExtractorOptions lines;
+  ForstnerOptions corners;
+  bool detect_corners = true;
+  double junction_radius_px = 3.0;
+};
+
+// Fit quality of segments[i], beyond what ImageSegment carries.
+struct SegmentFitQuality {
+  float sigma_offset_px;  // normal offset at the centroid
+  float sigma_angle_rad;
+  int point_count;
+};
+
+struct FrameFeatures {
+  std::vector<ImageSegment> segments;              // undistorted pixels, longest first
+  std::vector<SegmentFitQuality> segment_quality;  // parallel to segments
+  std::vector<ImageCorner> corners;                // undistorted pixels, strongest first
+};
+
+class FeatureExtractor {
+ public:
+  static constexpr int kMinImageSidePx = 16;
+  static constexpr int kMaxImageSidePx = 8192;
+
+  // Throws std::invalid_argument for a calibration size outside
+  // [kMinImageSidePx, kMaxImageSidePx] or out-of-range options.
+  explicit FeatureExtractor(const CameraCalibration& calibration,
+                            const FeatureExtractorOptions& options = {});
+
+  // `image`: 8-bit grey, BGR or BGRA of the calibration's size. Throws
+  // std::invalid_argument naming the problem for any other image. A blank or
+  // saturated frame yields empty sets. The result stays valid until the next call.
+  const FrameFeatures& extract(const cv::Mat& image);
+
+ private:
+  const cv::Mat& toGrey(const cv::Mat& image);
+  void exportSegments();
+  void exportCorners();
+  const Junction* nearestJunction(const Eigen::Vector2f& position) const;
+
+  CameraCalibration calibration_;
+  FeatureExtractorOptions options_;
+  UndistortionTable undistortion_;
+  EdgeDetector edge_detector_;
+  EdgeLinker linker_;
+  LineExtractor line_extractor_;
+  ForstnerDetector corner_detector_;
+  cv::Mat grey_;
+  FrameFeatures features_;
+};
+
+}  // namespace lineloc

@@ -1,0 +1,102 @@
+// lineloc-features: runs the robot's vision front end on one image and shows
+// what the robot would send: the segments and corners as text on standard
+// output, and an overlay on the undistorted image.
+#include <spdlog/spdlog.h>
+
+#include <Eigen/Core>
+#include <iostream>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/camera/camera_calibration.h"
+#include "common/config/program_options.h"
+#include "robot/input/image_sequence.h"
+#include "robot/vision/features/feature_extractor.h"
+#include "robot/vision/features/feature_report.h"
+
+namespace {
+
+struct FeaturesConfig {
+  std::string image;
+  std::string calib;
+  std::string out;
+  lineloc::FeatureExtractorOptions extractor;
+};
+
+// Without a calibration file: an ideal camera of the image's size.
+lineloc::CameraCalibration calibrationFor(const FeaturesConfig& config, const cv::Mat& image) {
+  if (!config.calib.empty()) {
+    return lineloc::readCameraCalibration(config.calib);
+  }
+  lineloc::CameraCalibration calibration;
+  calibration.camera.width = image.cols;
+  calibration.camera.height = image.rows;
+  calibration.camera.fx = calibration.camera.fy = std::max(image.cols, image.rows);
+  calibration.camera.cx = 0.5 * (image.cols - 1);
+  calibration.camera.cy = 0.5 * (image.rows - 1);
+  return calibration;
+}
+
+cv::Mat undistortForDisplay(const cv::Mat& image, const lineloc::CameraCalibration& calibration) {
+  if (calibration.distortion.empty()) {
+    return image;
+  }
+  cv::Mat K;
+  cv::eigen2cv(calibration.camera.K(), K);
+  cv::Mat undistorted;
+  cv::undistort(image, undistorted, K, calibration.distortion);
+  return undistorted;
+}
+
+void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
+  options.app().add_option("image", config.image, "image file (8-bit grey or colour)")->required();
+  lineloc::EdgeDetectorOptions& edges = config.extractor.edges;
+  lineloc::LineExtractorOptions& lines = config.extractor.lines;
+  lineloc::ForstnerOptions& corners = config.extractor.corners;
+  options.add("calib", config.calib,
+              "camera calibration (OpenCV YAML layout); empty: an ideal camera of the image size");
+  options.add("out", config.out, "overlay image to write; empty: none");
+  options.add("smoothing_sigma_px", edges.smoothing_sigma_px,
+              "Gaussian pre-smoothing (px), 0: none");
+  options.add("min_gradient", edges.min_gradient, "edge threshold (grey levels per px)");
+  options.add("split_distance_px", lines.split_distance_px, "split-and-merge tolerance (px)");
+  options.add("min_length_px", lines.min_length_px, "shortest segment kept (px)");
+  options.add("min_contrast", lines.min_contrast, "weakest segment kept (mean grey-level step)");
+  options.add("max_gap_px", lines.merge.max_gap_px,
+              "largest gap bridged between collinear segments (px)");
+  options.add("detect_corners", config.extractor.detect_corners, "run the Förstner operator");
+  options.add("min_roundness", corners.min_roundness, "Förstner roundness threshold q");
+  options.add("weight_factor", corners.weight_factor, "Förstner weight threshold / mean weight");
+  options.add("max_corners", corners.max_corners, "most corners kept (strongest)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  FeaturesConfig config;
+  lineloc::ProgramOptions options(
+      "lineloc-features", "line segments and corners of one image, as the robot sends them");
+  addOptions(options, config);
+  if (const auto exit_code = options.parse(argc, argv)) {
+    return *exit_code;
+  }
+  try {
+    const cv::Mat image = lineloc::readGreyImage(config.image);
+    const lineloc::CameraCalibration calibration = calibrationFor(config, image);
+    lineloc::FeatureExtractor extractor(calibration, config.extractor);
+    const lineloc::FrameFeatures& features = extractor.extract(image);
+    lineloc::writeFeaturesText(std::cout, features);
+    if (!config.out.empty() &&
+        !cv::imwrite(config.out,
+                     lineloc::drawFeatures(undistortForDisplay(image, calibration), features))) {
+      throw std::runtime_error("cannot write overlay '" + config.out + "'");
+    }
+    spdlog::info("{}: {} segments, {} corners", config.image, features.segments.size(),
+                 features.corners.size());
+    return 0;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,102 @@
+#include "robot/vision/lines/line_extractor.h"
+
+#include <algorithm>
+#include <span>
+#include <stdexcept>
+
+namespace lineloc {
+namespace {
+
+// Refit-and-trim rounds: the bent ends near a corner go in one or two.
+constexpr int kTrimPasses = 3;
+
+}  // namespace
+
+LineExtractor::LineExtractor(const LineExtractorOptions& options)
+    : options_(options),
+      split_and_merge_(options.split_distance_px, options.min_points),
+      merger_(options.merge),
+      snapper_(options.snap) {
+  if (!(options.min_length_px >= 0.0) || !(options.min_contrast >= 0.0) ||
+      options.max_segments < 0 || !(options.fit.points_per_sample >= 1.0) ||
+      !(options.fit.min_sigma_px > 0.0)) {
+    throw std::invalid_argument(
+        "line extractor: min_length_px, min_contrast, max_segments must be >= 0, "
+        "points_per_sample >= 1, min_sigma_px > 0");
+  }
+}
+
+void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLinker& chains,
+                            const UndistortionTable& undistortion) {
+  const std::vector<int32_t>& chain_points = chains.chainPoints();
+  undistorted_.resize(chain_points.size());
+  for (size_t i = 0; i < chain_points.size(); ++i) {
+    undistorted_[i] = undistortion.undistort(points[chain_points[i]].position);
+  }
+  segments_.clear();
+  for (const PointRange& chain : chains.chains()) {
+    fitPieces(points, chain_points, chain);
+  }
+  merger_.merge(segments_, options_.fit);
+  keepSignificant();
+  snapper_.snap(segments_);
+  std::sort(segments_.begin(), segments_.end(),
+            [](const LineSegment& a, const LineSegment& b) { return a.length() > b.length(); });
+  if (static_cast<int>(segments_.size()) > options_.max_segments) {
+    segments_.resize(options_.max_segments);
+  }
+}
+
+void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
+                              const std::vector<int32_t>& chain_points, PointRange chain) {
+  const std::span<const Eigen::Vector2f> polyline(undistorted_.data() + chain.begin,
+                                                  static_cast<size_t>(chain.size()));
+  pieces_.clear();
+  split_and_merge_.approximate(polyline, pieces_);
+  for (PointRange piece : pieces_) {
+    LineSegment segment;
+    for (int i = piece.begin; i < piece.end; ++i) {
+      segment.moments.add(polyline[i]);
+    }
+    segment.fit = fitLine(segment.moments, options_.fit);
+    trimEnds(polyline, piece, segment);
+    if (segment.fit.status != LineFitStatus::kOk) {
+      continue;
+    }
+    for (int i = piece.begin; i < piece.end; ++i) {
+      const EdgePoint& point = points[chain_points[chain.begin + i]];
+      segment.gradient_sum += point.gradient.cast<double>();
+      segment.step_sum += std::abs(point.step);
+    }
+    segment.setExtent(polyline[piece.begin].cast<double>(), polyline[piece.end - 1].cast<double>());
+    segments_.push_back(segment);
+  }
+}
+
+void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
+                             LineSegment& segment) const {
+  for (int pass = 0; pass < kTrimPasses && segment.fit.status == LineFitStatus::kOk; ++pass) {
+    const PointRange before = piece;
+    const auto off_line = [&](int i) {
+      return std::abs(segment.fit.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
+    };
+    while (piece.size() > 0 && off_line(piece.begin)) {
+      segment.moments.remove(polyline[piece.begin++]);
+    }
+    while (piece.size() > 0 && off_line(piece.end - 1)) {
+      segment.moments.remove(polyline[--piece.end]);
+    }
+    if (piece.begin == before.begin && piece.end == before.end) {
+      return;
+    }
+    segment.fit = fitLine(segment.moments, options_.fit);
+  }
+}
+
+void LineExtractor::keepSignificant() {
+  std::erase_if(segments_, [this](const LineSegment& segment) {
+    return segment.length() < options_.min_length_px || segment.contrast() < options_.min_contrast;
+  });
+}
+
+}  // namespace lineloc

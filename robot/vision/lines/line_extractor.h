@@ -1,0 +1,63 @@
+// Straight line segments from edge chains (Persa & Jonker §3): edge points
+// undistorted through the lookup table, split-and-merge of every chain, a
+// total-least-squares refit of every piece (after trimming end points that
+// bend away near a corner: farther than trim_distance from the line), collinear pieces merged
+// across small gaps, weak and short segments dropped, and endpoints that meet at a corner snapped
+// to the intersection of their lines.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "robot/vision/edges/edge_detector.h"
+#include "robot/vision/edges/edge_linker.h"
+#include "robot/vision/edges/undistortion_table.h"
+#include "robot/vision/lines/collinear_merger.h"
+#include "robot/vision/lines/endpoint_snapper.h"
+#include "robot/vision/lines/line_segment.h"
+#include "robot/vision/lines/split_and_merge.h"
+
+namespace lineloc {
+
+struct LineExtractorOptions {
+  double split_distance_px = 1.0;
+  double trim_distance_px = 0.25;  // end points farther from the refitted line are dropped
+  int min_points = 6;              // edge points per split-and-merge piece
+  double min_length_px = 20.0;
+  double min_contrast = 10.0;  // mean grey-level step
+  int max_segments = 1024;     // the longest are kept
+  LineFitOptions fit;
+  CollinearMergeOptions merge;
+  EndpointSnapOptions snap;
+};
+
+class LineExtractor {
+ public:
+  // Throws std::invalid_argument for out-of-range options.
+  explicit LineExtractor(const LineExtractorOptions& options);
+
+  // Segments in undistorted pixel coordinates, longest first.
+  void extract(const std::vector<EdgePoint>& points, const EdgeLinker& chains,
+               const UndistortionTable& undistortion);
+
+  const std::vector<LineSegment>& segments() const { return segments_; }
+  // Where segment endpoints met at a corner (see EndpointSnapper).
+  const std::vector<Junction>& junctions() const { return snapper_.junctions(); }
+
+ private:
+  void fitPieces(const std::vector<EdgePoint>& points, const std::vector<int32_t>& chain_points,
+                 PointRange chain);
+  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
+                LineSegment& segment) const;
+  void keepSignificant();
+
+  LineExtractorOptions options_;
+  SplitAndMerge split_and_merge_;
+  CollinearMerger merger_;
+  EndpointSnapper snapper_;
+  std::vector<Eigen::Vector2f> undistorted_;
+  std::vector<PointRange> pieces_;
+  std::vector<LineSegment> segments_;
+};
+
+}  // namespace lineloc

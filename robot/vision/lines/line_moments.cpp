@@ -1,0 +1,73 @@
+#include "robot/vision/lines/line_moments.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lineloc {
+
+void PointMoments::add(const Eigen::Vector2f& p) {
+  const double x = p.x();
+  const double y = p.y();
+  n += 1.0;
+  sx += x;
+  sy += y;
+  sxx += x * x;
+  sxy += x * y;
+  syy += y * y;
+}
+
+void PointMoments::remove(const Eigen::Vector2f& p) {
+  const double x = p.x();
+  const double y = p.y();
+  n -= 1.0;
+  sx -= x;
+  sy -= y;
+  sxx -= x * x;
+  sxy -= x * y;
+  syy -= y * y;
+}
+
+PointMoments& PointMoments::operator+=(const PointMoments& other) {
+  n += other.n;
+  sx += other.sx;
+  sy += other.sy;
+  sxx += other.sxx;
+  sxy += other.sxy;
+  syy += other.syy;
+  return *this;
+}
+
+LineFit fitLine(const PointMoments& moments, const LineFitOptions& options) {
+  LineFit fit;
+  if (moments.n < 3.0) {
+    return fit;
+  }
+  const double n = moments.n;
+  fit.centroid = {moments.sx / n, moments.sy / n};
+  const double a = moments.sxx / n - fit.centroid.x() * fit.centroid.x();
+  const double b = moments.sxy / n - fit.centroid.x() * fit.centroid.y();
+  const double c = moments.syy / n - fit.centroid.y() * fit.centroid.y();
+  const double half_trace = 0.5 * (a + c);
+  const double radius = std::hypot(0.5 * (a - c), b);
+  const double lambda_max = half_trace + radius;
+  const double lambda_min = std::max(0.0, half_trace - radius);
+  if (!(lambda_max > 0.0)) {
+    fit.status = LineFitStatus::kDegenerate;
+    return fit;
+  }
+  const double theta = 0.5 * std::atan2(2.0 * b, a - c);
+  fit.direction = {std::cos(theta), std::sin(theta)};
+  if (fit.direction.y() < 0.0 || (fit.direction.y() == 0.0 && fit.direction.x() < 0.0)) {
+    fit.direction = -fit.direction;
+  }
+  fit.normal = {-fit.direction.y(), fit.direction.x()};
+  const double sigma =
+      std::max(options.min_sigma_px, std::sqrt(n * lambda_min / std::max(1.0, n - 2.0)));
+  const double effective_n = std::max(1.0, n / options.points_per_sample);
+  fit.sigma_offset_px = sigma / std::sqrt(effective_n);
+  fit.sigma_angle_rad = sigma / std::sqrt(effective_n * lambda_max);
+  fit.status = LineFitStatus::kOk;
+  return fit;
+}
+
+}  // namespace lineloc

@@ -1,11 +1,16 @@
 // Calibration of OpenCV's own chessboard views (opencv-doc: left01..14.jpg,
 // 9x6 inner corners, 25 mm squares) compared with OpenCV's calibration of them.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
+#include "common/camera/camera_calibration.h"
 #include "opencv_baseline.h"
+#include "robot/calibration/calibrate_tool.h"
 #include "robot/calibration/chessboard_detection.h"
 #include "robot/calibration/zhang_calibration.h"
 
@@ -81,6 +86,42 @@ TEST_F(OpenCvChessboards, CheckReproducesTheCalibrationError) {
   const CalibrationResult check = checkCalibration(detected_->views, result.state.calibration);
   ASSERT_EQ(check.status, CalibrationStatus::kConverged) << check.message;
   EXPECT_NEAR(check.rms_error_px, result.rms_error_px, 1e-6);
+}
+
+// The tool end to end, with the command line: `left*.jpg` also matches
+// left.jpg, which has no 9x6 board and is skipped and listed.
+TEST_F(OpenCvChessboards, ToolCalibratesThenChecksTheImages) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "calibrate_opencv";
+  std::filesystem::create_directories(folder);
+  CalibrateToolConfig config;
+  config.images = kDataDir + "/left*.jpg";
+  config.out = (folder / "camera.yml").string();
+  config.report = (folder / "residuals.png").string();
+  config.fix_skew = true;
+  config.fix_aspect_ratio = true;
+  config.distortion = "opencv5";
+  std::ostringstream log;
+  ASSERT_EQ(runCalibrateTool(config, log), 0) << log.str();
+  EXPECT_NE(log.str().find("no 9x6 board found in '" + kDataDir + "/left.jpg'"), std::string::npos)
+      << log.str();
+  const CameraCalibration calibration = readCameraCalibration(config.out);
+  EXPECT_NEAR(calibration.camera.fx, 535.9157, 0.5);
+  cv::FileStorage storage(config.out, cv::FileStorage::READ);
+  const double rms_px = storage["avg_reprojection_error"];
+  EXPECT_FALSE(cv::imread(config.report).empty());
+
+  CalibrateToolConfig check;
+  check.images = config.images;
+  check.check = config.out;
+  check.out = (folder / "unused.yml").string();
+  std::ostringstream check_log;
+  ASSERT_EQ(runCalibrateTool(check, check_log), 0) << check_log.str();
+  EXPECT_NE(
+      check_log.str().find(fmt::format("RMS reprojection error: {:.4f} px over 13 views", rms_px)),
+      std::string::npos)
+      << check_log.str();
+  EXPECT_FALSE(std::filesystem::exists(check.out));
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

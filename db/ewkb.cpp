@@ -14,23 +14,17 @@ constexpr uint32_t kHasSrid = 0x20000000u;
 constexpr uint32_t kHasM = 0x40000000u;
 constexpr uint8_t kLittleEndian = 1;
 
-class HexWriter {
+// Little-endian output: lineloc targets little-endian hosts (static_assert below).
+class Writer {
  public:
-  explicit HexWriter(std::string& out) : out_(out) {}
+  explicit Writer(std::string& out) : out_(out) {}
 
-  void bytes(const void* data, size_t size) {
-    static constexpr char kDigits[] = "0123456789ABCDEF";
-    const auto* byte = static_cast<const uint8_t*>(data);
-    for (size_t i = 0; i < size; ++i) {
-      out_.push_back(kDigits[byte[i] >> 4]);
-      out_.push_back(kDigits[byte[i] & 0xF]);
-    }
+  void u32(uint32_t value) { out_.append(reinterpret_cast<const char*>(&value), sizeof(value)); }
+  void point(const Eigen::Vector3d& p) {
+    out_.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(double));
   }
-  // Little-endian output: lineloc targets little-endian hosts (static_assert below).
-  void u32(uint32_t value) { bytes(&value, sizeof(value)); }
-  void point(const Eigen::Vector3d& p) { bytes(p.data(), 3 * sizeof(double)); }
   void header(uint32_t type, int srid) {
-    out_.append("01");
+    out_.push_back(static_cast<char>(kLittleEndian));
     u32(type | kHasZ | kHasSrid);
     u32(static_cast<uint32_t>(srid));
   }
@@ -93,18 +87,18 @@ class Reader {
 
 }  // namespace
 
-void appendHexLineStringZ(std::string& out, int srid, const Eigen::Vector3d& a,
-                          const Eigen::Vector3d& b) {
-  HexWriter writer(out);
+void appendEwkbLineStringZ(std::string& out, int srid, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b) {
+  Writer writer(out);
   writer.header(kLineString, srid);
   writer.u32(2);
   writer.point(a);
   writer.point(b);
 }
 
-void appendHexPolygonZ(std::string& out, int srid,
-                       const std::vector<std::vector<Eigen::Vector3d>>& rings) {
-  HexWriter writer(out);
+void appendEwkbPolygonZ(std::string& out, int srid,
+                        const std::vector<std::vector<Eigen::Vector3d>>& rings) {
+  Writer writer(out);
   writer.header(kPolygon, srid);
   writer.u32(static_cast<uint32_t>(rings.size()));
   for (const auto& ring : rings) {

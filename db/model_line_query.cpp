@@ -5,21 +5,20 @@
 #include <algorithm>
 
 #include "db/ewkb.h"
+#include "db/line_pack.h"
+#include "db/view_frustum.h"
 
 namespace lineloc::db {
 namespace {
 
-constexpr const char* kStatement = "lineloc_lines_within";
+constexpr const char* kStatement = "lineloc_line_packs_meeting";
 
-// $1 site id, $2..$4 centre in site CRS coordinates, $5 radius. The box needs no SRID (&&& compares
-// boxes).
-const std::string kSql = std::string("SELECT ") + kModelLineColumns + R"sql(
-FROM line
+// $1 site id, $2..$5 xmin ymin xmax ymax in site CRS coordinates.
+constexpr const char* kSql = R"sql(
+SELECT building_id, lines
+FROM building_line_pack
 WHERE site_id = $1::int4
-  AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8 - $5::float8, $3::float8 - $5::float8,
-                                         $4::float8 - $5::float8),
-                            ST_MakePoint($2::float8 + $5::float8, $3::float8 + $5::float8,
-                                         $4::float8 + $5::float8))
+  AND bounds && box(point($2::float8, $3::float8), point($4::float8, $5::float8))
 )sql";
 
 // Squared distance from p to the segment a-b.
@@ -49,47 +48,55 @@ std::string number(double value) {
 
 }  // namespace
 
-ModelLine decodeModelLine(const Result& result, int row, const Eigen::Vector3d& origin) {
-  const auto points = decodeEwkbZ(result.bytes(row, 3), result.length(row, 3));
-  if (!points || points->size() != 1 || points->front().size() != 2) {
-    throw DatabaseError(
-        fmt::format("line {}: geometry is not a 2-point LINESTRING Z", result.binaryInt8(row, 0)));
-  }
-  ModelLine line;
-  line.id = result.binaryInt8(row, 0);
-  line.building_id = result.binaryInt8(row, 1);
-  line.kind = static_cast<LineKind>(result.binaryInt2(row, 2));
-  line.start_world = points->front()[0] - origin;
-  line.end_world = points->front()[1] - origin;
-  line.face_a = optionalOrdinal(result, row, 4);
-  line.face_b = optionalOrdinal(result, row, 5);
-  line.normal_a = optionalVector(result, row, 6);
-  line.normal_b = optionalVector(result, row, 9);
-  return line;
-}
-
 ModelLineQuery::ModelLineQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site) {
   connection_.prepare(kStatement, kSql);
 }
 
-std::vector<ModelLine> ModelLineQuery::linesWithin(const Eigen::Vector3d& center_world,
-                                                   double radius_m) {
-  const Eigen::Vector3d center = center_world + site_.origin;
+std::vector<ModelLine> ModelLineQuery::linesOfBuildingsMeeting(
+    const Eigen::AlignedBox2d& bounds_world) {
+  const Eigen::Vector2d low = bounds_world.min() + site_.origin.head<2>();
+  const Eigen::Vector2d high = bounds_world.max() + site_.origin.head<2>();
   const Result result =
       connection_.execPrepared(kStatement,
-                               {std::to_string(site_.id), number(center.x()), number(center.y()),
-                                number(center.z()), number(radius_m)},
+                               {std::to_string(site_.id), number(low.x()), number(low.y()),
+                                number(high.x()), number(high.y())},
                                true);
-  const double radius2 = radius_m * radius_m;
-  std::vector<ModelLine> lines;
-  lines.reserve(result.rows());
+  size_t pack_bytes = 0;
   for (int row = 0; row < result.rows(); ++row) {
-    ModelLine line = decodeModelLine(result, row, site_.origin);
-    if (squaredDistanceToSegment(center_world, line.start_world, line.end_world) <= radius2) {
-      lines.push_back(std::move(line));
-    }
+    pack_bytes += static_cast<size_t>(result.length(row, 1));
   }
+  std::vector<ModelLine> lines;
+  lines.reserve(pack_bytes / kLinePackRecordBytes);
+  for (int row = 0; row < result.rows(); ++row) {
+    decodeLinePack({result.bytes(row, 1), static_cast<size_t>(result.length(row, 1))},
+                   result.binaryInt8(row, 0), site_.origin, lines);
+  }
+  return lines;
+}
+
+std::vector<ModelLine> ModelLineQuery::linesWithin(const Eigen::Vector3d& center_world,
+                                                   double radius_m) {
+  const Eigen::Vector2d reach = Eigen::Vector2d::Constant(radius_m);
+  std::vector<ModelLine> lines =
+      linesOfBuildingsMeeting({center_world.head<2>() - reach, center_world.head<2>() + reach});
+  const double radius2 = radius_m * radius_m;
+  std::erase_if(lines, [&](const ModelLine& line) {
+    return squaredDistanceToSegment(center_world, line.start_world, line.end_world) > radius2;
+  });
+  return lines;
+}
+
+std::vector<ModelLine> ModelLineQuery::linesInFrustum(const Eigen::Isometry3d& T_world_camera,
+                                                      const PinholeCamera& camera, double near_m,
+                                                      double far_m) {
+  const ViewFrustum frustum(T_world_camera, camera, near_m, far_m);
+  const Eigen::AlignedBox3d& bounds = frustum.boundsWorld();
+  std::vector<ModelLine> lines =
+      linesOfBuildingsMeeting({bounds.min().head<2>(), bounds.max().head<2>()});
+  std::erase_if(lines, [&](const ModelLine& line) {
+    return !frustum.meetsSegment(line.start_world, line.end_world);
+  });
   return lines;
 }
 

@@ -1,15 +1,18 @@
-// The backbone's map query (paper §3.1: the lines near the robot, fast): the
-// model's 3D building lines within a radius of a position. A prepared
-// statement selects candidates with the n-D GiST index (the &&& box test
-// alone) and returns the geometry as binary EWKB; the exact 3D segment-point
-// distance test runs here while decoding into world-frame (site-local) Eigen
-// segments, which is cheaper than ST_3DDWithin on the server.
+// The backbone's map queries (paper §3.1: the lines near the robot, fast): the
+// model's 3D building lines within a radius of a position, or inside a
+// camera's view frustum. A prepared statement selects the buildings whose
+// packed 2D bounds meet the query's box (table building_line_pack, a GiST
+// index with one entry per building) and returns their line packs as binary
+// bytea; the exact test (3D segment-point distance, or frustum clipping) runs
+// here while decoding into world-frame (site-local) Eigen segments.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
 
+#include "common/camera/camera_calibration.h"
 #include "db/citymodel/line_extraction.h"
 #include "db/connection.h"
 #include "db/site.h"
@@ -33,16 +36,6 @@ struct ModelLine {
   Eigen::Vector3d normal_b = Eigen::Vector3d::Zero();
 };
 
-// The columns of a model line query, in the order decodeModelLine reads them.
-inline constexpr const char* kModelLineColumns =
-    "id, building_id, kind, geom, face_a, face_b, normal_a_x, normal_a_y, normal_a_z, "
-    "normal_b_x, normal_b_y, normal_b_z";
-
-// Decodes row `row` of a binary-format result selecting kModelLineColumns into
-// world coordinates (site CRS minus `origin`). Throws DatabaseError when the
-// geometry is not a 2-point LINESTRING Z.
-ModelLine decodeModelLine(const Result& result, int row, const Eigen::Vector3d& origin);
-
 class ModelLineQuery {
  public:
   // Prepares the statement on `connection`, which must outlive this object.
@@ -51,7 +44,16 @@ class ModelLineQuery {
   // Lines with any point within `radius_m` (3D distance) of `center_world`.
   std::vector<ModelLine> linesWithin(const Eigen::Vector3d& center_world, double radius_m);
 
+  // Lines with any point inside the view frustum of `camera` at
+  // `T_world_camera`, between depths `near_m` and `far_m` (see ViewFrustum;
+  // throws std::invalid_argument as it does).
+  std::vector<ModelLine> linesInFrustum(const Eigen::Isometry3d& T_world_camera,
+                                        const PinholeCamera& camera, double near_m, double far_m);
+
  private:
+  // Every line of the buildings whose packed bounds meet `bounds_world` (x, y).
+  std::vector<ModelLine> linesOfBuildingsMeeting(const Eigen::AlignedBox2d& bounds_world);
+
   Connection& connection_;
   Site site_;
 };

@@ -2,8 +2,9 @@
 // caller's transaction: the source's previous buildings (and through them
 // their faces and lines) are replaced, never duplicated, and nothing is
 // written when the same file was already loaded with the same options. Rows
-// go in through COPY, geometry as hex EWKB, building ids reserved up front so
-// faces and lines reference them without a round trip per building.
+// go in through binary COPY (geometry as EWKB), building and line ids reserved
+// up front so faces, lines and each building's line pack (db/line_pack.h)
+// reference them without a round trip per row.
 #pragma once
 
 #include <cstddef>

@@ -7,19 +7,11 @@
 namespace lineloc::db {
 namespace {
 
-constexpr const char* kLinesStatement = "lineloc_tile_lines";
 constexpr const char* kFacesStatement = "lineloc_tile_faces";
 // Heights far beyond any building: the box is a column over the square.
 constexpr double kColumnHalfHeightM = 1e5;
 
 // $1 site, $2..$5 xmin ymin xmax ymax (site CRS), $6 half height.
-const std::string kLinesSql = std::string("SELECT ") + kModelLineColumns + R"sql(
-FROM line
-WHERE site_id = $1::int4
-  AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8, $3::float8, -$6::float8),
-                            ST_MakePoint($4::float8, $5::float8, $6::float8))
-)sql";
-
 constexpr const char* kFacesSql = R"sql(
 SELECT id, building_id, kind, geom
 FROM face
@@ -35,8 +27,7 @@ std::string number(double value) {
 }  // namespace
 
 MapTileQuery::MapTileQuery(Connection& connection, const Site& site)
-    : connection_(connection), site_(site) {
-  connection_.prepare(kLinesStatement, kLinesSql);
+    : connection_(connection), site_(site), lines_(connection, site) {
   connection_.prepare(kFacesStatement, kFacesSql);
 }
 
@@ -47,11 +38,7 @@ TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
                                            number(low.y()),          number(high.x()),
                                            number(high.y()),         number(kColumnHalfHeightM)};
   TileContents contents;
-  const Result lines = connection_.execPrepared(kLinesStatement, params, true);
-  contents.lines.reserve(lines.rows());
-  for (int row = 0; row < lines.rows(); ++row) {
-    contents.lines.push_back(decodeModelLine(lines, row, site_.origin));
-  }
+  contents.lines = lines_.linesOfBuildingsMeeting(bounds_world);
   const Result faces = connection_.execPrepared(kFacesStatement, params, true);
   for (int row = 0; row < faces.rows(); ++row) {
     const auto rings = decodeEwkbZ(faces.bytes(row, 3), faces.length(row, 3));

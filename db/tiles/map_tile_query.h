@@ -1,7 +1,7 @@
-// The backbone's tile query: every model line and face of a site whose 3D
-// bounding box meets a square of the ground plane, in one round trip of two
-// prepared statements with binary results, decoded into world-frame (site
-// CRS minus origin) Eigen values. The n-D GiST indexes answer the &&& tests.
+// The backbone's tile query: the model lines of every building whose box meets
+// a square of the ground plane (ModelLineQuery's line packs), and every face
+// whose 3D bounding box meets it (n-D GiST index, binary EWKB), decoded into
+// world-frame (site CRS minus origin) Eigen values.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -37,6 +37,7 @@ class MapTileQuery {
  private:
   Connection& connection_;
   Site site_;
+  ModelLineQuery lines_;
 };
 
 }  // namespace lineloc::db

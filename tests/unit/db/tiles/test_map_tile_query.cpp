@@ -20,11 +20,9 @@ TEST(MapTileQuery, ReturnsTheLinesOfTheCubesMeetingTheSquareInWorldCoordinates) 
     EXPECT_TRUE((line.start_world.array() >= -1e-9).all() &&
                 (line.start_world.array() <= 10 + 1e-9).all());
   }
-  // A square [250, 300] x [0, 5] touching the second cube (x 300..310, y 0..10)
-  // on its west wall meets exactly the lines whose box reaches x = 300 and
-  // y <= 5: the west wall's bottom and top edges, its vertical at y = 0, and
-  // the south wall's bottom and top edges.
-  EXPECT_EQ(query.within({Eigen::Vector2d(250, 0), Eigen::Vector2d(300, 5)}).lines.size(), 5u);
+  // A square touching only the second cube's west wall (x = 300) brings the
+  // whole building: tiles carry buildings, not cut pieces of them.
+  EXPECT_EQ(query.within({Eigen::Vector2d(250, 0), Eigen::Vector2d(300, 5)}).lines.size(), 12u);
   EXPECT_EQ(query.within({Eigen::Vector2d(100, 100), Eigen::Vector2d(200, 200)}).lines.size(), 0u);
   EXPECT_EQ(query.within({Eigen::Vector2d(-10, -10), Eigen::Vector2d(400, 20)}).lines.size(), 24u);
 }

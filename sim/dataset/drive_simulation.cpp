@@ -4,15 +4,16 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <stdexcept>
 
 #include "common/geodesy/site_projection.h"
+#include "common/time/clock.h"
 #include "sim/dataset/euroc_writer.h"
 #include "sim/render/city_renderer.h"
+#include "sim/render/sample_camera.h"
 #include "sim/world/city_mesh.h"
 #include "sim/world/occupancy_map.h"
 #include "sim/world/waypoint_file.h"
@@ -23,22 +24,11 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 double threadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+  return 1e-9 * static_cast<double>(threadCpuClockNs());
 }
 
 int64_t seconds_to_ns(double seconds) {
   return static_cast<int64_t>(std::llround(seconds * 1e9));
-}
-
-// OpenCV's own calibration of its sample camera (opencv-doc left_intrinsics.yml).
-CameraCalibration defaultCamera() {
-  CameraCalibration calibration;
-  calibration.camera = {535.9157, 535.9157, 342.2832, 235.5708, 0.0, 640, 480};
-  calibration.distortion = {-0.26637260909660682, -0.038588898922304653, 1.7831947042852964e-03,
-                            -2.8122100441115472e-04, 0.23839153080878486};
-  return calibration;
 }
 
 // Camera in the body frame (x forward, y left, z up): optical axis along the
@@ -192,7 +182,7 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   const RouteTrajectory trajectory(route, city.ground_z_m, drive);
 
   const CameraCalibration calibration = config.camera_calibration.empty()
-                                            ? defaultCamera()
+                                            ? opencvSampleCamera()
                                             : readCameraCalibration(config.camera_calibration);
   EurocDatasetSpec spec;
   spec.camera = calibration;

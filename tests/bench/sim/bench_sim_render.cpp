@@ -11,14 +11,15 @@
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 
-#include <ctime>
 #include <filesystem>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "common/time/clock.h"
 #include "sim/render/city_renderer.h"
+#include "sim/render/sample_camera.h"
 #include "sim/world/city_mesh.h"
 #include "sim/world/occupancy_map.h"
 #include "sim/world/route_trajectory.h"
@@ -29,17 +30,7 @@ namespace lineloc {
 namespace {
 
 double threadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-CameraCalibration benchCamera() {
-  CameraCalibration calibration;
-  calibration.camera = {535.9157, 535.9157, 342.2832, 235.5708, 0.0, 640, 480};
-  calibration.distortion = {-0.26637260909660682, -0.038588898922304653, 1.7831947042852964e-03,
-                            -2.8122100441115472e-04, 0.23839153080878486};
-  return calibration;
+  return 1e-9 * static_cast<double>(threadCpuClockNs());
 }
 
 // Delft with street clutter along a 60 s drive, camera 1.5 m up looking ahead.
@@ -94,7 +85,8 @@ const DelftDrive& delft() {
 
 void BM_DelftDrive60s(benchmark::State& state) {
   const DelftDrive& drive = delft();
-  const CityRenderer renderer(drive.scene, benchCamera(), drive.options(state.range(0) != 0));
+  const CityRenderer renderer(drive.scene, opencvSampleCamera(),
+                              drive.options(state.range(0) != 0));
   // Every 4th frame of the 20 Hz drive: 300 frames spread over the whole minute.
   constexpr size_t kStride = 4;
   for (auto _ : state) {
@@ -200,7 +192,7 @@ void sideBySide(benchmark::State& state, const std::string& lineloc_name,
 
 void BM_PrimaryRays(benchmark::State& state) {
   const DelftDrive& drive = delft();
-  const CityRenderer renderer(drive.scene, benchCamera(), drive.options());
+  const CityRenderer renderer(drive.scene, opencvSampleCamera(), drive.options());
   const SingleRayCaster single(drive.scene);
   sideBySide(
       state, "lineloc_packets", "embree_rtcIntersect1",
@@ -219,7 +211,7 @@ BENCHMARK(BM_PrimaryRays)
 
 void BM_LensDistortion(benchmark::State& state) {
   const DelftDrive& drive = delft();
-  const CameraCalibration distorted = benchCamera();
+  const CameraCalibration distorted = opencvSampleCamera();
   CameraCalibration pinhole = distorted;
   pinhole.distortion.clear();
   const CityRenderer lineloc(drive.scene, distorted, drive.options());

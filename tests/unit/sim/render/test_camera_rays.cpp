@@ -4,7 +4,7 @@
 #include <random>
 
 #include "sim/render/camera_rays.h"
-#include "tests/unit/sim/render/opencv_left_camera.h"
+#include "sim/render/sample_camera.h"
 
 namespace lineloc {
 namespace {
@@ -19,7 +19,7 @@ cv::Point2d projectWithOpenCv(const CameraCalibration& calibration, const Eigen:
 }
 
 TEST(CameraRays, EveryPixelRayProjectsBackToItsPixelWithOpenCv) {
-  const CameraCalibration calibration = opencvLeftCamera();
+  const CameraCalibration calibration = opencvSampleCamera();
   const CameraRays rays(calibration);
   ASSERT_EQ(rays.invalidCount(), 0);
   for (int v = 0; v < rays.height(); v += 7) {
@@ -36,7 +36,7 @@ TEST(CameraRays, EveryPixelRayProjectsBackToItsPixelWithOpenCv) {
 }
 
 TEST(CameraRays, PinholeRaysAreInverseIntrinsics) {
-  CameraCalibration calibration = opencvLeftCamera();
+  CameraCalibration calibration = opencvSampleCamera();
   calibration.distortion.clear();
   calibration.camera.skew = 0.5;
   const CameraRays rays(calibration);
@@ -47,10 +47,10 @@ TEST(CameraRays, PinholeRaysAreInverseIntrinsics) {
 }
 
 TEST(CameraRays, RejectsInvalidCamera) {
-  CameraCalibration calibration = opencvLeftCamera();
+  CameraCalibration calibration = opencvSampleCamera();
   calibration.camera.fx = 0.0;
   EXPECT_THROW(CameraRays{calibration}, std::invalid_argument);
-  calibration = opencvLeftCamera();
+  calibration = opencvSampleCamera();
   calibration.camera.width = 0;
   EXPECT_THROW(CameraRays{calibration}, std::invalid_argument);
 }

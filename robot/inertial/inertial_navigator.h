@@ -52,6 +52,9 @@ struct InertialNavigatorConfig {
   double gyro_range_radps = 17.45;
   double accel_range_mps2 = 176.5;
   int64_t imu_gap_ns = 20'000'000;
+  // Rotation from the IMU's frame to the body frame, applied to every sample
+  // (the lever arm's centripetal terms are neglected: small on a ground robot).
+  Eigen::Matrix3d R_body_imu = Eigen::Matrix3d::Identity();
   // Camera mounted looking forward: camera z = body x, camera x = -body y, camera y = -body z.
   Eigen::Isometry3d T_body_camera = defaultBodyCamera();
   Eigen::Vector3d p_body_gps_antenna = Eigen::Vector3d::Zero();
@@ -159,7 +162,8 @@ class InertialNavigator {
   // Throws std::invalid_argument naming the first invalid setting.
   explicit InertialNavigator(const InertialNavigatorConfig& config);
 
-  void addImu(const ImuSample& sample);
+  // A sample in the IMU frame (rotated here by R_body_imu).
+  void addImu(const ImuSample& sample_imu);
   void addGps(const GpsFix& fix);
   void addCompass(const CompassReading& reading);
   MeasurementOutcome applyVisionFix(int64_t stamp_ns, const PoseWithCovariance& T_world_camera,

@@ -30,18 +30,6 @@ double squaredDistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d&
   return (a + t * ab - p).squaredNorm();
 }
 
-Eigen::Vector3d optionalVector(const Result& result, int row, int column) {
-  if (result.isNull(row, column)) {
-    return Eigen::Vector3d::Zero();
-  }
-  return {result.binaryFloat8(row, column), result.binaryFloat8(row, column + 1),
-          result.binaryFloat8(row, column + 2)};
-}
-
-int optionalOrdinal(const Result& result, int row, int column) {
-  return result.isNull(row, column) ? -1 : result.binaryInt4(row, column);
-}
-
 std::string number(double value) {
   return fmt::format("{:.17g}", value);
 }

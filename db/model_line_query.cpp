@@ -30,42 +30,11 @@ double squaredDistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d&
   return (a + t * ab - p).squaredNorm();
 }
 
-Eigen::Vector3d optionalVector(const Result& result, int row, int column) {
-  if (result.isNull(row, column)) {
-    return Eigen::Vector3d::Zero();
-  }
-  return {result.binaryFloat8(row, column), result.binaryFloat8(row, column + 1),
-          result.binaryFloat8(row, column + 2)};
-}
-
-int optionalOrdinal(const Result& result, int row, int column) {
-  return result.isNull(row, column) ? -1 : result.binaryInt4(row, column);
-}
-
 std::string number(double value) {
   return fmt::format("{:.17g}", value);
 }
 
 }  // namespace
-
-ModelLine decodeModelLine(const Result& result, int row, const Eigen::Vector3d& origin) {
-  const auto points = decodeEwkbZ(result.bytes(row, 3), result.length(row, 3));
-  if (!points || points->size() != 1 || points->front().size() != 2) {
-    throw DatabaseError(
-        fmt::format("line {}: geometry is not a 2-point LINESTRING Z", result.binaryInt8(row, 0)));
-  }
-  ModelLine line;
-  line.id = result.binaryInt8(row, 0);
-  line.building_id = result.binaryInt8(row, 1);
-  line.kind = static_cast<LineKind>(result.binaryInt2(row, 2));
-  line.start_world = points->front()[0] - origin;
-  line.end_world = points->front()[1] - origin;
-  line.face_a = optionalOrdinal(result, row, 4);
-  line.face_b = optionalOrdinal(result, row, 5);
-  line.normal_a = optionalVector(result, row, 6);
-  line.normal_b = optionalVector(result, row, 9);
-  return line;
-}
 
 ModelLineQuery::ModelLineQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site) {

@@ -36,16 +36,6 @@ struct ModelLine {
   Eigen::Vector3d normal_b = Eigen::Vector3d::Zero();
 };
 
-// The columns of a model line query, in the order decodeModelLine reads them.
-inline constexpr const char* kModelLineColumns =
-    "id, building_id, kind, geom, face_a, face_b, normal_a_x, normal_a_y, normal_a_z, "
-    "normal_b_x, normal_b_y, normal_b_z";
-
-// Decodes row `row` of a binary-format result selecting kModelLineColumns into
-// world coordinates (site CRS minus `origin`). Throws DatabaseError when the
-// geometry is not a 2-point LINESTRING Z.
-ModelLine decodeModelLine(const Result& result, int row, const Eigen::Vector3d& origin);
-
 class ModelLineQuery {
  public:
   // Prepares the statement on `connection`, which must outlive this object.

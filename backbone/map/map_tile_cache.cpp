@@ -115,7 +115,7 @@ MapView MapTileCache::around(const Eigen::Vector3d& position_world, double radiu
       if (line_ids.insert(line.id).second)
         view.lines.push_back(line);
     }
-    for (const ModelFace& face : tile->faces) {
+    for (const db::ModelFaceRecord& face : tile->faces) {
       if (face_ids.insert(face.id).second)
         view.faces.push_back(face);
     }
@@ -137,14 +137,8 @@ MapCacheStats MapTileCache::stats() const {
   return stats_;
 }
 
-void MapTileCache::work(std::function<TileFetcher()> make_fetcher) {
+void MapTileCache::work(const std::function<TileFetcher()>& make_fetcher) {
   TileFetcher fetch;
-  std::exception_ptr setup_error;
-  try {
-    fetch = make_fetcher();
-  } catch (...) {
-    setup_error = std::current_exception();
-  }
   std::unique_lock lock(mutex_);
   for (;;) {
     work_ready_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
@@ -156,13 +150,15 @@ void MapTileCache::work(std::function<TileFetcher()> make_fetcher) {
     const bool urgent = pending_.at(key);
     lock.unlock();
     std::shared_ptr<const MapTile> tile;
-    std::exception_ptr error = setup_error;
-    if (!error) {
-      try {
-        tile = std::make_shared<const MapTile>(fetch(bounds(key)));
-      } catch (...) {
-        error = std::current_exception();
+    std::exception_ptr error;
+    try {
+      if (!fetch) {
+        fetch = make_fetcher();
       }
+      tile = std::make_shared<const MapTile>(fetch(bounds(key)));
+    } catch (...) {
+      error = std::current_exception();
+      fetch = nullptr;  // whatever it held may be broken: make a new one next time
     }
     lock.lock();
     pending_.erase(key);

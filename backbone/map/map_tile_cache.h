@@ -23,21 +23,11 @@
 #include <thread>
 #include <vector>
 
-#include "db/model_line_query.h"
+#include "db/tiles/map_tile_query.h"
 
 namespace lineloc {
 
-struct ModelFace {
-  int64_t id = 0;
-  int64_t building_id = 0;
-  // Outer ring in world (site-local) coordinates, without the closing vertex.
-  std::vector<Eigen::Vector3d> ring_world;
-};
-
-struct MapTile {
-  std::vector<db::ModelLine> lines;
-  std::vector<ModelFace> faces;
-};
+using MapTile = db::TileContents;
 
 // Everything near a position: each line and face once, even when it spans tiles.
 using MapView = MapTile;
@@ -55,8 +45,9 @@ struct MapCacheStats {
 
 class MapTileCache {
  public:
-  // `make_fetcher` is called once, on the worker thread, so that whatever the
-  // fetcher holds (a database connection) is created on the thread that uses it.
+  // `make_fetcher` is called on the worker thread, so that whatever the
+  // fetcher holds (a database connection) lives on the thread that uses it;
+  // it is called again after any failure, to start afresh (reconnect).
   MapTileCache(std::function<TileFetcher()> make_fetcher, double tile_size_m, size_t max_tiles);
   ~MapTileCache();
   MapTileCache(const MapTileCache&) = delete;
@@ -90,7 +81,7 @@ class MapTileCache {
   void insert(const TileKey& key, std::shared_ptr<const MapTile> tile);
   std::shared_ptr<const MapTile> waitForTile(const TileKey& key,
                                              std::unique_lock<std::mutex>& lock);
-  void work(std::function<TileFetcher()> make_fetcher);
+  void work(const std::function<TileFetcher()>& make_fetcher);
 
   const double tile_size_m_;
   const size_t max_tiles_;

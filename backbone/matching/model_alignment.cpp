@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/pose/pose_estimator.h"
+#include "common/time/clock.h"
 
 namespace lineloc {
 namespace {
@@ -89,9 +90,11 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   pose_options.refinement.loss = RobustLoss::kCauchy;
   for (int round = 0; round < options.max_rounds; ++round) {
     alignment.rounds = round + 1;
+    const int64_t matching_start_ns = steadyClockNs();
     const auto candidates = gateCandidates(image, model, current, camera, options.matching);
     const MatchedProblem matched =
         buildProblem(image, model, candidates, camera, options.ambiguity_margin_chi2);
+    alignment.matching_ns += steadyClockNs() - matching_start_ns;
     alignment.matches = static_cast<int>(matched.matches.size());
     if (alignment.matches < options.min_inliers) {
       alignment.status = AlignmentStatus::kTooFewMatches;
@@ -100,7 +103,9 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
       return alignment;
     }
     pose_options.prior_T_world_camera = current.pose;
+    const int64_t pose_start_ns = steadyClockNs();
     const PoseEstimate estimate = estimatePose(matched.problem, pose_options);
+    alignment.pose_ns += steadyClockNs() - pose_start_ns;
     if (!estimate.ok()) {
       alignment.status = estimate.status == PoseStatus::kAmbiguous ? AlignmentStatus::kAmbiguous
                                                                    : AlignmentStatus::kFailed;

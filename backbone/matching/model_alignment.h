@@ -17,6 +17,7 @@
 // receives a precise but wrong pose.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,9 @@ struct Alignment {
   int inliers = 0;
   double rms_residual_px = 0.0;
   int rounds = 0;
+  // Time spent gating candidates and estimating poses, over all rounds.
+  int64_t matching_ns = 0;
+  int64_t pose_ns = 0;
 };
 
 Alignment alignModel(const std::vector<ImageSegment>& image,

@@ -97,7 +97,7 @@ void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& c
   storage << "distortion_coefficients" << cv::Mat(distortion, true);
 }
 
-void writeCameraCalibration(const std::string& path, const CameraCalibration& calibration) {
+cv::FileStorage openCalibrationFileForWriting(const std::string& path) {
   cv::FileStorage storage;
   try {
     storage.open(path, cv::FileStorage::WRITE);
@@ -107,6 +107,11 @@ void writeCameraCalibration(const std::string& path, const CameraCalibration& ca
   if (!storage.isOpened()) {
     throw std::runtime_error(fmt::format("cannot write camera calibration '{}'", path));
   }
+  return storage;
+}
+
+void writeCameraCalibration(const std::string& path, const CameraCalibration& calibration) {
+  cv::FileStorage storage = openCalibrationFileForWriting(path);
   writeCameraCalibration(storage, calibration);
 }
 

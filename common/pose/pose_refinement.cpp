@@ -257,6 +257,20 @@ Matrix6d worldCovariance(const Matrix6d& camera_covariance, const Eigen::Matrix3
   return 0.5 * (covariance + covariance.transpose());
 }
 
+// The RMS of the correspondences' normalized residuals for least squares;
+// their median with a robust loss, which expects outliers.
+double residualSpread(std::vector<double>& normalized, RobustLoss loss) {
+  if (loss == RobustLoss::kNone) {
+    double squared = 0.0;
+    for (const double r : normalized)
+      squared += r * r;
+    return std::sqrt(squared / static_cast<double>(normalized.size()));
+  }
+  const auto median = normalized.begin() + static_cast<std::ptrdiff_t>(normalized.size() / 2);
+  std::nth_element(normalized.begin(), median, normalized.end());
+  return *median;
+}
+
 // Residuals, RMS, covariance and the final status checks at the solution.
 PoseEstimate summarize(const PreparedProblem& problem, const Eigen::Isometry3d& T_camera_world,
                        const Linearization& linearization, const RefinementOptions& options,
@@ -294,12 +308,12 @@ PoseEstimate summarize(const PreparedProblem& problem, const Eigen::Isometry3d& 
   }
   estimate.T_world_camera.covariance =
       worldCovariance(linearization.information.inverse(), estimate.T_world_camera.pose.linear());
-  const auto median = normalized.begin() + static_cast<std::ptrdiff_t>(normalized.size() / 2);
-  std::nth_element(normalized.begin(), median, normalized.end());
-  if (status == PoseStatus::kConverged && *median > options.max_median_normalized_residual) {
+  const double spread = residualSpread(normalized, options.loss);
+  if (status == PoseStatus::kConverged && spread > options.max_normalized_residual) {
     estimate.status = PoseStatus::kInconsistent;
-    estimate.message = fmt::format("median normalized residual {} exceeds {}", *median,
-                                   options.max_median_normalized_residual);
+    estimate.message = fmt::format("normalized residuals ({} {}) exceed {}",
+                                   options.loss == RobustLoss::kNone ? "RMS" : "median", spread,
+                                   options.max_normalized_residual);
   }
   if (!isFinitePose(estimate.T_world_camera)) {
     estimate.status = PoseStatus::kDiverged;

@@ -50,11 +50,12 @@ struct RefinementOptions {
   // kDegenerate when the smallest eigenvalue of the Jacobi-scaled information
   // matrix J^T J is below this fraction of the largest.
   double degeneracy_threshold = 1e-12;
-  // kInconsistent when the median over correspondences of the normalized
-  // residual exceeds this (1.18 expected for a 2-vector of unit-variance
-  // residuals): most data do not fit the stated noise (wrong matches, no
-  // valid pose). A median tolerates outliers left to the robust loss.
-  double max_median_normalized_residual = 5.0;
+  // kInconsistent when the correspondences' normalized residuals (|r_i|,
+  // sqrt(2) expected for two unit-variance components) exceed this: their RMS
+  // with RobustLoss::kNone, their median with a robust loss, which expects
+  // outliers. The data then do not fit the stated noise (wrong matches, no
+  // valid pose).
+  double max_normalized_residual = 5.0;
 };
 
 // Refines from T_world_camera_start. Checks the input first (kInvalidInput,

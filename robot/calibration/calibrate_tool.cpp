@@ -148,6 +148,13 @@ void printCalibration(const CalibrationResult& result, std::ostream& log) {
 
 int runCheck(const CalibrateToolConfig& config, const LoadedViews& loaded, std::ostream& log) {
   const CameraCalibration calibration = readCameraCalibration(config.check);
+  if (calibration.camera.width != loaded.views.image_width ||
+      calibration.camera.height != loaded.views.image_height) {
+    throw std::runtime_error(fmt::format("{}: calibrated for {}x{} images, the views are {}x{}",
+                                         config.check, calibration.camera.width,
+                                         calibration.camera.height, loaded.views.image_width,
+                                         loaded.views.image_height));
+  }
   const CalibrationResult result = checkCalibration(loaded.views, calibration);
   if (result.status != CalibrationStatus::kConverged) {
     fmt::print(log, "check failed: {}: {}\n", toString(result.status), result.message);

@@ -60,15 +60,7 @@ void writeCalibrationFile(const std::string& path, const CalibrationResult& resu
                           const std::vector<std::string>& view_names) {
   const std::string temporary_path = path + ".partial";
   {
-    cv::FileStorage storage;
-    try {
-      storage.open(temporary_path, cv::FileStorage::WRITE);
-    } catch (const cv::Exception& error) {
-      throw std::runtime_error(fmt::format("cannot write '{}': {}", path, error.what()));
-    }
-    if (!storage.isOpened()) {
-      throw std::runtime_error(fmt::format("cannot write calibration file '{}'", path));
-    }
+    cv::FileStorage storage = openCalibrationFileForWriting(temporary_path);
     storage << "nr_of_frames" << static_cast<int>(result.state.T_camera_model.size());
     writeCameraCalibration(storage, result.state.calibration);
     storage << "fix_skew" << static_cast<int>(options.fix_skew);

@@ -6,6 +6,15 @@
 
 namespace lineloc {
 
+CalibrationOptions openCvCompatibleOptions() {
+  CalibrationOptions options;
+  options.fix_skew = true;
+  options.fix_aspect_ratio = true;
+  options.aspect_ratio = 1.0;
+  options.distortion_model = DistortionModel::kOpenCv5;
+  return options;
+}
+
 std::vector<std::vector<Eigen::Vector2d>> reprojectionResiduals(const PlanarViews& views,
                                                                 const CalibrationState& state) {
   const PinholeCamera& camera = state.calibration.camera;

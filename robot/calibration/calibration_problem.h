@@ -31,6 +31,10 @@ struct CalibrationOptions {
   int max_iterations = 100;
 };
 
+// The model cv::calibrateCamera fits with CALIB_FIX_ASPECT_RATIO from an
+// identity start: zero skew, fx = fy, k1 k2 p1 p2 k3.
+CalibrationOptions openCvCompatibleOptions();
+
 struct PlanarViews {
   // Model plane points (X, Y) with Z = 0, in metres.
   std::vector<Eigen::Vector2d> model_points;

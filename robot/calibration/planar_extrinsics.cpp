@@ -1,18 +1,10 @@
 #include "robot/calibration/planar_extrinsics.h"
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
+
+#include "common/pose/nearest_rotation.h"
 
 namespace lineloc {
-
-Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& Q) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(Q, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  if ((U * svd.matrixV().transpose()).determinant() < 0.0) {
-    U.col(2) = -U.col(2);
-  }
-  return U * svd.matrixV().transpose();
-}
 
 Eigen::Isometry3d planePoseFromHomography(const Eigen::Matrix3d& K, const Eigen::Matrix3d& H) {
   const Eigen::Matrix3d K_inverse_H = K.inverse() * H;

@@ -6,16 +6,13 @@
 //
 // with the sign of lambda chosen so that the plane lies in front of the camera
 // (t_z > 0), and Q = [r1 r2 r3] replaced by the nearest rotation in Frobenius
-// norm, R = U V^T from Q = U S V^T.
+// norm (common/pose/nearest_rotation.h).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 namespace lineloc {
-
-// The rotation closest to Q in Frobenius norm (det = +1).
-Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& Q);
 
 // T_camera_model: maps model points (X, Y, 0) to the camera frame.
 Eigen::Isometry3d planePoseFromHomography(const Eigen::Matrix3d& K, const Eigen::Matrix3d& H);

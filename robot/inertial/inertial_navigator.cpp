@@ -105,6 +105,9 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   requirePositive(config.gps_vertical_sigma_m, "gps_vertical_sigma_m");
   requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
   requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
+  if (!config.R_body_imu.isUnitary(1e-6) || config.R_body_imu.determinant() < 0.0) {
+    throw std::invalid_argument("inertial navigator: R_body_imu is not a rotation");
+  }
   if (!(config.gate_probability > 0.0 && config.gate_probability < 1.0)) {
     throw std::invalid_argument(fmt::format(
         "inertial navigator: gate_probability must be in (0, 1), got {}", config.gate_probability));
@@ -138,7 +141,9 @@ bool InertialNavigator::acceptImu(const ImuSample& sample) {
   return true;
 }
 
-void InertialNavigator::addImu(const ImuSample& sample) {
+void InertialNavigator::addImu(const ImuSample& sample_imu) {
+  const ImuSample sample{sample_imu.stamp_ns, config_.R_body_imu * sample_imu.gyro_radps,
+                         config_.R_body_imu * sample_imu.accel_mps2};
   if (!acceptImu(sample)) {
     return;
   }

@@ -104,6 +104,7 @@ EurocWriter::EurocWriter(const std::string& root, const EurocDatasetSpec& spec)
        "q_RS_z [], v_RS_R_x [m s^-1], v_RS_R_y [m s^-1], v_RS_R_z [m s^-1], "
        "b_w_RS_S_x [rad s^-1], b_w_RS_S_y [rad s^-1], b_w_RS_S_z [rad s^-1], "
        "b_a_RS_S_x [m s^-2], b_a_RS_S_y [m s^-2], b_a_RS_S_z [m s^-2]");
+  camera_truth_stamps_.name = (fs::path(root) / "groundtruth_cam0.tum").string();
   nmea_.open(fs::path(root) / "gps0" / "nmea.txt", std::ios::binary);
   writeCameraFiles(fs::path(root) / "cam0", spec);
   writeImuFile(fs::path(root) / "imu0", spec);
@@ -127,8 +128,7 @@ void EurocWriter::checkStamp(Stream& stream, int64_t stamp_ns) {
   stream.last_stamp_ns = stamp_ns;
 }
 
-void EurocWriter::writeImage(int64_t stamp_ns, const cv::Mat& image,
-                             const Eigen::Isometry3d& T_world_camera) {
+void EurocWriter::writeImage(int64_t stamp_ns, const cv::Mat& image) {
   checkStamp(images_, stamp_ns);
   const std::string file_name = fmt::format("{}.png", stamp_ns);
   const std::string path = (fs::path(root_) / "cam0" / "data" / file_name).string();
@@ -136,7 +136,11 @@ void EurocWriter::writeImage(int64_t stamp_ns, const cv::Mat& image,
     throw std::runtime_error(fmt::format("cannot write image '{}'", path));
   }
   images_.file << stamp_ns << ',' << file_name << '\n';
-  camera_ground_truth_.write({stamp_ns, T_world_camera});
+}
+
+void EurocWriter::writeCameraGroundTruth(const StampedPose& T_world_camera) {
+  checkStamp(camera_truth_stamps_, T_world_camera.stamp_ns);
+  camera_ground_truth_.write(T_world_camera);
 }
 
 void EurocWriter::writeImu(int64_t stamp_ns, const Eigen::Vector3d& angular_velocity_rad_s,

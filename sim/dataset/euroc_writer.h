@@ -55,7 +55,10 @@ class EurocWriter {
   EurocWriter(const std::string& root, const EurocDatasetSpec& spec);
 
   // Each writer throws std::invalid_argument when stamps do not increase.
-  void writeImage(int64_t stamp_ns, const cv::Mat& image, const Eigen::Isometry3d& T_world_camera);
+  void writeImage(int64_t stamp_ns, const cv::Mat& image);
+  // The true camera pose when an image was taken (true time, which differs
+  // from the image's stamp when the camera clock has an offset).
+  void writeCameraGroundTruth(const StampedPose& T_world_camera);
   void writeImu(int64_t stamp_ns, const Eigen::Vector3d& angular_velocity_rad_s,
                 const Eigen::Vector3d& acceleration_m_s2);
   void writeNmea(int64_t stamp_ns, const std::string& sentence);
@@ -79,6 +82,7 @@ class EurocWriter {
   Stream gps_;
   Stream compass_;
   Stream ground_truth_;
+  Stream camera_truth_stamps_;
   std::ofstream nmea_;
   TumWriter camera_ground_truth_;
 };

@@ -94,10 +94,11 @@ void drawMap(cv::Mat& panel, const std::vector<StampedPose>& ground_truth,
   if (buildings != nullptr) {
     drawFootprints(panel, *buildings, map);
   }
-  cv::polylines(panel, polyline(ground_truth, map), false, kTruthColour, 3, cv::LINE_AA);
   for (const cv::Point& point : polyline(estimate, map)) {
-    cv::circle(panel, point, 2, kEstimateColour, cv::FILLED, cv::LINE_AA);
+    cv::circle(panel, point, 3, kEstimateColour, cv::FILLED, cv::LINE_AA);
   }
+  // The truth on top, thinner, so both show where they overlap.
+  cv::polylines(panel, polyline(ground_truth, map), false, kTruthColour, 2, cv::LINE_AA);
   if (!ground_truth.empty()) {
     cv::circle(panel, map(ground_truth.front().pose.translation().head<2>()), 8, kTruthColour, 2,
                cv::LINE_AA);

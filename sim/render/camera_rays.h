@@ -6,37 +6,17 @@
 //   x_d = x s + 2 p1 x y + p2 (r^2 + 2 x^2),
 //   y_d = y s + p1 (r^2 + 2 y^2) + 2 p2 x y,
 //   u = fx x_d + skew y_d + cx,  v = fy y_d + cy
-// (the model of cv::projectPoints; Zhang's radial k1 k2 of Persa & Jonker §2.1
-// eq. 5 is the case p = k3..k6 = 0). The inverse has no closed form: each
-// pixel is solved by Gauss-Newton on the 2x2 system, once per camera.
+// (the model of cv::projectPoints, common/camera/lens_distortion.h; Zhang's
+// radial k1 k2 of Persa & Jonker §2.1 is the case p = k3..k6 = 0). The inverse
+// has no closed form: each pixel is solved by Gauss-Newton, once per camera.
 #pragma once
 
 #include <Eigen/Core>
-#include <array>
 #include <vector>
 
 #include "common/camera/camera_calibration.h"
 
 namespace lineloc {
-
-// OpenCV's forward model on normalised coordinates: (x, y) -> (x_d, y_d).
-class LensDistortion {
- public:
-  // `coefficients` in OpenCV order k1 k2 p1 p2 [k3 [k4 k5 k6]]; missing ones are 0.
-  explicit LensDistortion(const std::vector<double>& coefficients);
-
-  Eigen::Vector2d distort(const Eigen::Vector2d& undistorted) const;
-  // Solves distort(x) = distorted; false when it does not converge to
-  // `tolerance` (the pixel lies outside the region the model maps one-to-one).
-  bool undistort(const Eigen::Vector2d& distorted, Eigen::Vector2d& undistorted,
-                 double tolerance = 1e-12) const;
-
- private:
-  Eigen::Matrix2d jacobian(const Eigen::Vector2d& undistorted) const;
-
-  // k1 k2 p1 p2 k3 k4 k5 k6.
-  std::array<double, 8> k_{};
-};
 
 // Unit ray directions in the camera frame (OpenCV: x right, y down, z forward),
 // one per pixel centre, row-major. A pixel the model cannot invert gets a zero

@@ -1,12 +1,11 @@
 // The render scene of a city model: every building face (CityJSON semantic
 // wall or roof; ground faces lie under the ground plane and are left out)
-// triangulated by ear clipping of its exterior ring in the face's plane, moved
+// triangulated by ear clipping of its exterior ring (holes are not cut), moved
 // by a site origin so coordinates stay small enough for float ray casting.
 // Each building becomes one object, its façade style drawn from its index.
 #pragma once
 
 #include <Eigen/Core>
-#include <array>
 #include <string>
 #include <vector>
 
@@ -36,12 +35,6 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
 // The centre of the buildings' xy bounding box rounded to metres, height 0:
 // the default site origin.
 Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model);
-
-// Triangles (vertex index triples) covering a simple planar polygon, by ear
-// clipping in the plane normal to `normal`; empty when the ring is degenerate
-// or self-intersecting.
-std::vector<std::array<int, 3>> triangulateRing(const std::vector<Eigen::Vector3d>& ring,
-                                                const Eigen::Vector3d& normal);
 
 // Reads a CityJSON or CityJSON Lines (.jsonl) file into a model (buildings at
 // the highest level of detail). Throws naming the file when it is unreadable

@@ -26,7 +26,7 @@ struct RouteDriveOptions {
   double min_speed_m_s = 0.5;
   double max_speed_m_s = 2.0;
   // Cruise speeds are capped so that k_max v^2 stays below this (m/s^2).
-  double max_lateral_acceleration_m_s2 = 0.5;
+  double max_lateral_acceleration_m_s2 = 1.0;
   double ramp_s = 2.0;
   double min_leg_s = 4.0;
   double max_leg_s = 12.0;
@@ -34,7 +34,7 @@ struct RouteDriveOptions {
   double min_stop_s = 2.0;
   double max_stop_s = 5.0;
   // Spacing of the spline's control points along the route (m).
-  double control_spacing_m = 3.0;
+  double control_spacing_m = 5.0;
   // Height of the body frame above the ground plane z = 0 of the route (m).
   double body_height_m = 0.3;
   double gravity_m_s2 = 9.80665;

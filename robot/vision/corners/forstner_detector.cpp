@@ -8,9 +8,10 @@
 namespace lineloc {
 namespace {
 
-// Sobel 3x3 gives 8 x the gradient; products carry 64 x.
-constexpr float kInverseSobelGainSquared = 1.0f / 64.0f;
+// Sobel 3x3 gives 8 x the gradient.
 constexpr float kInverseSobelGain = 1.0f / 8.0f;
+// Below this tensor trace, (grey levels / px)^2 summed over the window, w is 0.
+constexpr float kMinTrace = 1e-3f;
 
 }  // namespace
 
@@ -23,75 +24,132 @@ ForstnerDetector::ForstnerDetector(const ForstnerOptions& options) : options_(op
         "Förstner: radii >= 1, min_roundness in [0, 1], weight_factor >= 0, min_weight > 0, "
         "max_corners >= 0");
   }
-  const int side = 2 * options.suppression_radius_px + 1;
-  suppression_kernel_ = cv::Mat::ones(side, side, CV_8U);
 }
 
 void ForstnerDetector::detect(const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
   corners_.clear();
-  computeTensor(gradient_x, gradient_y);
-  const float mean_weight = computeWeights();
+  const float mean_weight = computeWeights(gradient_x, gradient_y);
   const float min_weight = std::max(static_cast<float>(options_.min_weight),
                                     static_cast<float>(options_.weight_factor) * mean_weight);
-  cv::dilate(weight_, dilated_, suppression_kernel_);
-  const int margin = std::max(options_.window_radius_px, options_.refine_radius_px) + 1;
-  for (int y = margin; y < weight_.rows - margin; ++y) {
-    const float* w = weight_.ptr<float>(y);
-    const float* w_max = dilated_.ptr<float>(y);
-    for (int x = margin; x < weight_.cols - margin; ++x) {
-      ForstnerCorner corner;
-      if (w[x] >= min_weight && w[x] == w_max[x] && refine(gradient_x, gradient_y, x, y, corner)) {
-        corner.weight = w[x];
-        corners_.push_back(corner);
-      }
+  collectCandidates(min_weight);
+  std::sort(candidates_.begin(), candidates_.end(),
+            [](const Candidate& a, const Candidate& b) { return a.weight > b.weight; });
+  for (const Candidate& candidate : candidates_) {
+    if (static_cast<int>(corners_.size()) >= options_.max_corners) {
+      break;
     }
-  }
-  std::sort(corners_.begin(), corners_.end(),
-            [](const ForstnerCorner& a, const ForstnerCorner& b) { return a.weight > b.weight; });
-  if (static_cast<int>(corners_.size()) > options_.max_corners) {
-    corners_.resize(options_.max_corners);
+    ForstnerCorner corner;
+    if (refine(gradient_x, gradient_y, candidate.x, candidate.y, corner)) {
+      corner.weight = candidate.weight;
+      corners_.push_back(corner);
+    }
   }
 }
 
-void ForstnerDetector::computeTensor(const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
-  products_.create(gradient_x.size(), CV_32FC3);
+void ForstnerDetector::computeProducts(const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
+  const size_t plane = gradient_x.total();
+  products_.resize(3 * plane);
+  float* xx = products_.data();
+  float* xy = xx + plane;
+  float* yy = xy + plane;
   for (int y = 0; y < gradient_x.rows; ++y) {
     const int16_t* gx = gradient_x.ptr<int16_t>(y);
     const int16_t* gy = gradient_y.ptr<int16_t>(y);
-    float* p = products_.ptr<float>(y);
+    const size_t row = static_cast<size_t>(y) * gradient_x.cols;
     for (int x = 0; x < gradient_x.cols; ++x) {
-      const float fx = gx[x];
-      const float fy = gy[x];
-      p[3 * x] = fx * fx * kInverseSobelGainSquared;
-      p[3 * x + 1] = fx * fy * kInverseSobelGainSquared;
-      p[3 * x + 2] = fy * fy * kInverseSobelGainSquared;
+      const float fx = gx[x] * kInverseSobelGain;
+      const float fy = gy[x] * kInverseSobelGain;
+      xx[row + x] = fx * fx;
+      xy[row + x] = fx * fy;
+      yy[row + x] = fy * fy;
     }
   }
-  const int side = 2 * options_.window_radius_px + 1;
-  cv::boxFilter(products_, tensor_, CV_32F, cv::Size(side, side), cv::Point(-1, -1), false);
 }
 
-float ForstnerDetector::computeWeights() {
-  weight_.create(tensor_.size(), CV_32F);
+// Window sums by running column sums (add the row entering, drop the row
+// leaving) and a (2r+1)-tap horizontal sum; w and q straight from them.
+float ForstnerDetector::computeWeights(const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
+  computeProducts(gradient_x, gradient_y);
+  const int width = gradient_x.cols;
+  const int height = gradient_x.rows;
+  const int r = options_.window_radius_px;
+  const size_t plane = gradient_x.total();
+  weight_.create(gradient_x.size(), CV_32F);
+  weight_.setTo(0.0f);
+  column_sums_.assign(3 * static_cast<size_t>(width), 0.0f);
+  tensor_row_.resize(3 * static_cast<size_t>(width));
+  for (int v = 0; v < std::min(2 * r, height); ++v) {
+    addRow(v, 1.0f, plane, width);
+  }
   const float min_roundness = static_cast<float>(options_.min_roundness);
   double weight_sum = 0.0;
-  for (int y = 0; y < tensor_.rows; ++y) {
-    const float* n = tensor_.ptr<float>(y);
+  for (int y = r; y < height - r; ++y) {
+    addRow(y + r, 1.0f, plane, width);
+    std::fill(tensor_row_.begin(), tensor_row_.end(), 0.0f);
+    for (int c = 0; c < 3; ++c) {
+      const float* column = column_sums_.data() + c * width;
+      float* tensor = tensor_row_.data() + c * width;
+      for (int k = -r; k <= r; ++k) {
+        for (int x = r; x < width - r; ++x) {
+          tensor[x] += column[x + k];
+        }
+      }
+    }
+    const float* a = tensor_row_.data();
+    const float* b = a + width;
+    const float* c = b + width;
     float* w = weight_.ptr<float>(y);
     float row_sum = 0.0f;
-    for (int x = 0; x < tensor_.cols; ++x) {
-      const float a = n[3 * x];
-      const float b = n[3 * x + 1];
-      const float c = n[3 * x + 2];
-      const float trace = a + c;
-      const float det = a * c - b * b;
-      const float weight = trace > 0.0f ? det / trace : 0.0f;
+    for (int x = r; x < width - r; ++x) {
+      const float trace = a[x] + c[x];
+      const float det = a[x] * c[x] - b[x] * b[x];
+      const float weight = det / std::max(trace, kMinTrace);
       row_sum += weight;
-      w[x] = (4.0f * det >= min_roundness * trace * trace && trace > 0.0f) ? weight : 0.0f;
+      w[x] = 4.0f * det >= min_roundness * trace * trace ? weight : 0.0f;
     }
     weight_sum += row_sum;
+    addRow(y - r, -1.0f, plane, width);
   }
-  return static_cast<float>(weight_sum / static_cast<double>(tensor_.total()));
+  return static_cast<float>(weight_sum / static_cast<double>(plane));
+}
+
+void ForstnerDetector::addRow(int y, float sign, size_t plane, int width) {
+  for (int c = 0; c < 3; ++c) {
+    const float* row = products_.data() + c * plane + static_cast<size_t>(y) * width;
+    float* column = column_sums_.data() + c * width;
+    for (int x = 0; x < width; ++x) {
+      column[x] += sign * row[x];
+    }
+  }
+}
+
+// Local maxima of w over (2s+1)^2, among the pixels above the threshold.
+void ForstnerDetector::collectCandidates(float min_weight) {
+  candidates_.clear();
+  const int s = options_.suppression_radius_px;
+  const int margin = std::max({options_.window_radius_px, options_.refine_radius_px, s}) + 1;
+  for (int y = margin; y < weight_.rows - margin; ++y) {
+    const float* w = weight_.ptr<float>(y);
+    for (int x = margin; x < weight_.cols - margin; ++x) {
+      if (w[x] >= min_weight && isLocalMaximum(x, y)) {
+        candidates_.push_back({x, y, w[x]});
+      }
+    }
+  }
+}
+
+bool ForstnerDetector::isLocalMaximum(int x, int y) const {
+  const int s = options_.suppression_radius_px;
+  const float here = weight_.at<float>(y, x);
+  for (int v = y - s; v <= y + s; ++v) {
+    const float* w = weight_.ptr<float>(v);
+    for (int u = x - s; u <= x + s; ++u) {
+      if (w[u] > here) {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 // Normal equations of the gradient-line intersection over the pixels of the

@@ -17,7 +17,7 @@
 // normals and pull x along the bisector by a fraction of the blur; so x is
 // solved again without the pixels within core_radius of the first estimate,
 // leaving the straight edge flanks, whose lines pass through the corner.
-// Gradients and tensor sums are SIMD (OpenCV box filter); buffers are reused.
+// Tensor sums are running sums in loops the compiler vectorises; buffers are reused.
 #pragma once
 
 #include <Eigen/Core>
@@ -55,14 +55,24 @@ class ForstnerDetector {
   const std::vector<ForstnerCorner>& corners() const { return corners_; }
 
  private:
-  void computeTensor(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
-  float computeWeights();
+  void computeProducts(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
+  float computeWeights(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
+  void addRow(int y, float sign, size_t plane, int width);
   void collectCandidates(float min_weight);
+  bool isLocalMaximum(int x, int y) const;
   bool refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, int x, int y,
               ForstnerCorner& corner) const;
 
+  struct Candidate {
+    int x, y;
+    float weight;
+  };
+
   ForstnerOptions options_;
-  cv::Mat products_, tensor_, weight_, dilated_, suppression_kernel_;
+  std::vector<Candidate> candidates_;
+  std::vector<float> products_;  // gx^2, gx gy, gy^2 planes
+  std::vector<float> column_sums_, tensor_row_;
+  cv::Mat weight_;
   std::vector<ForstnerCorner> corners_;
 };
 

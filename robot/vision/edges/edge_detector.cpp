@@ -108,6 +108,7 @@ void EdgeDetector::suppressNonMaxima() {
       point.position = {static_cast<float>(x) + delta * static_cast<float>(d.dx),
                         static_cast<float>(y) + delta * static_cast<float>(d.dy)};
       point.gradient = {gx[x] / kSobelGain, gy[x] / kSobelGain};
+      point.normal = point.gradient * (kSobelGain / std::sqrt(static_cast<float>(m[x])));
       point.step = static_cast<float>(grey[x + step_offset]) - grey[x - step_offset];
       point.pixel_x = x;
       point.pixel_y = y;

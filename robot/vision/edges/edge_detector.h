@@ -25,13 +25,14 @@ namespace lineloc {
 struct EdgePoint {
   Eigen::Vector2f position;  // sub-pixel, distorted image, pixel centres at integers
   Eigen::Vector2f gradient;  // grey levels per pixel, pointing dark -> bright
+  Eigen::Vector2f normal;    // gradient / |gradient|
   float step;                // grey-level step across the edge (bright - dark)
   int pixel_x, pixel_y;      // the pixel it was found at
 };
 
 struct EdgeDetectorOptions {
   double smoothing_sigma_px = 1.0;  // Gaussian pre-smoothing; 0 disables it
-  float min_gradient = 4.0f;        // grey levels per pixel
+  float min_gradient = 8.0f;        // grey levels per pixel
 };
 
 class EdgeDetector {

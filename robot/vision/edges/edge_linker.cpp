@@ -17,7 +17,7 @@ constexpr Step kSteps[8] = {{1, 0, 1.0f},           {-1, 0, 1.0f},          {0, 
                             {-1, 1, kInverseSqrt2}, {-1, -1, kInverseSqrt2}};
 
 Eigen::Vector2f tangentOf(const EdgePoint& point) {
-  return Eigen::Vector2f(-point.gradient.y(), point.gradient.x()).normalized();
+  return {-point.normal.y(), point.normal.x()};
 }
 
 }  // namespace
@@ -73,9 +73,8 @@ void EdgeLinker::walk(int32_t start, float direction_sign, std::vector<int32_t>&
       }
       const float alignment =
           (step.dx * direction.x() + step.dy * direction.y()) * step.inverse_length;
-      const Eigen::Vector2f& g = points[candidate].gradient;
       if (alignment <= best_alignment ||
-          g.dot(here.gradient) < cos_max_turn_ * g.norm() * here.gradient.norm()) {
+          points[candidate].normal.dot(here.normal) < cos_max_turn_) {
         continue;
       }
       best = candidate;

@@ -211,7 +211,8 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   ASSERT_EQ(observer.fixes.size(), 1u);
   EXPECT_EQ(observer.fixes[0].sequence_number, 4u);
   EXPECT_EQ(observer.fixes[0].model_lines, 12u);
-  EXPECT_EQ(observer.fixes[0].status, lineloc_msg_FIX_NO_MATCH_COMPUTED);
+  // The probe's segments match no building: the fix says so rather than guess.
+  EXPECT_EQ(observer.fixes[0].status, lineloc_msg_FIX_TOO_FEW_MATCHES);
   ASSERT_TRUE(observer.pollUntil([&] { return stats().value("answered", 0) == 1; }));
   EXPECT_EQ(stats()["dropped_invalid"], 3);
   EXPECT_EQ(stats()["received"], 4);

@@ -35,7 +35,7 @@ struct CountingLoader {
       db::ModelLine shared;  // spans every tile: must come back once
       shared.id = -1000000;
       tile.lines = {own, shared};
-      tile.faces = {{-7, 1, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}}}};
+      tile.faces = {{-7, 1, 1, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}}}};
       return tile;
     };
   }

@@ -18,18 +18,5 @@ TEST(PlanarExtrinsics, RecoversPoseFromExactHomography) {
   }
 }
 
-TEST(PlanarExtrinsics, NearestRotationIsOrthonormal) {
-  Eigen::Matrix3d Q =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  Q(0, 1) += 0.05;
-  Q(2, 0) -= 0.03;
-  const Eigen::Matrix3d R = nearestRotation(Q);
-  EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-14);
-  EXPECT_NEAR(R.determinant(), 1.0, 1e-14);
-  EXPECT_LT((R - Q).norm(), 0.07);
-  const Eigen::Matrix3d reflection = -Eigen::Matrix3d::Identity();
-  EXPECT_NEAR(nearestRotation(reflection).determinant(), 1.0, 1e-14);
-}
-
 }  // namespace
 }  // namespace lineloc

@@ -25,11 +25,8 @@ Eigen::Matrix<double, 10, 1> stdDevOf(const CalibrationUncertainty& uncertainty)
 }
 
 CalibrationOptions openCvLikeOptions() {
-  CalibrationOptions options;
-  options.fix_skew = true;
-  options.fix_aspect_ratio = true;
+  CalibrationOptions options = openCvCompatibleOptions();
   options.aspect_ratio = 1.02;
-  options.distortion_model = DistortionModel::kOpenCv5;
   return options;
 }
 

@@ -7,18 +7,12 @@
 #include <sstream>
 
 #include "sim/dataset/euroc_writer.h"
+#include "tests/unit/sim/dataset/read_file.h"
 
 namespace lineloc {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readAll(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 EurocDatasetSpec testSpec() {
   EurocDatasetSpec spec;
@@ -43,7 +37,8 @@ void writeDrive(const fs::path& root) {
     cv::Mat image(48, 64, CV_8UC1, cv::Scalar(40 * i));
     Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
     T_world_camera.translation() = Eigen::Vector3d(i * 0.1, 2.0, 1.5);
-    writer.writeImage(stamp_ns, image, T_world_camera);
+    writer.writeImage(stamp_ns, image);
+    writer.writeCameraGroundTruth({stamp_ns, T_world_camera});
     writer.writeImu(stamp_ns, Eigen::Vector3d(0.01, -0.02, 0.3), Eigen::Vector3d(0.1, 0.0, 9.81));
     writer.writeCompass(stamp_ns, 1.25);
     writer.writeGroundTruth({stamp_ns, Eigen::Isometry3d(T_world_camera), Eigen::Vector3d(2, 0, 0),

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "sim/render/city_renderer.h"
-#include "tests/unit/sim/render/opencv_left_camera.h"
+#include "sim/render/sample_camera.h"
 
 namespace lineloc {
 namespace {
@@ -123,17 +123,17 @@ void expectBoxWhereOpenCvSeesIt(const CameraCalibration& calibration) {
 }
 
 TEST(CityRenderer, BoxEdgesLieWhereOpenCvProjectsThemWithDistortion) {
-  expectBoxWhereOpenCvSeesIt(opencvLeftCamera());
+  expectBoxWhereOpenCvSeesIt(opencvSampleCamera());
 }
 
 TEST(CityRenderer, BoxEdgesLieWhereOpenCvProjectsThemForAPinhole) {
-  CameraCalibration calibration = opencvLeftCamera();
+  CameraCalibration calibration = opencvSampleCamera();
   calibration.distortion.clear();
   expectBoxWhereOpenCvSeesIt(calibration);
 }
 
 TEST(CityRenderer, SameSeedSameBytesOtherSeedOtherNoise) {
-  const CityRenderer renderer(meshOf(rotatedBox()), opencvLeftCamera(), RenderOptions{});
+  const CityRenderer renderer(meshOf(rotatedBox()), opencvSampleCamera(), RenderOptions{});
   const Eigen::Isometry3d pose = forwardLookingCamera();
   const cv::Mat a = renderer.renderImage(pose, pose, 42);
   const cv::Mat b = renderer.renderImage(pose, pose, 42);
@@ -145,7 +145,7 @@ TEST(CityRenderer, SameSeedSameBytesOtherSeedOtherNoise) {
 TEST(CityRenderer, SensorNoiseHasTheConfiguredSigma) {
   RenderOptions options;
   options.noise_sigma = 3.0f;
-  const CityRenderer renderer(meshOf(rotatedBox()), opencvLeftCamera(), options);
+  const CityRenderer renderer(meshOf(rotatedBox()), opencvSampleCamera(), options);
   const Eigen::Isometry3d pose = forwardLookingCamera();
   cv::Mat clean;
   renderer.renderRadiance(pose).convertTo(clean, CV_32F, 255.0);
@@ -165,7 +165,7 @@ TEST(CityRenderer, ShadowedGroundIsLitOnlyByAmbientLight) {
   RenderOptions options = noiselessOptions();
   options.shading.sun_direction = Eigen::Vector3f(-0.5f, 0.0f, 0.8f).normalized();
   const Box box = rotatedBox();
-  const CityRenderer renderer(meshOf(box), opencvLeftCamera(), options);
+  const CityRenderer renderer(meshOf(box), opencvSampleCamera(), options);
   const Eigen::Isometry3d pose = forwardLookingCamera(0.1);
   const PixelHits hits = renderer.castPrimaryRays(pose);
   const cv::Mat radiance = renderer.renderRadiance(pose);
@@ -198,8 +198,8 @@ TEST(CityRenderer, ShadowedGroundIsLitOnlyByAmbientLight) {
 TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   RenderOptions options = noiselessOptions();
   options.motion_blur_samples = 4;
-  const CityRenderer blurred(meshOf(rotatedBox()), opencvLeftCamera(), options);
-  const CityRenderer sharp(meshOf(rotatedBox()), opencvLeftCamera(), noiselessOptions());
+  const CityRenderer blurred(meshOf(rotatedBox()), opencvSampleCamera(), options);
+  const CityRenderer sharp(meshOf(rotatedBox()), opencvSampleCamera(), noiselessOptions());
   const Eigen::Isometry3d open = forwardLookingCamera(0.1);
   const Eigen::Isometry3d close = forwardLookingCamera(0.14);
   const cv::Mat still = blurred.renderImage(open, open, 0);
@@ -217,13 +217,13 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
 TEST(CityRenderer, RejectsInvalidOptions) {
   RenderOptions options;
   options.motion_blur_samples = 0;
-  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvLeftCamera(), options), std::invalid_argument);
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
   options = RenderOptions{};
   options.exposure = 0.0f;
-  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvLeftCamera(), options), std::invalid_argument);
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
   options = RenderOptions{};
   options.shading.sun_direction = Eigen::Vector3f(0.0f, 0.0f, 2.0f);
-  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvLeftCamera(), options), std::invalid_argument);
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
 }
 
 }  // namespace

@@ -8,44 +8,6 @@
 namespace lineloc {
 namespace {
 
-double meshArea(const std::vector<Eigen::Vector3d>& ring,
-                const std::vector<std::array<int, 3>>& triangles) {
-  double area = 0.0;
-  for (const auto& t : triangles) {
-    area += 0.5 * (ring[t[1]] - ring[t[0]]).cross(ring[t[2]] - ring[t[0]]).norm();
-  }
-  return area;
-}
-
-TEST(TriangulateRing, ConcaveFootprintIsCoveredExactly) {
-  // An L-shaped roof at 7 m: 10 x 10 minus the 6 x 6 corner = 64 m^2.
-  const std::vector<Eigen::Vector3d> ring = {{0, 0, 7}, {10, 0, 7}, {10, 4, 7},
-                                             {4, 4, 7}, {4, 10, 7}, {0, 10, 7}};
-  const auto triangles = triangulateRing(ring, Eigen::Vector3d::UnitZ());
-  ASSERT_EQ(triangles.size(), 4u);
-  EXPECT_NEAR(meshArea(ring, triangles), 64.0, 1e-9);
-  for (const auto& t : triangles) {
-    // Every triangle keeps the ring's orientation (normal up).
-    EXPECT_GT((ring[t[1]] - ring[t[0]]).cross(ring[t[2]] - ring[t[0]]).z(), 0.0);
-  }
-}
-
-TEST(TriangulateRing, VerticalWallAndClockwiseRings) {
-  const std::vector<Eigen::Vector3d> wall = {{0, 0, 0}, {0, 0, 9}, {5, 0, 9}, {5, 0, 0}};
-  const auto triangles = triangulateRing(wall, Eigen::Vector3d(0, 1, 0) * 90.0);
-  ASSERT_EQ(triangles.size(), 2u);
-  EXPECT_NEAR(meshArea(wall, triangles), 45.0, 1e-9);
-}
-
-TEST(TriangulateRing, DegenerateRingsGiveNothing) {
-  EXPECT_TRUE(triangulateRing({{0, 0, 0}, {1, 0, 0}}, Eigen::Vector3d::UnitZ()).empty());
-  EXPECT_TRUE(triangulateRing({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, Eigen::Vector3d::Zero()).empty());
-  // Collinear points have no ear.
-  EXPECT_TRUE(
-      triangulateRing({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, Eigen::Vector3d::UnitZ())
-          .empty());
-}
-
 TEST(CityMesh, DelftModelBecomesASceneAroundTheSiteOrigin) {
   const std::filesystem::path path =
       std::filesystem::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";

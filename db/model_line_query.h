@@ -50,10 +50,11 @@ class ModelLineQuery {
   std::vector<ModelLine> linesInFrustum(const Eigen::Isometry3d& T_world_camera,
                                         const PinholeCamera& camera, double near_m, double far_m);
 
- private:
-  // Every line of the buildings whose packed bounds meet `bounds_world` (x, y).
+  // Every line of the buildings whose packed bounds meet `bounds_world` (x, y;
+  // any height), unfiltered: the lines of a map tile.
   std::vector<ModelLine> linesOfBuildingsMeeting(const Eigen::AlignedBox2d& bounds_world);
 
+ private:
   Connection& connection_;
   Site site_;
 };

@@ -42,14 +42,34 @@ int stalePacks(Connection& connection) {
                "NOT (p.bounds ~= v.bounds) OR p.site_id IS DISTINCT FROM v.site_id");
 }
 
-// Every stored line of the site, read row by row from table line.
+// Every stored line of the site, read row by row from table line as text.
 std::map<int64_t, ModelLine> storedLines(Connection& connection, const Site& site) {
-  connection.prepare(
-      "all_lines", fmt::format("SELECT {} FROM line WHERE site_id = $1::int4", kModelLineColumns));
-  const Result result = connection.execPrepared("all_lines", {std::to_string(site.id)}, true);
+  const Result result = connection.execParams(
+      "SELECT id, building_id, kind, coalesce(face_a, -1), coalesce(face_b, -1), "
+      "ST_X(ST_StartPoint(geom)), ST_Y(ST_StartPoint(geom)), ST_Z(ST_StartPoint(geom)), "
+      "ST_X(ST_EndPoint(geom)), ST_Y(ST_EndPoint(geom)), ST_Z(ST_EndPoint(geom)), "
+      "coalesce(normal_a_x, 0), coalesce(normal_a_y, 0), coalesce(normal_a_z, 0), "
+      "coalesce(normal_b_x, 0), coalesce(normal_b_y, 0), coalesce(normal_b_z, 0) "
+      "FROM line WHERE site_id = $1",
+      {std::to_string(site.id)});
   std::map<int64_t, ModelLine> lines;
   for (int row = 0; row < result.rows(); ++row) {
-    const ModelLine line = decodeModelLine(result, row, site.origin);
+    const auto integer = [&](int column) { return std::stoll(result.text(row, column)); };
+    const auto vector = [&](int column) {
+      return Eigen::Vector3d(std::stod(result.text(row, column)),
+                             std::stod(result.text(row, column + 1)),
+                             std::stod(result.text(row, column + 2)));
+    };
+    ModelLine line;
+    line.id = integer(0);
+    line.building_id = integer(1);
+    line.kind = static_cast<LineKind>(integer(2));
+    line.face_a = static_cast<int>(integer(3));
+    line.face_b = static_cast<int>(integer(4));
+    line.start_world = vector(5) - site.origin;
+    line.end_world = vector(8) - site.origin;
+    line.normal_a = vector(11);
+    line.normal_b = vector(14);
     lines.emplace(line.id, line);
   }
   return lines;

@@ -7,19 +7,27 @@ function(lineloc_add_executable name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
 endfunction()
 
-# lineloc_add_unit_test(NAME SOURCES... LIBS ... [LABELS ...]): a GoogleTest
-# binary registered with CTest under the "unit" label (the sanitizer build runs
-# exactly these).
+# lineloc_add_unit_test(NAME SOURCES... LIBS ... [POSTGIS]): a GoogleTest
+# binary registered with CTest under the label "unit" (the sanitizer build runs
+# every test it builds; it builds no integration tests or benchmarks).
+# POSTGIS: its tests need the private PostGIS cluster (the CTest fixture
+# "postgis" starts it; tests/support/test_database.h gives each test a fresh
+# migrated database) and are labelled "postgis" instead.
 function(lineloc_add_unit_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "POSTGIS" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
+                        GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
-  gtest_discover_tests(${name}
-    PROPERTIES LABELS "unit;${ARG_LABELS}"
-    DISCOVERY_TIMEOUT 60)
+  if(ARG_POSTGIS)
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS postgis
+                         FIXTURES_REQUIRED postgis
+                         ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
+  else()
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+  endif()
 endfunction()
 
 # lineloc_add_benchmark(NAME SOURCES... LIBS ...): a Google Benchmark binary.
@@ -32,7 +40,8 @@ function(lineloc_add_benchmark name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
-    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
+    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"
+    LINELOC_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
 endfunction()
 
 # lineloc_add_module_directories(): add_subdirectory() for every immediate
@@ -62,6 +71,27 @@ function(lineloc_add_fuzz_target name)
   else()
     target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_replay_main.cpp)
     add_test(NAME ${name} COMMAND ${name} ${ARG_CORPUS})
-    set_tests_properties(${name} PROPERTIES LABELS "unit;fuzz")
+    set_tests_properties(${name} PROPERTIES LABELS fuzz)
   endif()
+endfunction()
+
+# lineloc_add_integration_test(NAME SOURCES... LIBS ... DEPENDS programs...):
+# a GoogleTest binary that starts the project's real programs (from
+# LINELOC_BIN_DIR) against the private PostGIS cluster and DDS on loopback;
+# labelled "integration".
+function(lineloc_add_integration_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
+                        GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+    LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"
+    LINELOC_BIN_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
+  if(ARG_DEPENDS)
+    add_dependencies(${name} ${ARG_DEPENDS})
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS integration
+                       FIXTURES_REQUIRED postgis
+                       ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
 endfunction()

@@ -1,8 +1,9 @@
 #include "db/connection.h"
 
+#include <fmt/format.h>
+
 #include <bit>
 #include <cstring>
-#include <fmt/format.h>
 
 namespace lineloc::db {
 namespace {
@@ -36,6 +37,13 @@ double Result::binaryFloat8(int row, int column) const {
 
 int64_t Result::binaryInt8(int row, int column) const {
   return static_cast<int64_t>(readBigEndian64(PQgetvalue(result_.get(), row, column)));
+}
+
+int32_t Result::binaryInt4(int row, int column) const {
+  uint32_t value;
+  std::memcpy(&value, PQgetvalue(result_.get(), row, column), sizeof(value));
+  return static_cast<int32_t>(std::endian::native == std::endian::little ? __builtin_bswap32(value)
+                                                                         : value);
 }
 
 int16_t Result::binaryInt2(int row, int column) const {
@@ -82,6 +90,65 @@ Result Connection::execPrepared(const std::string& name, const std::vector<std::
   return check(PQexecPrepared(connection_.get(), name.c_str(), static_cast<int>(values.size()),
                               values.data(), nullptr, nullptr, binary_results ? 1 : 0),
                fmt::format("statement '{}'", name));
+}
+
+void Connection::throwUnlessOk(int libpq_status, const std::string& what) const {
+  if (libpq_status != 1) {
+    throw DatabaseError(fmt::format("{} failed: {}", what, PQerrorMessage(connection_.get())));
+  }
+}
+
+namespace {
+constexpr size_t kCopyChunkBytes = 1 << 20;
+}  // namespace
+
+CopyIn::CopyIn(Connection& connection, const std::string& copy_sql) : connection_(connection) {
+  Result result(PQexec(connection.get(), copy_sql.c_str()));
+  if (PQresultStatus(result.get()) != PGRES_COPY_IN) {
+    throw DatabaseError(
+        fmt::format("SQL '{:.60}' failed: {}", copy_sql, PQerrorMessage(connection.get())));
+  }
+  buffer_.reserve(2 * kCopyChunkBytes);
+}
+
+CopyIn::~CopyIn() {
+  if (!finished_) {
+    PQputCopyEnd(connection_.get(), "abandoned");
+    while (PGresult* result = PQgetResult(connection_.get())) {
+      PQclear(result);
+    }
+  }
+}
+
+void CopyIn::send() {
+  if (!buffer_.empty()) {
+    connection_.throwUnlessOk(
+        PQputCopyData(connection_.get(), buffer_.data(), static_cast<int>(buffer_.size())),
+        "COPY data");
+    buffer_.clear();
+  }
+}
+
+void CopyIn::flushIfFull() {
+  if (buffer_.size() >= kCopyChunkBytes) {
+    send();
+  }
+}
+
+void CopyIn::finish() {
+  send();
+  finished_ = true;
+  connection_.throwUnlessOk(PQputCopyEnd(connection_.get(), nullptr), "COPY end");
+  std::string error;
+  while (PGresult* raw = PQgetResult(connection_.get())) {
+    Result result(raw);
+    if (PQresultStatus(raw) != PGRES_COMMAND_OK && error.empty()) {
+      error = PQresultErrorMessage(raw);
+    }
+  }
+  if (!error.empty()) {
+    throw DatabaseError("COPY failed: " + error);
+  }
 }
 
 }  // namespace lineloc::db

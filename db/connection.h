@@ -27,6 +27,11 @@ class Result {
   double binaryFloat8(int row, int column) const;
   int64_t binaryInt8(int row, int column) const;
   int16_t binaryInt2(int row, int column) const;
+  int32_t binaryInt4(int row, int column) const;
+  // The raw bytes of a binary-format value (e.g. a geometry's EWKB).
+  const char* bytes(int row, int column) const { return PQgetvalue(result_.get(), row, column); }
+  int length(int row, int column) const { return PQgetlength(result_.get(), row, column); }
+  PGresult* get() const { return result_.get(); }
 
  private:
   std::unique_ptr<PGresult, decltype(&PQclear)> result_;
@@ -48,10 +53,38 @@ class Connection {
 
   PGconn* get() const { return connection_.get(); }
 
+  // Throws DatabaseError with `what` and the server's message unless the
+  // connection's last operation succeeded.
+  void throwUnlessOk(int libpq_status, const std::string& what) const;
+
  private:
   Result check(PGresult* result, const std::string& what) const;
 
   std::unique_ptr<PGconn, decltype(&PQfinish)> connection_;
+};
+
+// COPY ... FROM STDIN in text format, streamed: rows are buffered and sent in
+// chunks of about a megabyte. finish() ends the copy and reports the server's
+// verdict; an unfinished copy is abandoned (and its transaction fails).
+class CopyIn {
+ public:
+  CopyIn(Connection& connection, const std::string& copy_sql);
+  ~CopyIn();
+  CopyIn(const CopyIn&) = delete;
+  CopyIn& operator=(const CopyIn&) = delete;
+
+  // Appends to the current row's text; rows end with '\n'.
+  std::string& buffer() { return buffer_; }
+  // Sends the buffer when it has grown past the chunk size.
+  void flushIfFull();
+  void finish();
+
+ private:
+  void send();
+
+  Connection& connection_;
+  std::string buffer_;
+  bool finished_ = false;
 };
 
 // Runs `body` inside BEGIN/COMMIT; rolls back and rethrows when it throws.

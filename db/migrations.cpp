@@ -52,7 +52,8 @@ int applyMigrations(Connection& connection, const std::vector<Migration>& migrat
       ++applied;
     }
   } catch (...) {
-    PQclear(PQexec(connection.get(), fmt::format("SELECT pg_advisory_unlock({})", kLockKey).c_str()));
+    PQclear(
+        PQexec(connection.get(), fmt::format("SELECT pg_advisory_unlock({})", kLockKey).c_str()));
     throw;
   }
   connection.exec(fmt::format("SELECT pg_advisory_unlock({})", kLockKey));

@@ -23,10 +23,10 @@ Site ensureSite(Connection& connection, const std::string& name, int srid,
                 const Eigen::Vector3d& origin) {
   if (std::optional<Site> existing = findSite(connection, name)) {
     if (existing->srid != srid || !existing->origin.isApprox(origin, 1e-12)) {
-      throw DatabaseError(fmt::format(
-          "site '{}' exists with EPSG:{} origin ({}, {}, {}), not EPSG:{} ({}, {}, {})", name,
-          existing->srid, existing->origin.x(), existing->origin.y(), existing->origin.z(), srid,
-          origin.x(), origin.y(), origin.z()));
+      throw DatabaseError(
+          fmt::format("site '{}' exists with EPSG:{} origin ({}, {}, {}), not EPSG:{} ({}, {}, {})",
+                      name, existing->srid, existing->origin.x(), existing->origin.y(),
+                      existing->origin.z(), srid, origin.x(), origin.y(), origin.z()));
     }
     return *existing;
   }

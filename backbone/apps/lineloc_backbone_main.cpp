@@ -11,7 +11,9 @@
 
 namespace {
 std::atomic<bool> g_stop{false};
-void requestStop(int) { g_stop = true; }
+void requestStop(int) {
+  g_stop = true;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -24,6 +26,10 @@ int main(int argc, char** argv) {
   options.add("site", config.site, "name of the site in the database");
   options.add("query_radius_m", config.query_radius_m,
               "model lines within this distance of the predicted position are used (m)");
+  options.add("tile_size_m", config.tile_size_m, "side of the square map tiles cached (m)");
+  options.add("max_cached_tiles", config.max_cached_tiles, "map tiles kept in memory");
+  options.add("prefetch_lookahead_s", config.prefetch_lookahead_s,
+              "map tiles are loaded where each robot will be this much later (s)");
   options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
@@ -36,8 +42,10 @@ int main(int argc, char** argv) {
   try {
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(
-        "lineloc-backbone: {} received, {} answered, {} dropped as invalid, {} map errors\n",
-        counters.received, counters.answered, counters.dropped_invalid, counters.map_errors);
+        "lineloc-backbone: {} received, {} answered ({} with a pose), {} dropped as invalid, {} "
+        "map errors\n",
+        counters.received, counters.answered, counters.fixes_ok, counters.dropped_invalid,
+        counters.map_errors);
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

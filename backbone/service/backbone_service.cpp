@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 
@@ -20,11 +21,10 @@ constexpr int64_t kWaitNs = 100'000'000;
 }  // namespace
 
 void writeCountersJson(const BackboneCounters& counters, const std::string& path) {
-  const nlohmann::json json = {{"received", counters.received},
-                               {"answered", counters.answered},
-                               {"dropped_invalid", counters.dropped_invalid},
-                               {"map_errors", counters.map_errors},
-                               {"last_drop_reason", counters.last_drop_reason}};
+  const nlohmann::json json = {
+      {"received", counters.received},     {"answered", counters.answered},
+      {"fixes_ok", counters.fixes_ok},     {"dropped_invalid", counters.dropped_invalid},
+      {"map_errors", counters.map_errors}, {"last_drop_reason", counters.last_drop_reason}};
   const std::string temporary = path + ".tmp";
   {
     std::ofstream stream(temporary);
@@ -39,14 +39,20 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
 }
 
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
-  if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0) {
-    throw std::runtime_error("max_segments and query_radius_m must be positive");
+  if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0 ||
+      config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0) {
+    throw std::runtime_error(
+        "max_segments, query_radius_m, tile_size_m and max_cached_tiles must be positive");
   }
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
   limits.max_corners = static_cast<uint32_t>(config.max_corners);
-  ModelMap map(config.db, config.site);
-  LineSetHandler handler(map, limits, config.query_radius_m);
+  MapTileCache map([&config] { return makeDatabaseTileFetcher(config.db, config.site); },
+                   config.tile_size_m, static_cast<size_t>(config.max_cached_tiles));
+  PipelineOptions pipeline;
+  pipeline.query_radius_m = config.query_radius_m;
+  pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
+  LineSetHandler handler(map, limits, pipeline);
 
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);

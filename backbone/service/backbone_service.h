@@ -15,6 +15,9 @@ struct BackboneConfig {
   std::string db = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
   std::string site = "delft";
   double query_radius_m = 150.0;
+  double tile_size_m = 100.0;
+  int max_cached_tiles = 4096;
+  double prefetch_lookahead_s = 3.0;
   int max_segments = 2048;
   int max_corners = 2048;
   // Written on exit (and every stats_period_s): counters as JSON; empty: none.

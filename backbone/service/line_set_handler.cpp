@@ -5,9 +5,79 @@
 #include "common/time/clock.h"
 
 namespace lineloc {
+namespace {
 
-LineSetHandler::LineSetHandler(ModelMap& map, const MessageLimits& limits, double query_radius_m)
-    : map_(map), limits_(limits), query_radius_m_(query_radius_m) {}
+std::vector<ModelSegment> toSegments(const std::vector<db::ModelLine>& lines) {
+  std::vector<ModelSegment> segments;
+  segments.reserve(lines.size());
+  for (const db::ModelLine& line : lines) {
+    segments.push_back({line.id, static_cast<int>(line.kind), line.start_world, line.end_world});
+  }
+  return segments;
+}
+
+std::vector<FaceRing> toRings(const std::vector<db::ModelFaceRecord>& faces) {
+  std::vector<FaceRing> rings;
+  rings.reserve(faces.size());
+  for (const db::ModelFaceRecord& face : faces) {
+    rings.push_back(face.ring_world);
+  }
+  return rings;
+}
+
+}  // namespace
+
+lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
+  switch (status) {
+    case AlignmentStatus::kOk:
+      return lineloc_msg_FIX_OK;
+    case AlignmentStatus::kTooFewMatches:
+      return lineloc_msg_FIX_TOO_FEW_MATCHES;
+    case AlignmentStatus::kIllConditioned:
+      return lineloc_msg_FIX_DEGENERATE;
+    case AlignmentStatus::kAmbiguous:
+      return lineloc_msg_FIX_AMBIGUOUS;
+    case AlignmentStatus::kFailed:
+      return lineloc_msg_FIX_DIVERGED;
+  }
+  return lineloc_msg_FIX_INTERNAL_ERROR;
+}
+
+LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
+                               const PipelineOptions& options)
+    : map_(map), limits_(limits), options_(options) {}
+
+void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
+  const Eigen::Vector3d position = line_set.predicted_T_world_camera.pose.translation();
+  const auto last = last_position_.find(line_set.robot_id);
+  if (last != last_position_.end() && line_set.stamp_ns > last->second.stamp_ns) {
+    const double dt_s = (line_set.stamp_ns - last->second.stamp_ns) * 1e-9;
+    const Eigen::Vector3d velocity = (position - last->second.position) / dt_s;
+    map_.prefetch(position + velocity * options_.prefetch_lookahead_s, options_.query_radius_m);
+  }
+  last_position_[line_set.robot_id] = {line_set.stamp_ns, position};
+}
+
+void LineSetHandler::align(const LineSetData& line_set, const MapView& view, PoseFixData& fix) {
+  const int64_t visibility_start_ns = steadyClockNs();
+  const OcclusionScene scene(toRings(view.faces));
+  const std::vector<VisibleSegment> visible =
+      visibleSegments(toSegments(view.lines), scene, line_set.predicted_T_world_camera,
+                      line_set.camera, options_.visibility);
+  fix.timings.visibility = steadyClockNs() - visibility_start_ns;
+  const Alignment alignment =
+      alignModel(line_set.segments, visible, line_set.predicted_T_world_camera, line_set.camera,
+                 options_.alignment);
+  fix.timings.matching = alignment.matching_ns;
+  fix.timings.pose = alignment.pose_ns;
+  fix.status = toFixStatus(alignment.status);
+  fix.inliers = static_cast<uint32_t>(alignment.inliers);
+  fix.residual_rms_px = static_cast<float>(alignment.rms_residual_px);
+  if (alignment.status == AlignmentStatus::kOk) {
+    fix.T_world_camera = alignment.T_world_camera;
+    ++counters_.fixes_ok;
+  }
+}
 
 std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& message) {
   const int64_t start_ns = steadyClockNs();
@@ -25,18 +95,22 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
   try {
-    const auto lines =
-        map_.linesNear(line_set.predicted_T_world_camera.pose.translation(), query_radius_m_);
-    fix.model_lines = static_cast<uint32_t>(lines.size());
-    fix.status = lines.empty() ? lineloc_msg_FIX_NO_MAP_LINES : lineloc_msg_FIX_NO_MATCH_COMPUTED;
+    const MapView view =
+        map_.around(line_set.predicted_T_world_camera.pose.translation(), options_.query_radius_m);
+    fix.timings.map = steadyClockNs() - start_ns;
+    fix.model_lines = static_cast<uint32_t>(view.lines.size());
+    prefetchAlongMotion(line_set);
+    if (view.lines.empty()) {
+      fix.status = lineloc_msg_FIX_NO_MAP_LINES;
+    } else {
+      align(line_set, view, fix);
+    }
   } catch (const std::exception& error) {
     ++counters_.map_errors;
-    spdlog::error("map query for {} #{} failed: {}", fix.robot_id, fix.sequence_number,
-                  error.what());
+    spdlog::error("map for {} #{} failed: {}", fix.robot_id, fix.sequence_number, error.what());
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
   }
-  fix.timings.map = steadyClockNs() - start_ns;
-  fix.timings.total = fix.timings.map;
+  fix.timings.total = steadyClockNs() - start_ns;
   ++counters_.answered;
   return fix;
 }

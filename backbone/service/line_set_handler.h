@@ -1,16 +1,22 @@
-// Turns one received LineSet into its PoseFix: validate, read the model lines
-// near the predicted pose, answer. Until matching exists the answer is honest:
-// the predicted pose and covariance, the number of model lines found, and the
-// status FIX_NO_MATCH_COMPUTED (FIX_NO_MAP_LINES when none are near).
-// Malformed input is dropped and counted; a database failure is answered
-// with FIX_INTERNAL_ERROR and counted, and serving goes on.
+// Turns one received LineSet into its PoseFix (paper §3.2): validate it, take
+// the model lines and faces near the predicted pose from the tile cache, keep
+// the visible parts (hidden-line removal), align them with the image segments,
+// and answer with the aligned pose and its covariance — or with a status that
+// says why no pose can be trusted. Malformed input is dropped and counted; a
+// map failure is answered with FIX_INTERNAL_ERROR and counted; serving goes on.
+//
+// Each robot's predicted positions give its velocity; the tiles around where
+// it will be `prefetch_lookahead_s` later are queued for loading, so steady
+// frames find their map in memory.
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
-#include "backbone/map/model_map.h"
+#include "backbone/map/map_tile_cache.h"
+#include "backbone/matching/model_alignment.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 
@@ -21,12 +27,20 @@ struct BackboneCounters {
   uint64_t answered = 0;
   uint64_t dropped_invalid = 0;
   uint64_t map_errors = 0;
+  uint64_t fixes_ok = 0;
   std::string last_drop_reason;
+};
+
+struct PipelineOptions {
+  double query_radius_m = 150.0;
+  double prefetch_lookahead_s = 3.0;
+  VisibilityOptions visibility;
+  AlignmentOptions alignment;
 };
 
 class LineSetHandler {
  public:
-  LineSetHandler(ModelMap& map, const MessageLimits& limits, double query_radius_m);
+  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
 
   // The fix to publish, or nullopt when the message was dropped.
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);
@@ -34,10 +48,21 @@ class LineSetHandler {
   const BackboneCounters& counters() const { return counters_; }
 
  private:
-  ModelMap& map_;
+  void prefetchAlongMotion(const LineSetData& line_set);
+  void align(const LineSetData& line_set, const MapView& view, PoseFixData& fix);
+
+  struct StampedPosition {
+    int64_t stamp_ns;
+    Eigen::Vector3d position;
+  };
+
+  MapTileCache& map_;
   MessageLimits limits_;
-  double query_radius_m_;
+  PipelineOptions options_;
   BackboneCounters counters_;
+  std::map<std::string, StampedPosition> last_position_;
 };
+
+lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);
 
 }  // namespace lineloc

@@ -1,8 +1,10 @@
 #include "common/camera/camera_calibration.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <opencv2/core.hpp>
+#include <opencv2/core/persistence.hpp>
 #include <stdexcept>
 
 namespace lineloc {
@@ -51,8 +53,8 @@ CameraCalibration readCameraCalibration(const std::string& path) {
   try {
     storage.open(path, cv::FileStorage::READ);
   } catch (const cv::Exception& error) {
-    throw std::runtime_error(fmt::format("{}: not a readable OpenCV YAML file: {}", path,
-                                         error.what()));
+    throw std::runtime_error(
+        fmt::format("{}: not a readable OpenCV YAML file: {}", path, error.what()));
   }
   if (!storage.isOpened()) {
     throw std::runtime_error(fmt::format("cannot open camera calibration '{}'", path));
@@ -80,6 +82,37 @@ CameraCalibration readCameraCalibration(const std::string& path) {
   }
   calibration.distortion.assign(distortion.begin<double>(), distortion.end<double>());
   return calibration;
+}
+
+void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& calibration) {
+  const PinholeCamera& camera = calibration.camera;
+  storage << "image_width" << camera.width;
+  storage << "image_height" << camera.height;
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << camera.fx, camera.skew, camera.cx, 0.0, camera.fy,
+                     camera.cy, 0.0, 0.0, 1.0);
+  storage << "camera_matrix" << K;
+  // No distortion is written as five zeros, the shortest list OpenCV reads.
+  const std::vector<double> distortion =
+      calibration.distortion.empty() ? std::vector<double>(5, 0.0) : calibration.distortion;
+  storage << "distortion_coefficients" << cv::Mat(distortion, true);
+}
+
+cv::FileStorage openCalibrationFileForWriting(const std::string& path) {
+  cv::FileStorage storage;
+  try {
+    storage.open(path, cv::FileStorage::WRITE);
+  } catch (const cv::Exception& error) {
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", path, error.what()));
+  }
+  if (!storage.isOpened()) {
+    throw std::runtime_error(fmt::format("cannot write camera calibration '{}'", path));
+  }
+  return storage;
+}
+
+void writeCameraCalibration(const std::string& path, const CameraCalibration& calibration) {
+  cv::FileStorage storage = openCalibrationFileForWriting(path);
+  writeCameraCalibration(storage, calibration);
 }
 
 }  // namespace lineloc

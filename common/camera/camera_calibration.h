@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace cv {
+class FileStorage;
+}
+
 namespace lineloc {
 
 // Pinhole intrinsics: u = fx x/z + skew y/z + cx, v = fy y/z + cy.
@@ -33,5 +37,17 @@ struct CameraCalibration {
 
 // Throws std::runtime_error naming the file and the missing or invalid key.
 CameraCalibration readCameraCalibration(const std::string& path);
+
+// Opens an OpenCV YAML file for writing; throws std::runtime_error naming it
+// when it cannot be created.
+cv::FileStorage openCalibrationFileForWriting(const std::string& path);
+
+// Writes image_width, image_height, camera_matrix and distortion_coefficients
+// into `storage` (open for writing), so a caller can add its own keys.
+void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& calibration);
+
+// Writes the calibration as a new OpenCV YAML file; throws std::runtime_error
+// naming the file when it cannot be written.
+void writeCameraCalibration(const std::string& path, const CameraCalibration& calibration);
 
 }  // namespace lineloc

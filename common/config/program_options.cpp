@@ -1,7 +1,8 @@
 #include "common/config/program_options.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
@@ -11,6 +12,18 @@ ProgramOptions::ProgramOptions(const std::string& program, const std::string& de
     : app_(description, program) {
   app_.add_option("--config", config_path_,
                   "YAML file with any of these options as keys (flags override it)");
+  app_.add_flag("--print-config", print_config_,
+                "print every option as a documented YAML config file, then exit");
+}
+
+void ProgramOptions::printConfig() const {
+  std::cout << "# " << app_.get_name() << " configuration: " << app_.get_description() << '\n';
+  for (const Binding& binding : bindings_) {
+    YAML::Emitter value;
+    value << YAML::Flow << binding.current();
+    std::cout << "\n# " << binding.option->get_description() << '\n'
+              << binding.key << ": " << value.c_str() << '\n';
+  }
 }
 
 std::string ProgramOptions::flagFor(const std::string& key) {
@@ -34,21 +47,25 @@ void ProgramOptions::applyConfigFile(const std::string& path) {
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: not valid YAML: {}", path, error.what()));
   }
+  applyConfig(root, path);
+}
+
+void ProgramOptions::applyConfig(const YAML::Node& root, const std::string& source) {
   if (root.IsNull()) {
     return;
   }
   if (!root.IsMap()) {
-    throw std::runtime_error(fmt::format("{}: expected a map of option keys", path));
+    throw std::runtime_error(fmt::format("{}: expected a map of option keys", source));
   }
   for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
     const auto binding = std::find_if(bindings_.begin(), bindings_.end(),
                                       [&](const Binding& b) { return b.key == key; });
     if (binding == bindings_.end()) {
-      throw std::runtime_error(fmt::format("{}:{}: unknown key '{}'", path,
-                                           entry.first.Mark().line + 1, key));
+      throw std::runtime_error(
+          fmt::format("{}:{}: unknown key '{}'", source, entry.first.Mark().line + 1, key));
     }
-    binding->apply(entry.second, path);
+    binding->apply(entry.second, source);
   }
 }
 
@@ -58,14 +75,17 @@ std::optional<int> ProgramOptions::parse(int argc, const char* const* argv) {
   } catch (const CLI::ParseError& error) {
     return app_.exit(error);
   }
-  if (config_path_.empty()) {
-    return std::nullopt;
-  }
   try {
-    applyConfigFile(config_path_);
+    if (!config_path_.empty()) {
+      applyConfigFile(config_path_);
+    }
   } catch (const std::exception& error) {
     std::cerr << app_.get_name() << ": " << error.what() << '\n';
     return 2;
+  }
+  if (print_config_) {
+    printConfig();
+    return 0;
   }
   return std::nullopt;
 }

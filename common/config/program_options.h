@@ -6,12 +6,13 @@
 // a typo never silently leaves a default in force.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
 
 namespace lineloc {
 
@@ -23,38 +24,60 @@ class ProgramOptions {
   // (numbers, strings, bool, std::vector of those).
   template <typename T>
   void add(const std::string& key, T& value, const std::string& help) {
-    CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
-    bindings_.push_back({key, [option, &value, key](const YAML::Node& node, const std::string& file) {
-                           if (option->count() > 0) {
-                             return;
-                           }
-                           try {
-                             value = node.as<T>();
-                           } catch (const YAML::Exception& error) {
-                             throwBadValue(file, key, node, error.what());
-                           }
-                         }});
+    bind(key, app_.add_option(flagFor(key), value, help)->capture_default_str(), value);
+  }
+
+  // Declares a boolean that is a bare flag on the command line (`--dry-run`)
+  // and a true/false key in the YAML file.
+  void addFlag(const std::string& key, bool& value, const std::string& help) {
+    bind(key, app_.add_flag(flagFor(key), value, help)->capture_default_str(), value);
   }
 
   // Parses argv and the config file. Returns an exit code when the program
-  // should stop now (after --help, or with an error already printed).
+  // should stop now (after --help or --print-config, or with an error already
+  // printed). --print-config writes every key with its documentation and its
+  // value after the config file and flags: a complete, commented config file.
   std::optional<int> parse(int argc, const char* const* argv);
+
+  // Applies a parsed YAML map (`source` names it in errors) to the options not
+  // given on the command line. Throws std::runtime_error on unknown keys or bad values.
+  void applyConfig(const YAML::Node& root, const std::string& source);
 
   CLI::App& app() { return app_; }
 
  private:
   struct Binding {
     std::string key;
+    CLI::Option* option;
     std::function<void(const YAML::Node&, const std::string&)> apply;
+    std::function<YAML::Node()> current;
   };
+
+  // The YAML key `key` sets `value` unless the command line gave `option`.
+  template <typename T>
+  void bind(const std::string& key, CLI::Option* option, T& value) {
+    const auto apply = [option, &value, key](const YAML::Node& node, const std::string& file) {
+      if (option->count() > 0) {
+        return;
+      }
+      try {
+        value = node.as<T>();
+      } catch (const YAML::Exception& error) {
+        throwBadValue(file, key, node, error.what());
+      }
+    };
+    bindings_.push_back({key, option, apply, [&value] { return YAML::Node(value); }});
+  }
 
   static std::string flagFor(const std::string& key);
   [[noreturn]] static void throwBadValue(const std::string& file, const std::string& key,
                                          const YAML::Node& node, const std::string& why);
   void applyConfigFile(const std::string& path);
+  void printConfig() const;
 
   CLI::App app_;
   std::string config_path_;
+  bool print_config_ = false;
   std::vector<Binding> bindings_;
 };
 

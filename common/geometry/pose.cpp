@@ -2,8 +2,7 @@
 
 namespace lineloc {
 
-Eigen::Isometry3d makePose(const Eigen::Vector3d& translation,
-                           const Eigen::Quaterniond& rotation) {
+Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quaterniond& rotation) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = rotation.normalized().toRotationMatrix();
   pose.translation() = translation;

@@ -16,8 +16,7 @@ int main(int argc, char** argv) {
   }
   try {
     lineloc::db::Connection connection(conninfo);
-    const int applied =
-        lineloc::db::applyMigrations(connection, lineloc::db::embeddedMigrations());
+    const int applied = lineloc::db::applyMigrations(connection, lineloc::db::embeddedMigrations());
     std::cout << fmt::format("lineloc-migrate: applied {} migration(s), schema version {}\n",
                              applied, lineloc::db::schemaVersion(connection));
     return 0;

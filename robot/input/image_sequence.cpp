@@ -1,8 +1,10 @@
 #include "robot/input/image_sequence.h"
 
-#include <algorithm>
-#include <filesystem>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -20,13 +22,17 @@ bool isImageFile(const fs::path& path) {
          extension == ".pgm" || extension == ".bmp";
 }
 
-std::optional<int64_t> numericStamp(const fs::path& path) {
-  const std::string stem = path.stem().string();
-  if (stem.empty() || stem.size() > 18 ||
-      stem.find_first_not_of("0123456789") != std::string::npos) {
+// A non-negative decimal integer that fits int64 nanoseconds, or nullopt.
+std::optional<int64_t> parseStampNs(const std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
     return std::nullopt;
   }
-  return std::stoll(stem);
+  int64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    return std::nullopt;
+  }
+  return value;
 }
 
 std::string trim(const std::string& text) {
@@ -41,35 +47,7 @@ std::vector<FrameRef> readEurocCamera(const fs::path& camera_dir) {
   if (!stream) {
     throw std::runtime_error(fmt::format("cannot open '{}'", csv.string()));
   }
-  std::vector<FrameRef> frames;
-  std::string line;
-  for (int line_number = 1; std::getline(stream, line); ++line_number) {
-    const std::string row = trim(line);
-    if (row.empty() || row[0] == '#') {
-      continue;
-    }
-    const std::string where = fmt::format("{}:{}", csv.string(), line_number);
-    const auto comma = row.find(',');
-    const std::string stamp_text = trim(row.substr(0, comma));
-    if (comma == std::string::npos || stamp_text.empty() ||
-        stamp_text.find_first_not_of("0123456789") != std::string::npos ||
-        stamp_text.size() > 18) {
-      throw std::runtime_error(fmt::format("{}: expected 'timestamp_ns,filename'", where));
-    }
-    const int64_t stamp_ns = std::stoll(stamp_text);
-    if (!frames.empty() && stamp_ns <= *frames.back().stamp_ns) {
-      throw std::runtime_error(fmt::format("{}: timestamp does not increase", where));
-    }
-    const std::string file = trim(row.substr(comma + 1));
-    if (file.empty() || file.find("..") != std::string::npos) {
-      throw std::runtime_error(fmt::format("{}: bad file name '{}'", where, file));
-    }
-    frames.push_back({(camera_dir / "data" / file).string(), stamp_ns});
-  }
-  if (frames.empty()) {
-    throw std::runtime_error(fmt::format("'{}' lists no frames", csv.string()));
-  }
-  return frames;
+  return parseEurocCameraCsv(stream, csv.string(), (camera_dir / "data").string());
 }
 
 std::vector<FrameRef> readImageFolder(const fs::path& folder) {
@@ -83,16 +61,49 @@ std::vector<FrameRef> readImageFolder(const fs::path& folder) {
     throw std::runtime_error(fmt::format("'{}' holds no images", folder.string()));
   }
   std::sort(files.begin(), files.end());
-  const bool all_numeric = std::all_of(files.begin(), files.end(),
-                                       [](const fs::path& p) { return numericStamp(p).has_value(); });
+  const bool all_numeric = std::all_of(files.begin(), files.end(), [](const fs::path& p) {
+    return parseStampNs(p.stem().string()).has_value();
+  });
   std::vector<FrameRef> frames;
   for (const fs::path& file : files) {
-    frames.push_back({file.string(), all_numeric ? numericStamp(file) : std::nullopt});
+    frames.push_back(
+        {file.string(), all_numeric ? parseStampNs(file.stem().string()) : std::nullopt});
   }
   return frames;
 }
 
 }  // namespace
+
+std::vector<FrameRef> parseEurocCameraCsv(std::istream& stream, const std::string& source,
+                                          const std::string& data_dir) {
+  std::vector<FrameRef> frames;
+  std::string line;
+  for (int line_number = 1; std::getline(stream, line); ++line_number) {
+    const std::string row = trim(line);
+    if (row.empty() || row[0] == '#') {
+      continue;
+    }
+    const std::string where = fmt::format("{}:{}", source, line_number);
+    const auto comma = row.find(',');
+    const std::optional<int64_t> stamp_ns =
+        comma == std::string::npos ? std::nullopt : parseStampNs(trim(row.substr(0, comma)));
+    if (!stamp_ns) {
+      throw std::runtime_error(fmt::format("{}: expected 'timestamp_ns,filename'", where));
+    }
+    if (!frames.empty() && *stamp_ns <= *frames.back().stamp_ns) {
+      throw std::runtime_error(fmt::format("{}: timestamp does not increase", where));
+    }
+    const std::string file = trim(row.substr(comma + 1));
+    if (file.empty() || file.find("..") != std::string::npos || file.front() == '/') {
+      throw std::runtime_error(fmt::format("{}: bad file name '{}'", where, file));
+    }
+    frames.push_back({(fs::path(data_dir) / file).string(), stamp_ns});
+  }
+  if (frames.empty()) {
+    throw std::runtime_error(fmt::format("'{}' lists no frames", source));
+  }
+  return frames;
+}
 
 std::vector<FrameRef> listImageSequence(const std::string& path) {
   const fs::path root(path);

@@ -3,8 +3,9 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
+#include <istream>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ struct FrameRef {
 // names its files). Throws std::runtime_error naming the file and line of any
 // problem: missing folder, no images, malformed or non-increasing data.csv rows.
 std::vector<FrameRef> listImageSequence(const std::string& path);
+
+// Parses an EuRoC camera data.csv ("#timestamp [ns],filename" rows, stamps
+// strictly increasing); `source` names it in errors, files are under `data_dir`.
+std::vector<FrameRef> parseEurocCameraCsv(std::istream& stream, const std::string& source,
+                                          const std::string& data_dir);
 
 // Reads an image as 8-bit grey (colour converted). Throws std::runtime_error
 // naming the file when it cannot be read or decoded.

@@ -1,0 +1,15 @@
+// Map tiles read from the PostGIS building database (db/tiles), for the tile
+// cache's worker thread: the fetcher owns its own connection.
+#pragma once
+
+#include <string>
+
+#include "backbone/map/map_tile_cache.h"
+
+namespace lineloc {
+
+// Connects to `conninfo` and finds site `site_name` now; throws
+// db::DatabaseError when either fails.
+TileFetcher makeDatabaseTileFetcher(const std::string& conninfo, const std::string& site_name);
+
+}  // namespace lineloc

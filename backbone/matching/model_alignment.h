@@ -1,0 +1,74 @@
+// Aligns the visible model with the image: the pose that makes the model's
+// building lines fall on the segments the robot saw (paper §3.2), robust to
+// the image lines of things not in the model (windows, cars, trees).
+//
+// Iterated gating: candidates are gated with the current pose and its
+// covariance (line_matcher.h), each image segment keeps its best candidate,
+// and the pose is refined from the current one on all of them with a Cauchy
+// loss (common/pose); the refined pose, whose covariance is far smaller than
+// the prior's, gates again. This repeats until the pose stops moving and the
+// inlier set stops changing. A model line may take several collinear image
+// pieces; an image segment takes at most one model line.
+//
+// The answer is only OK when enough matches carry it and the result is well
+// conditioned: too few inliers, or a position standard deviation beyond
+// max_position_sigma_m (a long façade seen alone constrains nothing along
+// it), or a refinement failure, each has its own status, so the robot never
+// receives a precise but wrong pose.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backbone/matching/line_matcher.h"
+#include "common/pose/pose_refinement.h"
+
+namespace lineloc {
+
+enum class AlignmentStatus {
+  kOk,
+  kTooFewMatches,
+  kIllConditioned,
+  kAmbiguous,
+  kFailed,
+};
+
+const char* toString(AlignmentStatus status);
+
+struct AlignmentOptions {
+  MatchingOptions matching;
+  int max_rounds = 6;
+  int min_inliers = 6;
+  // An inlier's final normalized residual is below this (standard deviations).
+  double inlier_threshold_sigma = 3.0;
+  // Position standard deviation (largest principal axis) beyond which the
+  // alignment is ill-conditioned.
+  double max_position_sigma_m = 0.5;
+  // Pose change (m, rad) below which the rounds have converged.
+  double converged_translation_m = 1e-4;
+  double converged_rotation_rad = 1e-5;
+  // Image segments whose best candidate is not this much better (chi^2) than
+  // the second, within the first round, are left out: ambiguous under the prior.
+  double ambiguity_margin_chi2 = 2.0;
+};
+
+struct Alignment {
+  AlignmentStatus status = AlignmentStatus::kFailed;
+  std::string message;
+  PoseWithCovariance T_world_camera;
+  int matches = 0;
+  int inliers = 0;
+  double rms_residual_px = 0.0;
+  int rounds = 0;
+  // Time spent gating candidates and estimating poses, over all rounds.
+  int64_t matching_ns = 0;
+  int64_t pose_ns = 0;
+};
+
+Alignment alignModel(const std::vector<ImageSegment>& image,
+                     const std::vector<VisibleSegment>& model,
+                     const PoseWithCovariance& predicted_T_world_camera,
+                     const PinholeCamera& camera, const AlignmentOptions& options);
+
+}  // namespace lineloc

@@ -1,0 +1,28 @@
+#include "backbone/tracker/model_tracker.h"
+
+#include <utility>
+
+namespace lineloc {
+
+ModelTracker::ModelTracker(TrackedModel model, const PinholeCamera& camera,
+                           const PoseWithCovariance& start, const TrackerOptions& options)
+    : model_(std::move(model)),
+      scene_(model_.faces),
+      camera_(camera),
+      options_(options),
+      current_(start) {}
+
+TrackedFrame ModelTracker::track(const std::vector<ImageSegment>& segments) {
+  PoseWithCovariance predicted = current_;
+  predicted.covariance += diagonalPoseCovariance(options_.process_position_sigma_m,
+                                                 options_.process_rotation_sigma_rad);
+  TrackedFrame frame;
+  frame.visible = visibleSegments(model_.lines, scene_, predicted, camera_, options_.visibility);
+  frame.alignment = alignModel(segments, frame.visible, predicted, camera_, options_.alignment);
+  frame.T_world_camera =
+      frame.alignment.status == AlignmentStatus::kOk ? frame.alignment.T_world_camera : predicted;
+  current_ = frame.T_world_camera;
+  return frame;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,51 @@
+// Model-based tracking without DDS or a database: the backbone's hidden-line
+// removal and model alignment run frame after frame on a city model held in
+// memory, each frame predicted from the last with a constant-position motion
+// model whose covariance grows by the process noise Q per frame
+// (P_predicted = P + Q). A frame whose alignment fails keeps the prediction,
+// so the covariance keeps growing until the model is found again.
+#pragma once
+
+#include <vector>
+
+#include "backbone/matching/model_alignment.h"
+#include "backbone/visibility/visible_lines.h"
+
+namespace lineloc {
+
+struct TrackedModel {
+  std::vector<ModelSegment> lines;
+  std::vector<FaceRing> faces;
+};
+
+struct TrackerOptions {
+  AlignmentOptions alignment;
+  VisibilityOptions visibility;
+  // Process noise per frame (standard deviations).
+  double process_position_sigma_m = 0.1;
+  double process_rotation_sigma_rad = 0.02;
+};
+
+struct TrackedFrame {
+  Alignment alignment;
+  // The aligned pose when alignment.status is kOk, else the prediction.
+  PoseWithCovariance T_world_camera;
+  std::vector<VisibleSegment> visible;
+};
+
+class ModelTracker {
+ public:
+  ModelTracker(TrackedModel model, const PinholeCamera& camera, const PoseWithCovariance& start,
+               const TrackerOptions& options);
+
+  TrackedFrame track(const std::vector<ImageSegment>& segments);
+
+ private:
+  TrackedModel model_;
+  OcclusionScene scene_;
+  PinholeCamera camera_;
+  TrackerOptions options_;
+  PoseWithCovariance current_;
+};
+
+}  // namespace lineloc

@@ -1,0 +1,51 @@
+#include "backbone/tracker/tracking_overlay.h"
+
+#include <fmt/format.h>
+
+#include <opencv2/imgproc.hpp>
+
+namespace lineloc {
+namespace {
+
+const cv::Scalar kImageSegmentColour(40, 40, 230);
+const cv::Scalar kAlignedColour(60, 220, 60);
+const cv::Scalar kPredictedColour(0, 160, 255);
+
+cv::Point2f toPoint(const Eigen::Vector2d& p) {
+  return {static_cast<float>(p.x()), static_cast<float>(p.y())};
+}
+
+}  // namespace
+
+cv::Mat drawTrackingOverlay(const cv::Mat& image, const std::vector<ImageSegment>& segments,
+                            const TrackedFrame& frame, const PinholeCamera& camera) {
+  cv::Mat overlay;
+  if (image.channels() == 1) {
+    cv::cvtColor(image, overlay, cv::COLOR_GRAY2BGR);
+  } else {
+    overlay = image.clone();
+  }
+  for (const ImageSegment& segment : segments) {
+    cv::line(overlay, toPoint(segment.start.cast<double>()), toPoint(segment.end.cast<double>()),
+             kImageSegmentColour, 1, cv::LINE_AA);
+  }
+  const bool aligned = frame.alignment.status == AlignmentStatus::kOk;
+  const Eigen::Isometry3d T_camera_world = frame.T_world_camera.pose.inverse();
+  for (const VisibleSegment& line : frame.visible) {
+    Eigen::Vector3d a = T_camera_world * line.start_world;
+    Eigen::Vector3d b = T_camera_world * line.end_world;
+    if (!clipToFrustum(a, b, camera, VisibilityOptions{})) {
+      continue;
+    }
+    cv::line(overlay, toPoint(camera.project(a)), toPoint(camera.project(b)),
+             aligned ? kAlignedColour : kPredictedColour, 2, cv::LINE_AA);
+  }
+  const std::string caption = fmt::format("{}: {} matches, {} inliers, rms {:.2f} px",
+                                          toString(frame.alignment.status), frame.alignment.matches,
+                                          frame.alignment.inliers, frame.alignment.rms_residual_px);
+  cv::putText(overlay, caption, {10, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255),
+              1, cv::LINE_AA);
+  return overlay;
+}
+
+}  // namespace lineloc

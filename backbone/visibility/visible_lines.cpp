@@ -1,0 +1,132 @@
+#include "backbone/visibility/visible_lines.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace lineloc {
+namespace {
+
+constexpr int kStateDimension = 3;
+constexpr int kViewpoints = 2 * kStateDimension + 1;
+
+// Plane n . p + d >= 0 in the camera frame.
+struct HalfSpace {
+  Eigen::Vector3d normal;
+  double offset;
+};
+
+std::array<HalfSpace, 6> frustum(const PinholeCamera& camera, const VisibilityOptions& options) {
+  const double m = options.image_margin_px;
+  return {{{{0, 0, 1}, -options.near_m},
+           {{0, 0, -1}, options.far_m},
+           {{camera.fx, 0, camera.cx + m}, 0},
+           {{-camera.fx, 0, camera.width + m - camera.cx}, 0},
+           {{0, camera.fy, camera.cy + m}, 0},
+           {{0, -camera.fy, camera.height + m - camera.cy}, 0}}};
+}
+
+// The camera centre and the six sigma points of its position uncertainty.
+std::array<Eigen::Vector3d, kViewpoints> viewpoints(const PoseWithCovariance& T_world_camera) {
+  const Eigen::Vector3d centre = T_world_camera.pose.translation();
+  std::array<Eigen::Vector3d, kViewpoints> points;
+  points.fill(centre);
+  const Eigen::Matrix3d position_covariance = T_world_camera.covariance.topLeftCorner<3, 3>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(position_covariance);
+  for (int i = 0; i < kStateDimension; ++i) {
+    const double spread = std::sqrt(kStateDimension * std::max(0.0, eigen.eigenvalues()[i]));
+    const Eigen::Vector3d offset = spread * eigen.eigenvectors().col(i);
+    points[1 + 2 * i] = centre + offset;
+    points[2 + 2 * i] = centre - offset;
+  }
+  return points;
+}
+
+double visibleFraction(const OcclusionScene& scene,
+                       const std::array<Eigen::Vector3d, kViewpoints>& from,
+                       const Eigen::Vector3d& point, double clearance_m) {
+  int seen = 0;
+  for (const Eigen::Vector3d& viewpoint : from) {
+    seen += scene.blocked(viewpoint, point, clearance_m) ? 0 : 1;
+  }
+  return static_cast<double>(seen) / kViewpoints;
+}
+
+}  // namespace
+
+bool clipToFrustum(Eigen::Vector3d& start_camera, Eigen::Vector3d& end_camera,
+                   const PinholeCamera& camera, const VisibilityOptions& options) {
+  double t0 = 0.0;
+  double t1 = 1.0;
+  for (const HalfSpace& plane : frustum(camera, options)) {
+    const double d0 = plane.normal.dot(start_camera) + plane.offset;
+    const double d1 = plane.normal.dot(end_camera) + plane.offset;
+    if (d0 < 0.0 && d1 < 0.0) {
+      return false;
+    }
+    if (d0 < 0.0) {
+      t0 = std::max(t0, d0 / (d0 - d1));
+    } else if (d1 < 0.0) {
+      t1 = std::min(t1, d0 / (d0 - d1));
+    }
+  }
+  if (t0 >= t1) {
+    return false;
+  }
+  const Eigen::Vector3d direction = end_camera - start_camera;
+  end_camera = start_camera + t1 * direction;
+  start_camera = start_camera + t0 * direction;
+  return true;
+}
+
+std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lines,
+                                            const OcclusionScene& scene,
+                                            const PoseWithCovariance& T_world_camera,
+                                            const PinholeCamera& camera,
+                                            const VisibilityOptions& options) {
+  const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
+  const auto from = viewpoints(T_world_camera);
+  std::vector<VisibleSegment> visible;
+  for (const ModelSegment& line : lines) {
+    Eigen::Vector3d a = T_camera_world * line.start_world;
+    Eigen::Vector3d b = T_camera_world * line.end_world;
+    if (!clipToFrustum(a, b, camera, options)) {
+      continue;
+    }
+    const double length_px = (camera.project(a) - camera.project(b)).norm();
+    const int samples =
+        std::clamp(static_cast<int>(std::ceil(length_px / options.sample_spacing_px)) + 1, 2,
+                   options.max_samples_per_line);
+    const Eigen::Vector3d a_world = T_world_camera.pose * a;
+    const Eigen::Vector3d b_world = T_world_camera.pose * b;
+    const double step_px = length_px / (samples - 1);
+    int run_start = -1;
+    double run_weight = 0.0;
+    for (int i = 0; i <= samples; ++i) {
+      double fraction = 0.0;
+      if (i < samples) {
+        const Eigen::Vector3d p =
+            a_world + (b_world - a_world) * (static_cast<double>(i) / (samples - 1));
+        const bool seen_now = !scene.blocked(from[0], p, options.surface_clearance_m);
+        fraction = seen_now ? visibleFraction(scene, from, p, options.surface_clearance_m) : 0.0;
+      }
+      if (fraction > 0.0) {
+        run_start = run_start < 0 ? i : run_start;
+        run_weight += fraction;
+        continue;
+      }
+      if (run_start >= 0 && (i - 1 - run_start) * step_px >= options.min_visible_length_px) {
+        const double t0 = static_cast<double>(run_start) / (samples - 1);
+        const double t1 = static_cast<double>(i - 1) / (samples - 1);
+        visible.push_back({line.id, line.kind, a_world + (b_world - a_world) * t0,
+                           a_world + (b_world - a_world) * t1, run_weight / (i - run_start)});
+      }
+      run_start = -1;
+      run_weight = 0.0;
+    }
+  }
+  return visible;
+}
+
+}  // namespace lineloc

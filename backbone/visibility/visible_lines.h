@@ -1,0 +1,66 @@
+// Hidden-line removal for the predicted view (paper §3.2: lines at the back of
+// buildings are invisible). Each model line is clipped to the camera's view
+// frustum, sampled along its length, and every sample is tested for a clear
+// line of sight from the camera centre through the building faces
+// (OcclusionScene). Consecutive visible samples form the visible pieces.
+//
+// Visibility depends on the camera position only, so its uncertainty comes
+// from the position block P of the predicted pose covariance: each sample is
+// also tested from the 2n = 6 sigma points c +- sqrt(n) sqrt(lambda_i) v_i of
+// P = V diag(lambda) V^T (Julier & Uhlmann, "Unscented filtering and nonlinear
+// estimation", Proc. IEEE 2004, eq. 12 with kappa = 0). A piece's weight is the
+// mean fraction of those 7 viewpoints that see its samples: 1 for a line
+// surely visible, lower near occluding edges, so the matcher trusts it less.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "backbone/visibility/occlusion_scene.h"
+#include "common/camera/camera_calibration.h"
+#include "common/geometry/pose.h"
+
+namespace lineloc {
+
+struct ModelSegment {
+  int64_t id = 0;
+  int kind = 0;
+  Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+};
+
+struct VisibleSegment {
+  int64_t model_line_id = 0;
+  int kind = 0;
+  Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  // Fraction (0, 1] of the viewpoints under the position uncertainty that see it.
+  double weight = 1.0;
+};
+
+struct VisibilityOptions {
+  double near_m = 0.3;
+  double far_m = 400.0;
+  // How far outside the image a line may reach and still count (pixels).
+  double image_margin_px = 20.0;
+  double sample_spacing_px = 8.0;
+  int max_samples_per_line = 64;
+  // Samples closer than this to the sampled point do not block it (metres).
+  double surface_clearance_m = 0.05;
+  double min_visible_length_px = 10.0;
+};
+
+// The visible pieces of `lines` seen from `T_world_camera` (with covariance)
+// by `camera`, in undistorted pixels of that camera.
+std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lines,
+                                            const OcclusionScene& scene,
+                                            const PoseWithCovariance& T_world_camera,
+                                            const PinholeCamera& camera,
+                                            const VisibilityOptions& options);
+
+// Clips the segment (camera frame) to the frustum; false when nothing is left.
+bool clipToFrustum(Eigen::Vector3d& start_camera, Eigen::Vector3d& end_camera,
+                   const PinholeCamera& camera, const VisibilityOptions& options);
+
+}  // namespace lineloc

@@ -1,0 +1,61 @@
+#include "db/tiles/map_tile_query.h"
+
+#include <fmt/format.h>
+
+#include "db/ewkb.h"
+
+namespace lineloc::db {
+namespace {
+
+constexpr const char* kFacesStatement = "lineloc_tile_faces";
+// Heights far beyond any building: the box is a column over the square.
+constexpr double kColumnHalfHeightM = 1e5;
+
+// $1 site, $2..$5 xmin ymin xmax ymax (site CRS), $6 half height.
+constexpr const char* kFacesSql = R"sql(
+SELECT id, building_id, kind, geom
+FROM face
+WHERE site_id = $1::int4
+  AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8, $3::float8, -$6::float8),
+                            ST_MakePoint($4::float8, $5::float8, $6::float8))
+)sql";
+
+std::string number(double value) {
+  return fmt::format("{:.17g}", value);
+}
+
+}  // namespace
+
+MapTileQuery::MapTileQuery(Connection& connection, const Site& site)
+    : connection_(connection), site_(site), lines_(connection, site) {
+  connection_.prepare(kFacesStatement, kFacesSql);
+}
+
+TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
+  const Eigen::Vector2d low = bounds_world.min() + site_.origin.head<2>();
+  const Eigen::Vector2d high = bounds_world.max() + site_.origin.head<2>();
+  const std::vector<std::string> params = {std::to_string(site_.id), number(low.x()),
+                                           number(low.y()),          number(high.x()),
+                                           number(high.y()),         number(kColumnHalfHeightM)};
+  TileContents contents;
+  contents.lines = lines_.linesOfBuildingsMeeting(bounds_world);
+  const Result faces = connection_.execPrepared(kFacesStatement, params, true);
+  for (int row = 0; row < faces.rows(); ++row) {
+    const auto rings = decodeEwkbZ(faces.bytes(row, 3), faces.length(row, 3));
+    if (!rings || rings->empty() || rings->front().size() < 4) {
+      throw DatabaseError(fmt::format("face {} is not a polygon Z", faces.binaryInt8(row, 0)));
+    }
+    ModelFaceRecord face;
+    face.id = faces.binaryInt8(row, 0);
+    face.building_id = faces.binaryInt8(row, 1);
+    face.kind = faces.binaryInt2(row, 2);
+    const std::vector<Eigen::Vector3d>& closed = rings->front();
+    for (size_t i = 0; i + 1 < closed.size(); ++i) {
+      face.ring_world.push_back(closed[i] - site_.origin);
+    }
+    contents.faces.push_back(std::move(face));
+  }
+  return contents;
+}
+
+}  // namespace lineloc::db

@@ -1,0 +1,43 @@
+// The backbone's tile query: the model lines of every building whose box meets
+// a square of the ground plane (ModelLineQuery's line packs), and every face
+// whose 3D bounding box meets it (n-D GiST index, binary EWKB), decoded into
+// world-frame (site CRS minus origin) Eigen values.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "db/connection.h"
+#include "db/model_line_query.h"
+#include "db/site.h"
+
+namespace lineloc::db {
+
+struct ModelFaceRecord {
+  int64_t id = 0;
+  int64_t building_id = 0;
+  int16_t kind = 0;
+  // Exterior ring in world coordinates, without the closing vertex.
+  std::vector<Eigen::Vector3d> ring_world;
+};
+
+struct TileContents {
+  std::vector<ModelLine> lines;
+  std::vector<ModelFaceRecord> faces;
+};
+
+class MapTileQuery {
+ public:
+  // Prepares the statements on `connection`, which must outlive this object.
+  MapTileQuery(Connection& connection, const Site& site);
+
+  // Lines and faces whose bounding box meets `bounds_world` (x, y; any height).
+  TileContents within(const Eigen::AlignedBox2d& bounds_world);
+
+ private:
+  Connection& connection_;
+  Site site_;
+  ModelLineQuery lines_;
+};
+
+}  // namespace lineloc::db

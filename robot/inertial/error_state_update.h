@@ -1,0 +1,57 @@
+// The Kalman measurement update of the error-state filter with a Mahalanobis
+// gate (Solà 2017, §6.1-6.3; Bar-Shalom, Li, Kirubarajan, "Estimation with
+// Applications to Tracking and Navigation", 2001, §5.4 gating):
+//   S = H P H^T + R,  NIS = r^T S^-1 r,  rejected when NIS > gate,
+//   K = P H^T S^-1,  dx = K r,  P = (I - K H) P (I - K H)^T + K R K^T (Joseph),
+// then dx is injected into the nominal state and reset to zero.
+#pragma once
+
+#include <Eigen/Cholesky>
+
+#include "robot/inertial/navigation_state.h"
+
+namespace lineloc {
+
+enum class UpdateStatus {
+  kAccepted,
+  kGated,       // NIS above the gate
+  kDegenerate,  // S not positive definite, or the measurement is undefined here
+};
+
+struct UpdateOutcome {
+  UpdateStatus status = UpdateStatus::kDegenerate;
+  double nis = 0.0;
+};
+
+// A linearised measurement: residual r = z - h(x_est) = H dx + noise, noise covariance R.
+template <int M>
+struct LinearisedMeasurement {
+  Eigen::Matrix<double, M, 1> residual = Eigen::Matrix<double, M, 1>::Zero();
+  Eigen::Matrix<double, M, kErrorStateSize> jacobian =
+      Eigen::Matrix<double, M, kErrorStateSize>::Zero();
+  Eigen::Matrix<double, M, M> noise = Eigen::Matrix<double, M, M>::Identity();
+};
+
+template <int M>
+UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, NavigationState& state,
+                          ErrorCovariance& covariance) {
+  using MatrixMM = Eigen::Matrix<double, M, M>;
+  const Eigen::Matrix<double, kErrorStateSize, M> PHt = covariance * z.jacobian.transpose();
+  const MatrixMM S = z.jacobian * PHt + z.noise;
+  const Eigen::LLT<MatrixMM> llt(S);
+  if (llt.info() != Eigen::Success || !z.residual.allFinite()) {
+    return {UpdateStatus::kDegenerate, 0.0};
+  }
+  const double nis = z.residual.dot(llt.solve(z.residual));
+  if (!(nis <= gate)) {
+    return {UpdateStatus::kGated, nis};
+  }
+  const Eigen::Matrix<double, kErrorStateSize, M> K = llt.solve(PHt.transpose()).transpose();
+  const ErrorCovariance I_KH = ErrorCovariance::Identity() - K * z.jacobian;
+  covariance = I_KH * covariance * I_KH.transpose() + K * z.noise * K.transpose();
+  covariance = 0.5 * (covariance + covariance.transpose()).eval();
+  injectError(K * z.residual, state);
+  return {UpdateStatus::kAccepted, nis};
+}
+
+}  // namespace lineloc

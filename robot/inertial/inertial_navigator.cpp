@@ -1,0 +1,525 @@
+#include "robot/inertial/inertial_navigator.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "robot/inertial/chi_square.h"
+#include "robot/inertial/measurement_models.h"
+
+namespace lineloc {
+namespace {
+
+constexpr double kNsToS = 1e-9;
+// Velocity sigma when starting still: a standing robot, but the IMU window
+// cannot tell a creep of a few cm/s from standing.
+constexpr double kStillVelocitySigma_mps = 0.05;
+// Compass readings needed for a start-up heading (1 s at 10 Hz).
+constexpr size_t kMinStartupCompassReadings = 10;
+
+void requirePositive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument(
+        fmt::format("inertial navigator: {} must be > 0, got {}", name, value));
+  }
+}
+
+bool isPositiveDefinite(const Matrix6d& covariance) {
+  return covariance.isApprox(covariance.transpose(), 1e-9) &&
+         Eigen::LLT<Matrix6d>(covariance).info() == Eigen::Success;
+}
+
+MeasurementOutcome fromUpdate(UpdateStatus status) {
+  switch (status) {
+    case UpdateStatus::kAccepted:
+      return MeasurementOutcome::kAccepted;
+    case UpdateStatus::kGated:
+      return MeasurementOutcome::kGated;
+    case UpdateStatus::kDegenerate:
+      return MeasurementOutcome::kDegenerate;
+  }
+  return MeasurementOutcome::kDegenerate;
+}
+
+int64_t& counterOf(MeasurementCounters& counters, MeasurementOutcome outcome) {
+  switch (outcome) {
+    case MeasurementOutcome::kAccepted:
+      return counters.accepted;
+    case MeasurementOutcome::kGated:
+      return counters.gated;
+    case MeasurementOutcome::kDegenerate:
+      return counters.degenerate;
+    case MeasurementOutcome::kSkipped:
+      return counters.skipped;
+    case MeasurementOutcome::kTooLate:
+      return counters.too_late;
+    case MeasurementOutcome::kInvalid:
+      return counters.invalid;
+    case MeasurementOutcome::kPending:
+      break;
+  }
+  throw std::logic_error("a pending measurement has no counter");
+}
+
+Eigen::Quaterniond quaternionFromYawPitchRoll(double yaw, double pitch, double roll) {
+  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+}
+
+}  // namespace
+
+Eigen::Isometry3d InertialNavigatorConfig::defaultBodyCamera() {
+  Eigen::Isometry3d T_body_camera = Eigen::Isometry3d::Identity();
+  T_body_camera.linear() << 0.0, 0.0, 1.0, -1.0, 0.0, 0.0, 0.0, -1.0, 0.0;
+  return T_body_camera;
+}
+
+const char* toString(NavigatorMode mode) {
+  switch (mode) {
+    case NavigatorMode::kInitialising:
+      return "initialising";
+    case NavigatorMode::kTracking:
+      return "tracking";
+    case NavigatorMode::kDeadReckoning:
+      return "dead reckoning";
+    case NavigatorMode::kLost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
+    : config_(config),
+      strapdown_(config.imu_noise, Eigen::Vector3d(0.0, 0.0, -config.gravity_mps2)),
+      alignment_detector_(config.alignment),
+      zero_velocity_detector_(config.zero_velocity) {
+  requirePositive(config.gravity_mps2, "gravity_mps2");
+  requirePositive(config.gyro_range_radps, "gyro_range_radps");
+  requirePositive(config.accel_range_mps2, "accel_range_mps2");
+  requirePositive(static_cast<double>(config.history_ns), "history_ns");
+  requirePositive(config.gps_horizontal_sigma_m, "gps_horizontal_sigma_m");
+  requirePositive(config.gps_vertical_sigma_m, "gps_vertical_sigma_m");
+  requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
+  requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
+  if (!config.R_body_imu.isUnitary(1e-6) || config.R_body_imu.determinant() < 0.0) {
+    throw std::invalid_argument("inertial navigator: R_body_imu is not a rotation");
+  }
+  if (!(config.gate_probability > 0.0 && config.gate_probability < 1.0)) {
+    throw std::invalid_argument(fmt::format(
+        "inertial navigator: gate_probability must be in (0, 1), got {}", config.gate_probability));
+  }
+  for (size_t dimension = 1; dimension < gate_by_dimension_.size(); ++dimension) {
+    gate_by_dimension_[dimension] =
+        chiSquareQuantile(config.gate_probability, static_cast<double>(dimension));
+  }
+}
+
+bool InertialNavigator::acceptImu(const ImuSample& sample) {
+  ImuCounters& counters = counters_.imu;
+  if (!sample.gyro_radps.allFinite() || !sample.accel_mps2.allFinite()) {
+    ++counters.non_finite;
+    return false;
+  }
+  if (sample.gyro_radps.cwiseAbs().maxCoeff() >= config_.gyro_range_radps ||
+      sample.accel_mps2.cwiseAbs().maxCoeff() >= config_.accel_range_mps2) {
+    ++counters.saturated;
+    return false;
+  }
+  if (last_imu_stamp_ns_ && sample.stamp_ns <= *last_imu_stamp_ns_) {
+    ++(sample.stamp_ns == *last_imu_stamp_ns_ ? counters.duplicate : counters.out_of_order);
+    return false;
+  }
+  if (last_imu_stamp_ns_ && sample.stamp_ns - *last_imu_stamp_ns_ > config_.imu_gap_ns) {
+    ++counters.gaps;
+  }
+  ++counters.accepted;
+  last_imu_stamp_ns_ = sample.stamp_ns;
+  return true;
+}
+
+void InertialNavigator::addImu(const ImuSample& sample_imu) {
+  const ImuSample sample{sample_imu.stamp_ns, config_.R_body_imu * sample_imu.gyro_radps,
+                         config_.R_body_imu * sample_imu.accel_mps2};
+  if (!acceptImu(sample)) {
+    return;
+  }
+  zero_velocity_detector_.add(sample);
+  imu_.push_back({sample, zero_velocity_detector_.isStill()});
+  if (snapshots_.empty()) {
+    alignment_detector_.add(sample);
+    if (auto alignment = alignment_detector_.alignment()) {
+      alignment_ = alignment;
+    }
+    tryInitialiseFromSensors();
+  } else {
+    process(imu_.back());
+  }
+  prune();
+}
+
+void InertialNavigator::addGps(const GpsFix& fix) {
+  if (!fix.p_world_antenna.allFinite()) {
+    ++counters_.gps.invalid;
+    return;
+  }
+  if (snapshots_.empty()) {
+    startup_gps_ = fix;
+    tryInitialiseFromSensors();
+    return;
+  }
+  addMeasurement(fix.stamp_ns, {GpsPayload{fix.p_world_antenna}, std::nullopt});
+}
+
+void InertialNavigator::addCompass(const CompassReading& reading) {
+  if (!std::isfinite(reading.magnetic_heading_rad)) {
+    ++counters_.compass.invalid;
+    return;
+  }
+  if (snapshots_.empty()) {
+    startup_compass_.push_back(reading);
+    tryInitialiseFromSensors();
+    return;
+  }
+  addMeasurement(reading.stamp_ns,
+                 {YawPayload{yawFromCompass(reading.magnetic_heading_rad)}, std::nullopt});
+}
+
+MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
+                                                     const PoseWithCovariance& T_world_camera,
+                                                     const Eigen::Isometry3d& T_body_camera) {
+  if (!isFinitePose(T_world_camera) || !isPositiveDefinite(T_world_camera.covariance) ||
+      !T_body_camera.matrix().allFinite()) {
+    ++counters_.vision.invalid;
+    return MeasurementOutcome::kInvalid;
+  }
+  if (snapshots_.empty()) {
+    return initialiseFromVision(stamp_ns, T_world_camera, T_body_camera);
+  }
+  return addMeasurement(stamp_ns, {VisionPayload{T_world_camera, T_body_camera}, std::nullopt});
+}
+
+MeasurementOutcome InertialNavigator::addMeasurement(int64_t stamp_ns, Measurement measurement) {
+  if (stamp_ns <= snapshots_.front().state.stamp_ns) {
+    ++countersFor(measurement).too_late;
+    return MeasurementOutcome::kTooLate;
+  }
+  const auto inserted = measurements_.emplace(stamp_ns, std::move(measurement));
+  const auto after = std::lower_bound(
+      snapshots_.begin(), snapshots_.end(), stamp_ns,
+      [](const Snapshot& snapshot, int64_t stamp) { return snapshot.state.stamp_ns < stamp; });
+  if (after != snapshots_.end()) {
+    replayFrom(static_cast<size_t>(after - snapshots_.begin()) - 1);
+  }
+  return inserted->second.outcome.value_or(MeasurementOutcome::kPending);
+}
+
+void InertialNavigator::replayFrom(size_t snapshot_index) {
+  snapshots_.erase(snapshots_.begin() + static_cast<std::ptrdiff_t>(snapshot_index) + 1,
+                   snapshots_.end());
+  const int64_t from_ns = snapshots_.back().state.stamp_ns;
+  auto next = std::upper_bound(
+      imu_.begin(), imu_.end(), from_ns,
+      [](int64_t stamp, const BufferedImu& imu) { return stamp < imu.sample.stamp_ns; });
+  for (; next != imu_.end(); ++next) {
+    process(*next);
+  }
+}
+
+void InertialNavigator::process(const BufferedImu& imu) {
+  Snapshot snapshot = snapshots_.back();
+  const ImuSample start = snapshot.imu;
+  ImuSample current = start;
+  const auto end = measurements_.upper_bound(imu.sample.stamp_ns);
+  for (auto it = measurements_.upper_bound(start.stamp_ns); it != end; ++it) {
+    const ImuSample at_measurement = interpolateImu(start, imu.sample, it->first);
+    strapdown_.propagate(current, at_measurement, snapshot.state, snapshot.covariance);
+    current = at_measurement;
+    recordOutcome(it->second, apply(it->second, snapshot));
+  }
+  if (imu.sample.stamp_ns > current.stamp_ns) {
+    strapdown_.propagate(current, imu.sample, snapshot.state, snapshot.covariance);
+  }
+  const bool slow = snapshot.state.v_world_body.norm() < config_.zero_velocity_max_speed_mps;
+  if (imu.still && slow &&
+      imu.sample.stamp_ns - snapshot.last_zero_velocity_ns >= config_.zero_velocity_interval_ns) {
+    const UpdateOutcome outcome =
+        applyUpdate(lineariseZeroVelocity(snapshot.state, config_.zero_velocity_sigma_mps),
+                    gate_by_dimension_[3], snapshot.state, snapshot.covariance);
+    if (outcome.status == UpdateStatus::kAccepted) {
+      snapshot.last_zero_velocity_ns = imu.sample.stamp_ns;
+    }
+  }
+  snapshot.imu = imu.sample;
+  snapshots_.push_back(std::move(snapshot));
+}
+
+MeasurementOutcome InertialNavigator::apply(const Measurement& measurement,
+                                            Snapshot& snapshot) const {
+  NavigationState& state = snapshot.state;
+  ErrorCovariance& covariance = snapshot.covariance;
+  if (const auto* vision = std::get_if<VisionPayload>(&measurement.payload)) {
+    const UpdateOutcome outcome =
+        applyUpdate(linearisePoseFix(state, vision->T_world_camera, vision->T_body_camera),
+                    gate_by_dimension_[6], state, covariance);
+    if (outcome.status == UpdateStatus::kAccepted) {
+      snapshot.last_vision_ns = state.stamp_ns;
+    }
+    return fromUpdate(outcome.status);
+  }
+  if (const auto* gps = std::get_if<GpsPayload>(&measurement.payload)) {
+    const double horizontal_variance =
+        covariance.block<2, 2>(kPosition, kPosition).eigenvalues().real().maxCoeff();
+    const double gps_variance = config_.gps_horizontal_sigma_m * config_.gps_horizontal_sigma_m;
+    if (horizontal_variance <= gps_variance) {
+      return MeasurementOutcome::kSkipped;
+    }
+    const Eigen::Matrix3d noise =
+        Eigen::Vector3d(gps_variance, gps_variance,
+                        config_.gps_vertical_sigma_m * config_.gps_vertical_sigma_m)
+            .asDiagonal();
+    return fromUpdate(applyUpdate(lineariseAntennaPosition(state, gps->p_world_antenna, noise,
+                                                           config_.p_body_gps_antenna),
+                                  gate_by_dimension_[3], state, covariance)
+                          .status);
+  }
+  const auto& yaw = std::get<YawPayload>(measurement.payload);
+  const auto z = lineariseYaw(state, yaw.yaw_rad, config_.compass_sigma_rad);
+  if (!z) {
+    return MeasurementOutcome::kDegenerate;
+  }
+  return fromUpdate(applyUpdate(*z, gate_by_dimension_[1], state, covariance).status);
+}
+
+MeasurementCounters& InertialNavigator::countersFor(const Measurement& measurement) {
+  if (std::holds_alternative<VisionPayload>(measurement.payload)) {
+    return counters_.vision;
+  }
+  return std::holds_alternative<GpsPayload>(measurement.payload) ? counters_.gps
+                                                                 : counters_.compass;
+}
+
+void InertialNavigator::recordOutcome(Measurement& measurement, MeasurementOutcome outcome) {
+  if (measurement.outcome == outcome) {
+    return;
+  }
+  MeasurementCounters& counters = countersFor(measurement);
+  if (measurement.outcome) {
+    --counterOf(counters, *measurement.outcome);
+  }
+  ++counterOf(counters, outcome);
+  measurement.outcome = outcome;
+}
+
+void InertialNavigator::prune() {
+  const int64_t keep_from_ns = imu_.back().sample.stamp_ns - config_.history_ns;
+  while (snapshots_.size() > 1 && snapshots_[1].state.stamp_ns <= keep_from_ns) {
+    snapshots_.pop_front();
+  }
+  const int64_t first_ns = snapshots_.empty() ? keep_from_ns : snapshots_.front().state.stamp_ns;
+  // Keep one sample at or before the first snapshot, for interpolation.
+  while (imu_.size() > 1 && imu_[1].sample.stamp_ns <= first_ns) {
+    imu_.pop_front();
+  }
+  measurements_.erase(measurements_.begin(), measurements_.upper_bound(first_ns));
+  // Start-up heading: the compass readings of the last still window.
+  const int64_t compass_from_ns = imu_.back().sample.stamp_ns - config_.alignment.window_ns;
+  while (!startup_compass_.empty() && startup_compass_.front().stamp_ns < compass_from_ns) {
+    startup_compass_.pop_front();
+  }
+}
+
+std::optional<ImuSample> InertialNavigator::bufferedImuAt(int64_t stamp_ns) const {
+  const auto after = std::lower_bound(
+      imu_.begin(), imu_.end(), stamp_ns,
+      [](const BufferedImu& imu, int64_t stamp) { return imu.sample.stamp_ns < stamp; });
+  if (after == imu_.end()) {
+    return std::nullopt;
+  }
+  if (after->sample.stamp_ns == stamp_ns) {
+    return after->sample;
+  }
+  if (after == imu_.begin()) {
+    return std::nullopt;
+  }
+  return interpolateImu(std::prev(after)->sample, after->sample, stamp_ns);
+}
+
+bool InertialNavigator::initialise(const NavigationState& state,
+                                   const ErrorCovariance& covariance) {
+  const auto imu = bufferedImuAt(state.stamp_ns);
+  if (!imu) {
+    return false;
+  }
+  startAt(state, covariance, *imu);
+  return true;
+}
+
+void InertialNavigator::startAt(const NavigationState& state, const ErrorCovariance& covariance,
+                                const ImuSample& imu) {
+  snapshots_.clear();
+  measurements_.clear();
+  Snapshot snapshot;
+  snapshot.state = state;
+  snapshot.covariance = covariance;
+  snapshot.imu = imu;
+  snapshot.last_zero_velocity_ns = state.stamp_ns;
+  snapshots_.push_back(snapshot);
+  startup_gps_.reset();
+  startup_compass_.clear();
+  replayFrom(0);
+}
+
+Eigen::Vector3d InertialNavigator::initialGyroBias(double& sigma_radps) const {
+  if (!alignment_) {
+    sigma_radps = config_.gyro_turn_on_bias_sigma_radps;
+    return Eigen::Vector3d::Zero();
+  }
+  // Mean of white rate noise over T seconds: sigma^2 = N^2 / T.
+  sigma_radps = config_.imu_noise.gyro_noise_radps_per_sqrt_hz / std::sqrt(alignment_->duration_s);
+  return alignment_->gyro_bias_radps;
+}
+
+double InertialNavigator::yawFromCompass(double magnetic_heading_rad) const {
+  // Grid bearing = magnetic + declination + grid bearing of true north; the
+  // world yaw is anticlockwise from east: yaw = pi/2 - grid bearing.
+  return wrapAngle(M_PI_2 - (magnetic_heading_rad + config_.magnetic_declination_rad +
+                             config_.grid_bearing_of_true_north_rad));
+}
+
+void InertialNavigator::tryInitialiseFromSensors() {
+  if (!alignment_ || !startup_gps_ || startup_compass_.size() < kMinStartupCompassReadings ||
+      imu_.empty()) {
+    return;
+  }
+  // Circular mean of the recent compass readings.
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const CompassReading& reading : startup_compass_) {
+    const double yaw = yawFromCompass(reading.magnetic_heading_rad);
+    sum += Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+  }
+  const ImuSample& latest = imu_.back().sample;
+  NavigationState state;
+  state.stamp_ns = latest.stamp_ns;
+  state.q_world_body = quaternionFromYawPitchRoll(std::atan2(sum.y(), sum.x()),
+                                                  alignment_->pitch_rad, alignment_->roll_rad);
+  state.p_world_body =
+      startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
+  double gyro_bias_sigma = 0.0;
+  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  // A tilt error of b_a / g hides behind an accelerometer bias b_a.
+  const double tilt_sigma = config_.accel_turn_on_bias_sigma_mps2 / config_.gravity_mps2;
+  ErrorVector sigma;
+  sigma << config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
+      config_.gps_vertical_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
+      tilt_sigma, config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
+      Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
+  startAt(state, sigma.cwiseAbs2().asDiagonal(), latest);
+}
+
+MeasurementOutcome InertialNavigator::initialiseFromVision(int64_t stamp_ns,
+                                                           const PoseWithCovariance& T_world_camera,
+                                                           const Eigen::Isometry3d& T_body_camera) {
+  const auto imu = bufferedImuAt(stamp_ns);
+  if (!imu) {
+    ++counters_.vision.too_late;
+    return MeasurementOutcome::kTooLate;
+  }
+  const Eigen::Isometry3d T_world_body = T_world_camera.pose * T_body_camera.inverse();
+  NavigationState state;
+  state.stamp_ns = stamp_ns;
+  state.p_world_body = T_world_body.translation();
+  state.q_world_body = Eigen::Quaterniond(T_world_body.linear()).normalized();
+  double gyro_bias_sigma = 0.0;
+  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  // The body pose error from the camera's: e_body = J^-1 e_camera with
+  // J^-1 = [I, [R t_bc]x; 0, I] (inverse of the lever-arm Jacobian).
+  Matrix6d J_inverse = Matrix6d::Identity();
+  J_inverse.topRightCorner<3, 3>() = skew(T_world_body.linear() * T_body_camera.translation());
+  ErrorCovariance covariance = ErrorCovariance::Zero();
+  const Matrix6d pose_covariance = J_inverse * T_world_camera.covariance * J_inverse.transpose();
+  covariance.block<3, 3>(kPosition, kPosition) = pose_covariance.topLeftCorner<3, 3>();
+  covariance.block<3, 3>(kPosition, kAttitude) = pose_covariance.topRightCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kPosition) = pose_covariance.bottomLeftCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kAttitude) = pose_covariance.bottomRightCorner<3, 3>();
+  const double velocity_sigma =
+      alignment_detector_.isStill() ? kStillVelocitySigma_mps : config_.initial_velocity_sigma_mps;
+  covariance.block<3, 3>(kVelocity, kVelocity)
+      .diagonal()
+      .setConstant(velocity_sigma * velocity_sigma);
+  covariance.block<3, 3>(kGyroBias, kGyroBias)
+      .diagonal()
+      .setConstant(gyro_bias_sigma * gyro_bias_sigma);
+  covariance.block<3, 3>(kAccelBias, kAccelBias)
+      .diagonal()
+      .setConstant(config_.accel_turn_on_bias_sigma_mps2 * config_.accel_turn_on_bias_sigma_mps2);
+  startAt(state, covariance, *imu);
+  ++counters_.vision.accepted;
+  return MeasurementOutcome::kAccepted;
+}
+
+PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {
+  PosePrediction prediction;
+  if (snapshots_.empty()) {
+    return prediction;
+  }
+  if (stamp_ns < snapshots_.front().state.stamp_ns) {
+    prediction.status = PredictionStatus::kBeforeHistory;
+    return prediction;
+  }
+  const auto after = std::upper_bound(
+      snapshots_.begin(), snapshots_.end(), stamp_ns,
+      [](int64_t stamp, const Snapshot& snapshot) { return stamp < snapshot.state.stamp_ns; });
+  const Snapshot& from = *std::prev(after);
+  NavigationState state = from.state;
+  ErrorCovariance covariance = from.covariance;
+  // Between two snapshots the next sample is known; past the last, hold its rates.
+  ImuSample target =
+      after != snapshots_.end() ? interpolateImu(from.imu, after->imu, stamp_ns) : from.imu;
+  target.stamp_ns = stamp_ns;
+  if (stamp_ns > state.stamp_ns) {
+    strapdown_.propagate(from.imu, target, state, covariance);
+  }
+  prediction.status = PredictionStatus::kOk;
+  prediction.T_world_camera = cameraPoseOf(state, covariance, config_.T_body_camera);
+  return prediction;
+}
+
+std::optional<NavigatorEstimate> InertialNavigator::state() const {
+  if (snapshots_.empty()) {
+    return std::nullopt;
+  }
+  return NavigatorEstimate{snapshots_.back().state, snapshots_.back().covariance};
+}
+
+NavigatorHealth InertialNavigator::health() const {
+  NavigatorHealth health = counters_;
+  if (snapshots_.empty()) {
+    health.mode = NavigatorMode::kInitialising;
+    return health;
+  }
+  const Snapshot& latest = snapshots_.back();
+  health.stamp_ns = latest.state.stamp_ns;
+  if (latest.last_vision_ns) {
+    health.since_vision_fix_ns = latest.state.stamp_ns - *latest.last_vision_ns;
+  }
+  health.position_sigma_m = std::sqrt(latest.covariance.block<3, 3>(kPosition, kPosition)
+                                          .selfadjointView<Eigen::Lower>()
+                                          .eigenvalues()
+                                          .maxCoeff());
+  health.yaw_sigma_rad = std::sqrt(latest.covariance(kAttitude + 2, kAttitude + 2));
+  if (health.position_sigma_m > config_.lost_position_sigma_m) {
+    health.mode = NavigatorMode::kLost;
+  } else if (health.since_vision_fix_ns &&
+             *health.since_vision_fix_ns <= config_.tracking_timeout_ns) {
+    health.mode = NavigatorMode::kTracking;
+  } else {
+    health.mode = NavigatorMode::kDeadReckoning;
+  }
+  return health;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,251 @@
+// Onboard inertial navigation (paper §1.2): a strapdown IMU carries the pose
+// between fixes; the backbone's vision fixes correct its drift; DGPS and the
+// compass start it. A 15-state error-state Kalman filter (strapdown.h,
+// error_state_update.h) runs at IMU rate.
+//
+// Late fixes. Every IMU sample leaves a snapshot (state, covariance, sample) in
+// a history of `history_ns`; every measurement is kept, in time order, for as
+// long as its time is inside that history. A measurement whose time is already
+// past rewinds to the last snapshot before it and replays the IMU samples and
+// measurements after it, splitting the IMU interval at each measurement's time
+// (rates interpolated linearly). A measurement whose time is still ahead waits
+// until the IMU reaches it. Both paths run the same arithmetic, so a fix
+// delivered 300 ms late gives the same state as one delivered on time.
+//
+// Start-up. Standing still for `alignment.window_ns` gives roll, pitch and gyro
+// bias (stillness_detector.h); the compass, corrected for magnetic declination
+// and meridian convergence, gives yaw; DGPS gives position; all with large
+// covariances. A vision fix before that starts the filter from its pose.
+//
+// Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
+// only while the filter's horizontal position sigma exceeds the DGPS sigma (its
+// errors are correlated over minutes: repeated fixes add no information, and a
+// vision-tracked pose must not be pulled by them); compass yaw; zero velocity
+// when the IMU is still and the estimated speed small. Each is gated by its
+// normalised innovation squared at `gate_probability` of the chi-square
+// distribution; rejections are counted in health().
+//
+// Bad input (non-finite or saturated IMU samples, time going backwards,
+// duplicate stamps, invalid fixes) is dropped and counted; IMU gaps are
+// propagated across and counted.
+#pragma once
+
+#include <array>
+#include <deque>
+#include <map>
+#include <optional>
+#include <variant>
+
+#include "common/geometry/pose.h"
+#include "robot/inertial/error_state_update.h"
+#include "robot/inertial/imu_sample.h"
+#include "robot/inertial/navigation_state.h"
+#include "robot/inertial/stillness_detector.h"
+#include "robot/inertial/strapdown.h"
+
+namespace lineloc {
+
+struct InertialNavigatorConfig {
+  ImuNoiseDensities imu_noise;
+  double gravity_mps2 = 9.80665;
+  // Samples beyond the IMU's range are saturated, hence wrong (ADIS16448: ±1000 deg/s, ±18 g).
+  double gyro_range_radps = 17.45;
+  double accel_range_mps2 = 176.5;
+  int64_t imu_gap_ns = 20'000'000;
+  // Rotation from the IMU's frame to the body frame, applied to every sample
+  // (the lever arm's centripetal terms are neglected: small on a ground robot).
+  Eigen::Matrix3d R_body_imu = Eigen::Matrix3d::Identity();
+  // Camera mounted looking forward: camera z = body x, camera x = -body y, camera y = -body z.
+  Eigen::Isometry3d T_body_camera = defaultBodyCamera();
+  Eigen::Vector3d p_body_gps_antenna = Eigen::Vector3d::Zero();
+  int64_t history_ns = 1'000'000'000;
+  double gate_probability = 0.999;
+
+  // Still: per-axis standard deviations within twice the white noise of one
+  // sample (ADIS16448 at 200 Hz: 0.0024 rad/s, 0.028 m/s^2). Looser thresholds
+  // let a robot that is pulling away at a few cm/s pass for standing.
+  StillnessThresholds alignment{2'000'000'000, 0.005, 0.056};
+  StillnessThresholds zero_velocity{500'000'000, 0.005, 0.056};
+  double zero_velocity_max_speed_mps = 0.1;
+  // Covers the speed a trailing window misses when the robot pulls away (a few
+  // cm/s); 0.02 m/s made the along-track NEES of the simulated drives 1.6 per axis.
+  double zero_velocity_sigma_mps = 0.05;
+  int64_t zero_velocity_interval_ns = 100'000'000;
+
+  double gps_horizontal_sigma_m = 5.0;
+  double gps_vertical_sigma_m = 10.0;
+  double compass_sigma_rad = 0.035;
+  double magnetic_declination_rad = 0.0;  // magnetic north's bearing from true north, east positive
+  double grid_bearing_of_true_north_rad = 0.0;  // SiteProjection::gridBearingOfTrueNorth_rad
+  double initial_yaw_sigma_rad = 0.175;
+  double initial_velocity_sigma_mps = 1.0;
+  double gyro_turn_on_bias_sigma_radps = 0.0035;
+  double accel_turn_on_bias_sigma_mps2 = 0.05;
+
+  int64_t tracking_timeout_ns = 1'000'000'000;
+  double lost_position_sigma_m = 10.0;
+
+  static Eigen::Isometry3d defaultBodyCamera();
+};
+
+struct GpsFix {
+  int64_t stamp_ns = 0;
+  Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
+};
+
+// Magnetic heading of the body x axis, clockwise from magnetic north.
+struct CompassReading {
+  int64_t stamp_ns = 0;
+  double magnetic_heading_rad = 0.0;
+};
+
+// kPending: ahead of the IMU, decided (and counted) when the IMU reaches its time.
+enum class MeasurementOutcome {
+  kAccepted,
+  kGated,
+  kDegenerate,
+  kSkipped,
+  kTooLate,
+  kInvalid,
+  kPending
+};
+
+struct MeasurementCounters {
+  int64_t accepted = 0;
+  int64_t gated = 0;
+  int64_t degenerate = 0;
+  int64_t skipped = 0;   // DGPS while the pose is better than DGPS
+  int64_t too_late = 0;  // older than the history, or than the start
+  int64_t invalid = 0;   // non-finite, or a covariance that is not positive definite
+  int64_t rejected() const { return gated + degenerate + too_late + invalid; }
+};
+
+struct ImuCounters {
+  int64_t accepted = 0;
+  int64_t non_finite = 0;
+  int64_t saturated = 0;
+  int64_t out_of_order = 0;
+  int64_t duplicate = 0;
+  int64_t gaps = 0;
+};
+
+enum class NavigatorMode { kInitialising, kTracking, kDeadReckoning, kLost };
+const char* toString(NavigatorMode mode);
+
+struct NavigatorHealth {
+  NavigatorMode mode = NavigatorMode::kInitialising;
+  int64_t stamp_ns = 0;
+  std::optional<int64_t> since_vision_fix_ns;
+  double position_sigma_m = 0.0;  // square root of the largest eigenvalue
+  double yaw_sigma_rad = 0.0;
+  MeasurementCounters vision;
+  MeasurementCounters gps;
+  MeasurementCounters compass;
+  int64_t zero_velocity_updates = 0;
+  ImuCounters imu;
+};
+
+struct NavigatorEstimate {
+  NavigationState state;
+  ErrorCovariance covariance = ErrorCovariance::Identity();
+};
+
+enum class PredictionStatus { kOk, kNotInitialised, kBeforeHistory };
+
+struct PosePrediction {
+  PredictionStatus status = PredictionStatus::kNotInitialised;
+  PoseWithCovariance T_world_camera;
+};
+
+class InertialNavigator {
+ public:
+  // Throws std::invalid_argument naming the first invalid setting.
+  explicit InertialNavigator(const InertialNavigatorConfig& config);
+
+  // A sample in the IMU frame (rotated here by R_body_imu).
+  void addImu(const ImuSample& sample_imu);
+  void addGps(const GpsFix& fix);
+  void addCompass(const CompassReading& reading);
+  MeasurementOutcome applyVisionFix(int64_t stamp_ns, const PoseWithCovariance& T_world_camera,
+                                    const Eigen::Isometry3d& T_body_camera);
+  MeasurementOutcome applyVisionFix(int64_t stamp_ns, const PoseWithCovariance& T_world_camera) {
+    return applyVisionFix(stamp_ns, T_world_camera, config_.T_body_camera);
+  }
+
+  // Starts the filter from a known state at a time the IMU samples given so far
+  // cover. Returns false (and does nothing) when they do not.
+  bool initialise(const NavigationState& state, const ErrorCovariance& covariance);
+
+  // T_world_camera and its covariance at `stamp_ns` (a frame's exposure time),
+  // using the configured T_body_camera; beyond the last IMU sample the last
+  // rates are held.
+  PosePrediction predictAt(int64_t stamp_ns) const;
+
+  // The state after the last IMU sample; nullopt before initialisation.
+  std::optional<NavigatorEstimate> state() const;
+  NavigatorHealth health() const;
+
+ private:
+  struct VisionPayload {
+    PoseWithCovariance T_world_camera;
+    Eigen::Isometry3d T_body_camera;
+  };
+  struct GpsPayload {
+    Eigen::Vector3d p_world_antenna;
+  };
+  struct YawPayload {
+    double yaw_rad;
+  };
+  struct Measurement {
+    std::variant<VisionPayload, GpsPayload, YawPayload> payload;
+    std::optional<MeasurementOutcome> outcome;
+  };
+  struct Snapshot {
+    NavigationState state;
+    ErrorCovariance covariance;
+    ImuSample imu;
+    int64_t last_zero_velocity_ns = 0;
+    std::optional<int64_t> last_vision_ns;
+  };
+  struct BufferedImu {
+    ImuSample sample;
+    bool still = false;
+  };
+
+  bool acceptImu(const ImuSample& sample);
+  MeasurementOutcome addMeasurement(int64_t stamp_ns, Measurement measurement);
+  void replayFrom(size_t snapshot_index);
+  void process(const BufferedImu& imu);
+  MeasurementOutcome apply(const Measurement& measurement, Snapshot& snapshot) const;
+  void recordOutcome(Measurement& measurement, MeasurementOutcome outcome);
+  MeasurementCounters& countersFor(const Measurement& measurement);
+  void prune();
+
+  std::optional<ImuSample> bufferedImuAt(int64_t stamp_ns) const;
+  void startAt(const NavigationState& state, const ErrorCovariance& covariance,
+               const ImuSample& imu);
+  void tryInitialiseFromSensors();
+  MeasurementOutcome initialiseFromVision(int64_t stamp_ns,
+                                          const PoseWithCovariance& T_world_camera,
+                                          const Eigen::Isometry3d& T_body_camera);
+  Eigen::Vector3d initialGyroBias(double& sigma_radps) const;
+  double yawFromCompass(double magnetic_heading_rad) const;
+
+  InertialNavigatorConfig config_;
+  Strapdown strapdown_;
+  std::array<double, 7> gate_by_dimension_{};
+  StillnessDetector alignment_detector_;
+  StillnessDetector zero_velocity_detector_;
+  std::optional<StaticAlignment> alignment_;
+
+  std::deque<BufferedImu> imu_;
+  std::deque<Snapshot> snapshots_;
+  std::multimap<int64_t, Measurement> measurements_;
+  std::optional<GpsFix> startup_gps_;
+  std::deque<CompassReading> startup_compass_;
+
+  NavigatorHealth counters_;
+  std::optional<int64_t> last_imu_stamp_ns_;
+};
+
+}  // namespace lineloc

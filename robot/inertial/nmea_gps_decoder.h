@@ -1,0 +1,45 @@
+// Turns NMEA 0183 sentences from a GPS receiver into DGPS fixes in the site
+// frame: GGA gives the position (WGS84 latitude and longitude, height above
+// mean sea level) and fix quality, projected with SiteProjection; its UTC time
+// of day is dated by the last RMC's date or, before any RMC, by the day
+// nearest a reference time (the IMU clock). Bad sentences are dropped and counted.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "common/geodesy/site_projection.h"
+#include "robot/inertial/inertial_navigator.h"
+
+namespace lineloc {
+
+struct NmeaCounters {
+  int64_t fixes = 0;
+  int64_t no_fix = 0;
+  int64_t bad_checksum = 0;
+  int64_t malformed = 0;    // bad framing or fields, or outside the site CRS
+  int64_t unsupported = 0;  // well-formed sentences other than GGA and RMC
+  int64_t undated = 0;      // a GGA before any RMC and without a reference time
+};
+
+class NmeaGpsDecoder {
+ public:
+  explicit NmeaGpsDecoder(SiteProjection projection);
+
+  // The fix of a GGA sentence with a position; nullopt for anything else.
+  // `reference_stamp_ns` (0: none) dates GGA times before the first RMC.
+  std::optional<GpsFix> decode(std::string_view line, int64_t reference_stamp_ns = 0);
+
+  const NmeaCounters& counters() const { return counters_; }
+  const SiteProjection& projection() const { return projection_; }
+
+ private:
+  SiteProjection projection_;
+  std::optional<int64_t> day_start_ns_;
+  NmeaCounters counters_;
+};
+
+// UTC nanoseconds of `time_of_day_ns` on the day that puts it nearest `reference_ns`.
+int64_t stampNearest(int64_t time_of_day_ns, int64_t reference_ns);
+
+}  // namespace lineloc

@@ -1,0 +1,66 @@
+// Sum of absolute differences (SAD) kernels, Persa & Jonker §4 eq. 7:
+//
+//   SAD(a, b) = sum_{r < height} sum_{c < width} |a(r, c) - b(r, c)|
+//
+// on 8-bit pixels, with a scalar reference and vector paths built around the
+// x86 `psadbw` instruction (SSE2: 16 bytes per instruction, AVX2: 32,
+// AVX-512BW: 64). The path is chosen at run time from the processor's
+// features; every path returns exactly the scalar reference's result.
+//
+// Blocks are addressed by their top-left pixel and the row stride in bytes, so
+// a colour block of w pixels is a grey block of 3w bytes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace lineloc {
+
+enum class SimdPath { kScalar, kSse2, kAvx2, kAvx512Bw };
+
+std::string_view simdPathName(SimdPath path);
+
+// Vector width in bytes of the path's `psadbw` (1 for the scalar reference).
+int simdPathWidthBytes(SimdPath path);
+
+// The kernels of one path. All take the block `a` and the block `b` as a
+// top-left pointer and a row stride in bytes.
+struct SadKernels {
+  SimdPath path;
+  uint32_t (*sad16x16)(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride);
+  uint32_t (*sad8x8)(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride);
+  // Any width >= 1 (bytes) and height >= 1.
+  uint32_t (*sad)(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride,
+                  int width, int height);
+  // A vertical run of candidates for one 16x16 block, the inner loop of a
+  // full search: sads[k] = SAD16x16(block, candidates + k * stride) for
+  // k < count. The candidates share `stride`.
+  void (*sadColumn16x16)(const uint8_t* block, ptrdiff_t block_stride, const uint8_t* candidates,
+                         ptrdiff_t stride, int count, uint32_t* sads);
+  // out[i] = |a[i] - b[i]| for i < width.
+  void (*absDiffRow)(const uint8_t* a, const uint8_t* b, int width, uint8_t* out);
+  // Throughput probe for benchmarks: runs kPsadbwProbeChains independent
+  // chains of `loops` psadbw each on registers (no memory operands), so that
+  // instructions / cycles is the instruction's peak throughput. Null for the
+  // scalar reference. The result only keeps the work from being optimised out.
+  uint64_t (*psadbwProbe)(int64_t loops);
+};
+
+inline constexpr int kPsadbwProbeChains = 12;
+
+// Paths this build contains and this processor runs, scalar first.
+std::vector<SimdPath> supportedSimdPaths();
+
+// The widest supported path.
+SimdPath bestSimdPath();
+
+// The kernels of `path`; throws std::invalid_argument when the path is not
+// supported here.
+const SadKernels& sadKernels(SimdPath path);
+
+// The kernels of bestSimdPath().
+const SadKernels& sadKernels();
+
+}  // namespace lineloc

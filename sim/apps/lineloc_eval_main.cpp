@@ -1,0 +1,93 @@
+// lineloc-eval: compares an estimated TUM trajectory with ground truth in the
+// map frame, prints the error table and writes the evaluation plot.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <numbers>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/config/program_options.h"
+#include "sim/eval/evaluation_plot.h"
+#include "sim/eval/trajectory_evaluation.h"
+#include "sim/world/city_mesh.h"
+
+namespace {
+
+struct EvalConfig {
+  std::string ground_truth;
+  std::string estimate;
+  std::string plot = "evaluation.png";
+  std::string city_model;
+  std::vector<double> site_origin;
+  double rpe_delta_s = 1.0;
+  double position_threshold_m = 0.05;
+  double rotation_threshold_deg = 0.5;
+  double max_ground_truth_gap_s = 0.5;
+};
+
+// Footprints for the plot, in the same frame as the trajectories.
+std::optional<lineloc::SceneMesh> loadFootprints(const EvalConfig& config) {
+  if (config.city_model.empty()) {
+    return std::nullopt;
+  }
+  const lineloc::citymodel::CityModel model = lineloc::readCityModelFile(config.city_model);
+  if (!config.site_origin.empty() && config.site_origin.size() != 3) {
+    throw std::runtime_error("site_origin must have three numbers x y z");
+  }
+  const Eigen::Vector3d origin =
+      config.site_origin.empty()
+          ? lineloc::defaultSiteOrigin(model)
+          : Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2]);
+  return lineloc::buildCityMesh(model, origin).mesh;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  EvalConfig config;
+  lineloc::ProgramOptions options("lineloc-eval",
+                                  "accuracy of an estimated trajectory against ground truth");
+  options.add("ground_truth", config.ground_truth, "ground-truth TUM file (required)");
+  options.add("estimate", config.estimate, "estimated TUM file (required)");
+  options.add("plot", config.plot, "PNG written with the top view and errors over time");
+  options.add("city_model", config.city_model,
+              "city model whose footprints the plot shows (CityJSON / .jsonl; empty: none)");
+  options.add("site_origin", config.site_origin,
+              "model coordinates of the trajectories' origin, x y z (empty: the model's "
+              "default, as lineloc-sim uses)");
+  options.add("rpe_delta_s", config.rpe_delta_s, "time step of the relative pose error (s)");
+  options.add("position_threshold_m", config.position_threshold_m,
+              "a frame is within target when its position error is at most this (m)");
+  options.add("rotation_threshold_deg", config.rotation_threshold_deg,
+              "... and its attitude error at most this (deg)");
+  options.add("max_ground_truth_gap_s", config.max_ground_truth_gap_s,
+              "ground truth is not interpolated across longer gaps (s)");
+  if (const auto exit_code = options.parse(argc, argv)) {
+    return *exit_code;
+  }
+  try {
+    if (config.ground_truth.empty() || config.estimate.empty()) {
+      throw std::runtime_error("both --ground-truth and --estimate are required");
+    }
+    const lineloc::EvaluationOptions evaluation_options{
+        config.rpe_delta_s, config.position_threshold_m,
+        config.rotation_threshold_deg * std::numbers::pi / 180.0, config.max_ground_truth_gap_s};
+    const auto ground_truth = lineloc::readTumFile(config.ground_truth);
+    const auto estimate = lineloc::readTumFile(config.estimate);
+    const lineloc::TrajectoryEvaluation evaluation =
+        lineloc::evaluateTrajectory(ground_truth, estimate, evaluation_options);
+    std::cout << lineloc::formatEvaluationTable(evaluation, evaluation_options);
+    const std::optional<lineloc::SceneMesh> footprints = loadFootprints(config);
+    const cv::Mat plot =
+        lineloc::drawEvaluationPlot(ground_truth, estimate, evaluation, evaluation_options,
+                                    footprints ? &*footprints : nullptr);
+    if (!config.plot.empty() && !cv::imwrite(config.plot, plot)) {
+      throw std::runtime_error(fmt::format("cannot write plot '{}'", config.plot));
+    }
+    return evaluation.status == lineloc::EvaluationStatus::kOk ? 0 : 3;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,90 @@
+// lineloc-sim: renders a drive through a city model and writes it, with the
+// synthesised IMU, DGPS and compass and the ground truth, as an EuRoC/ASL
+// dataset folder.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "common/config/program_options.h"
+#include "sim/dataset/drive_simulation.h"
+
+int main(int argc, char** argv) {
+  lineloc::DriveSimulationConfig config;
+  config.city_model = LINELOC_SHARED_DATA_DIR "/citymodels/delft.json";
+  config.output = "sim_dataset";
+  lineloc::ProgramOptions options("lineloc-sim",
+                                  "simulated drive through a city model -> EuRoC/ASL dataset");
+  options.add("city_model", config.city_model, "CityJSON (.json) or CityJSON Lines (.jsonl) file");
+  options.add("crs", config.crs, "CRS of the model, e.g. EPSG:7415 (empty: the one it names)");
+  options.add("site_origin", config.site_origin,
+              "model coordinates x y z of the site origin (empty: centre of the buildings)");
+  options.add("output", config.output, "dataset folder to create (must be empty or absent)");
+  options.add("seed", config.seed, "seed of every random choice: same seed, same bytes");
+  options.add("duration_s", config.duration_s, "length of the drive (s)");
+  options.add("waypoints", config.waypoints,
+              "route file of 'x y' lines in the site frame (empty: planned in the streets)");
+  options.add("min_clearance_m", config.route.min_clearance_m,
+              "planned routes keep this far from façades (m)");
+  options.add("initial_still_s", config.drive.initial_still_s,
+              "the robot stands still this long at the start (s)");
+  options.add("min_speed_m_s", config.drive.min_speed_m_s, "slowest cruise speed (m/s)");
+  options.add("max_speed_m_s", config.drive.max_speed_m_s, "fastest cruise speed (m/s)");
+  options.add("stop_probability", config.drive.stop_probability,
+              "probability that a leg is a stop");
+  options.add("cars_per_100m", config.clutter.cars_per_100m, "parked cars per 100 m of route");
+  options.add("trees_per_100m", config.clutter.trees_per_100m, "trees per 100 m of route");
+  options.add("poles_per_100m", config.clutter.poles_per_100m, "lamp posts per 100 m of route");
+  options.add("pedestrians_per_100m", config.clutter.pedestrians_per_100m,
+              "pedestrians per 100 m of route");
+  options.add("camera_calibration", config.camera_calibration,
+              "OpenCV YAML calibration (empty: 640x480, OpenCV's sample lens)");
+  options.add("camera_rate_hz", config.camera_rate_hz, "image rate (Hz)");
+  options.add("camera_height_m", config.camera_height_m, "camera height above the ground (m)");
+  options.add("camera_yaw_deg", config.camera_yaw_deg,
+              "0: looking forward, 90: looking left (deg)");
+  options.add("camera_pitch_deg", config.camera_pitch_deg, "camera tilt, positive up (deg)");
+  options.add("camera_time_offset_s", config.camera_time_offset_s,
+              "camera clock minus true time (s)");
+  options.add("imu_time_offset_s", config.imu_time_offset_s, "IMU clock minus true time (s)");
+  options.add("shadows", config.shadows, "cast sun shadows");
+  options.add("noise_sigma", config.noise_sigma, "image sensor noise (grey levels)");
+  options.add("motion_blur_samples", config.motion_blur_samples,
+              "renders averaged over the exposure (1: no motion blur)");
+  options.add("exposure_time_s", config.exposure_time_s, "exposure time for motion blur (s)");
+  options.add("sun_azimuth_deg", config.sun_azimuth_deg, "sun bearing from grid north (deg)");
+  options.add("sun_elevation_deg", config.sun_elevation_deg, "sun elevation (deg)");
+  options.add("ambient", config.ambient, "fraction of light in the shade, 0..1");
+  options.add("imu_noise", config.imu.noise, "false: exact IMU rates and forces, no biases");
+  options.add("imu_rate_hz", config.imu.rate_hz, "IMU rate (Hz)");
+  options.add("gyro_noise_density", config.imu.gyro_noise_radps_per_sqrt_hz,
+              "gyro white noise (rad/s/sqrt(Hz))");
+  options.add("accel_noise_density", config.imu.accel_noise_mps2_per_sqrt_hz,
+              "accelerometer white noise (m/s^2/sqrt(Hz))");
+  options.add("gyro_random_walk", config.imu.gyro_bias_random_walk_radps2_per_sqrt_hz,
+              "gyro bias random walk (rad/s^2/sqrt(Hz))");
+  options.add("accel_random_walk", config.imu.accel_bias_random_walk_mps3_per_sqrt_hz,
+              "accelerometer bias random walk (m/s^3/sqrt(Hz))");
+  options.add("gps_rate_hz", config.gps.rate_hz, "DGPS fix rate (Hz)");
+  options.add("gps_horizontal_sigma_m", config.gps.correlated_horizontal_sigma_m,
+              "time-correlated horizontal DGPS error (m)");
+  options.add("gps_outage_probability", config.gps.outage_probability,
+              "probability per fix that an outage starts");
+  options.add("compass_rate_hz", config.compass.rate_hz, "compass rate (Hz)");
+  options.add("compass_sigma_rad", config.compass.sigma_rad, "compass white noise (rad)");
+  if (const auto exit_code = options.parse(argc, argv)) {
+    return *exit_code;
+  }
+  try {
+    const lineloc::DriveSimulationSummary summary = lineloc::simulateDrive(config);
+    fmt::print(
+        "lineloc-sim: {} images ({:.1f} frames/s rendering on one core), {} IMU samples, {} GPS "
+        "fixes, {} compass readings; route {:.0f} m with {} cars, {} trees, {} poles, {} "
+        "pedestrians -> {}\n",
+        summary.images, summary.images / std::max(summary.render_cpu_s, 1e-9), summary.imu_samples,
+        summary.gps_fixes, summary.compass_readings, summary.route_length_m, summary.clutter.cars,
+        summary.clutter.trees, summary.clutter.poles, summary.clutter.pedestrians, config.output);
+    return 0;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

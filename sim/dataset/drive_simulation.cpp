@@ -1,0 +1,222 @@
+#include "sim/dataset/drive_simulation.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+
+#include "common/geodesy/site_projection.h"
+#include "common/time/clock.h"
+#include "sim/dataset/euroc_writer.h"
+#include "sim/render/city_renderer.h"
+#include "sim/render/sample_camera.h"
+#include "sim/world/city_mesh.h"
+#include "sim/world/occupancy_map.h"
+#include "sim/world/waypoint_file.h"
+
+namespace lineloc {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+double threadCpuSeconds() {
+  return 1e-9 * static_cast<double>(threadCpuClockNs());
+}
+
+int64_t seconds_to_ns(double seconds) {
+  return static_cast<int64_t>(std::llround(seconds * 1e9));
+}
+
+// Camera in the body frame (x forward, y left, z up): optical axis along the
+// body's yawed and pitched forward direction, image x to its right.
+Eigen::Isometry3d bodyToCamera(const DriveSimulationConfig& config) {
+  Eigen::Matrix3d R_forward_camera;
+  R_forward_camera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3d T_body_camera = Eigen::Isometry3d::Identity();
+  T_body_camera.linear() =
+      (Eigen::AngleAxisd(config.camera_yaw_deg * kDegree, Eigen::Vector3d::UnitZ()) *
+       Eigen::AngleAxisd(-config.camera_pitch_deg * kDegree, Eigen::Vector3d::UnitY()))
+          .toRotationMatrix() *
+      R_forward_camera;
+  T_body_camera.translation() =
+      Eigen::Vector3d(0.0, 0.0, config.camera_height_m - config.drive.body_height_m);
+  return T_body_camera;
+}
+
+Eigen::Isometry3d bodyPose(const sim::TruthSample& sample) {
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+  T_world_body.linear() = sample.q_world_body.toRotationMatrix();
+  T_world_body.translation() = sample.p_world_body;
+  return T_world_body;
+}
+
+RenderOptions renderOptions(const DriveSimulationConfig& config, double ground_z_m) {
+  RenderOptions options;
+  const double azimuth = config.sun_azimuth_deg * kDegree;
+  const double elevation = config.sun_elevation_deg * kDegree;
+  options.shading.sun_direction =
+      Eigen::Vector3d(std::sin(azimuth) * std::cos(elevation),
+                      std::cos(azimuth) * std::cos(elevation), std::sin(elevation))
+          .cast<float>()
+          .normalized();
+  options.shading.ambient = static_cast<float>(config.ambient);
+  options.ground_z_m = static_cast<float>(ground_z_m);
+  options.shadows = config.shadows;
+  options.noise_sigma = static_cast<float>(config.noise_sigma);
+  options.motion_blur_samples = config.motion_blur_samples;
+  return options;
+}
+
+std::string resolveCrs(const DriveSimulationConfig& config, const citymodel::CityModel& model) {
+  if (!config.crs.empty()) {
+    return config.crs;
+  }
+  if (!model.epsg) {
+    throw std::runtime_error(
+        fmt::format("{}: the city model names no CRS; give one with --crs (e.g. EPSG:7415)",
+                    config.city_model));
+  }
+  return fmt::format("EPSG:{}", *model.epsg);
+}
+
+std::vector<Eigen::Vector2d> planRoute(const DriveSimulationConfig& config,
+                                       const OccupancyMap& map) {
+  if (!config.waypoints.empty()) {
+    return readWaypointFile(config.waypoints);
+  }
+  StreetRouteOptions options = config.route;
+  // Long enough to drive the whole time at top speed.
+  options.length_m = config.drive.max_speed_m_s * config.duration_s + 20.0;
+  options.seed = static_cast<uint32_t>(config.seed);
+  const StreetRoute route = planStreetRoute(map, options);
+  if (route.status == RouteStatus::kNoStreets) {
+    throw std::runtime_error(fmt::format("{}: no street has {} m clearance from the façades",
+                                         config.city_model, options.min_clearance_m));
+  }
+  if (route.status == RouteStatus::kTooShort) {
+    spdlog::warn("street network allows only {:.0f} m of route; the robot stops at its end",
+                 route.length_m);
+  }
+  return route.waypoints;
+}
+
+void writeWorldFile(const DriveSimulationConfig& config, const std::string& crs,
+                    const CityMesh& city, const std::vector<Eigen::Vector2d>& route) {
+  const std::filesystem::path root(config.output);
+  std::ofstream world(root / "world.yaml");
+  world << fmt::format(
+      "# lineloc-sim: the world this dataset was rendered from\ncity_model: \"{}\"\ncrs: \"{}\"\n"
+      "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\n",
+      config.city_model, crs, city.site_origin.x(), city.site_origin.y(), city.site_origin.z(),
+      city.ground_z_m, config.seed);
+  std::ofstream waypoints(root / "route.txt");
+  waypoints << "# x y (m, site frame): the route the robot drove\n";
+  for (const Eigen::Vector2d& point : route) {
+    waypoints << fmt::format("{:.3f} {:.3f}\n", point.x(), point.y());
+  }
+}
+
+void writeSensors(const DriveSimulationConfig& config, const RouteTrajectory& trajectory,
+                  const SiteProjection& projection, EurocWriter& writer,
+                  DriveSimulationSummary& summary) {
+  const int64_t imu_offset_ns = seconds_to_ns(config.imu_time_offset_s);
+  const std::vector<sim::SimImuSample> imu =
+      sim::synthesiseImu(trajectory, config.imu, config.seed * 4 + 1);
+  for (const sim::SimImuSample& sample : imu) {
+    writer.writeImu(sample.stamp_ns + imu_offset_ns, sample.gyro_radps, sample.accel_mps2);
+    const sim::TruthSample truth = trajectory.at(sample.stamp_ns);
+    writer.writeGroundTruth({sample.stamp_ns, bodyPose(truth), truth.v_world_body,
+                             sample.true_gyro_bias_radps, sample.true_accel_bias_mps2});
+  }
+  summary.imu_samples = static_cast<int>(imu.size());
+  for (const sim::SimGpsFix& fix :
+       sim::synthesiseGps(trajectory, config.gps, config.seed * 4 + 2)) {
+    // GGA and RMC of one epoch share its stamp; the writer wants increasing stamps.
+    int64_t stamp_ns = fix.stamp_ns;
+    for (const std::string& sentence : sim::formatNmeaEpoch(fix, projection)) {
+      writer.writeNmea(stamp_ns++, sentence);
+    }
+    ++summary.gps_fixes;
+  }
+  const double grid_bearing =
+      projection.gridBearingOfTrueNorth_rad(projection.toGeodetic(Eigen::Vector3d::Zero()));
+  for (const sim::SimCompassReading& reading :
+       sim::synthesiseCompass(trajectory, config.compass, grid_bearing, config.seed * 4 + 3)) {
+    writer.writeCompass(reading.stamp_ns, reading.magnetic_heading_rad);
+    ++summary.compass_readings;
+  }
+}
+
+}  // namespace
+
+DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
+  if (!(config.camera_rate_hz > 0.0) || !(config.duration_s > 0.0) || config.output.empty()) {
+    throw std::runtime_error("camera_rate_hz and duration_s must be positive and output given");
+  }
+  DriveSimulationSummary summary;
+  const citymodel::CityModel model = readCityModelFile(config.city_model);
+  const std::string crs = resolveCrs(config, model);
+  if (!config.site_origin.empty() && config.site_origin.size() != 3) {
+    throw std::runtime_error("site_origin must have three numbers x y z");
+  }
+  const Eigen::Vector3d origin =
+      config.site_origin.empty()
+          ? defaultSiteOrigin(model)
+          : Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2]);
+  const CityMesh city = buildCityMesh(model, origin);
+  const OccupancyMap map(city.mesh);
+  const std::vector<Eigen::Vector2d> route = planRoute(config, map);
+  summary.route_length_m = polylineLength(route);
+  SceneMesh scene = city.mesh;
+  StreetClutterOptions clutter = config.clutter;
+  clutter.ground_z_m = static_cast<float>(city.ground_z_m);
+  clutter.seed = static_cast<uint32_t>(config.seed * 4);
+  summary.clutter = addStreetClutter(map, route, clutter, kFirstClutterObjectId, scene);
+  RouteDriveOptions drive = config.drive;
+  drive.duration_s = config.duration_s;
+  drive.seed = config.seed;
+  const RouteTrajectory trajectory(route, city.ground_z_m, drive);
+
+  const CameraCalibration calibration = config.camera_calibration.empty()
+                                            ? opencvSampleCamera()
+                                            : readCameraCalibration(config.camera_calibration);
+  EurocDatasetSpec spec;
+  spec.camera = calibration;
+  spec.T_body_camera = bodyToCamera(config);
+  spec.camera_rate_hz = config.camera_rate_hz;
+  spec.imu = {config.imu.rate_hz, config.imu.gyro_noise_radps_per_sqrt_hz,
+              config.imu.gyro_bias_random_walk_radps2_per_sqrt_hz,
+              config.imu.accel_noise_mps2_per_sqrt_hz,
+              config.imu.accel_bias_random_walk_mps3_per_sqrt_hz};
+  EurocWriter writer(config.output, spec);
+  writeWorldFile(config, crs, city, route);
+  const SiteProjection projection(crs, origin);
+  writeSensors(config, trajectory, projection, writer, summary);
+
+  const CityRenderer renderer(scene, calibration, renderOptions(config, city.ground_z_m));
+  const int64_t period_ns = seconds_to_ns(1.0 / config.camera_rate_hz);
+  const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
+  const int64_t camera_offset_ns = seconds_to_ns(config.camera_time_offset_s);
+  for (int64_t stamp_ns = trajectory.startStamp_ns(); stamp_ns <= trajectory.endStamp_ns();
+       stamp_ns += period_ns) {
+    const Eigen::Isometry3d T_world_camera = bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera;
+    const double start_s = threadCpuSeconds();
+    const cv::Mat image = renderer.renderImage(
+        bodyPose(trajectory.at(stamp_ns - half_exposure_ns)) * spec.T_body_camera,
+        bodyPose(trajectory.at(stamp_ns + half_exposure_ns)) * spec.T_body_camera,
+        config.seed * 1'000'003 + static_cast<uint64_t>(summary.images));
+    summary.render_cpu_s += threadCpuSeconds() - start_s;
+    writer.writeImage(stamp_ns + camera_offset_ns, image);
+    writer.writeCameraGroundTruth({stamp_ns, T_world_camera});
+    if (++summary.images % 200 == 0) {
+      spdlog::info("{} images rendered", summary.images);
+    }
+  }
+  return summary;
+}
+
+}  // namespace lineloc

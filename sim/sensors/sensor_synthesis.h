@@ -1,0 +1,107 @@
+// Synthetic IMU, DGPS and compass measurements along a ground-truth
+// trajectory, deterministic per seed, and the files a real robot's drivers
+// would write: EuRoC/ASL imu0/data.csv, NMEA 0183 (GGA + RMC), a compass CSV.
+//
+// IMU model (Kalibr/EuRoC convention): measured = true + bias + white noise,
+// the discrete white noise having sigma = density / sqrt(dt) and the bias a
+// random walk b_k+1 = b_k + rw sqrt(dt) n, started from a turn-on bias drawn
+// per axis. Defaults: the Analog Devices ADIS16448 as configured for the EuRoC
+// MAV dataset (imu0/sensor.yaml: gyro 1.6968e-4 rad/s/sqrt(Hz), accel 2.0e-3
+// m/s^2/sqrt(Hz), bias walks 1.9393e-5 rad/s^2/sqrt(Hz) and 3.0e-3
+// m/s^3/sqrt(Hz)), 200 Hz; turn-on biases of 0.2 deg/s and 5 mg.
+//
+// DGPS: per-axis first-order Gauss-Markov errors (sigma 4 m horizontal,
+// correlation 60 s: fixes 5-10 m off that wander slowly), white noise on top,
+// 1 Hz, outages that start with a given probability per fix.
+// Compass: 10 Hz magnetic heading with white noise, plus disturbances (steel,
+// cars, power lines) that add a fixed 10-40 deg offset for a few seconds.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/geodesy/site_projection.h"
+#include "sim/sensors/ground_truth_trajectory.h"
+
+namespace lineloc::sim {
+
+struct ImuModel {
+  double rate_hz = 200.0;
+  double gyro_noise_radps_per_sqrt_hz = 1.6968e-4;
+  double accel_noise_mps2_per_sqrt_hz = 2.0e-3;
+  double gyro_bias_random_walk_radps2_per_sqrt_hz = 1.9393e-5;
+  double accel_bias_random_walk_mps3_per_sqrt_hz = 3.0e-3;
+  double gyro_turn_on_bias_sigma_radps = 0.0035;
+  double accel_turn_on_bias_sigma_mps2 = 0.05;
+  bool noise = true;  // false: exact rates and forces, zero biases
+};
+
+struct SimImuSample {
+  int64_t stamp_ns = 0;
+  Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_mps2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d true_gyro_bias_radps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d true_accel_bias_mps2 = Eigen::Vector3d::Zero();
+};
+
+std::vector<SimImuSample> synthesiseImu(const TruthTrajectory& trajectory, const ImuModel& model,
+                                        uint64_t seed);
+
+struct GpsModel {
+  double rate_hz = 1.0;
+  double correlated_horizontal_sigma_m = 4.0;
+  double correlated_vertical_sigma_m = 6.0;
+  double correlation_time_s = 60.0;
+  double white_sigma_m = 0.3;
+  double outage_probability = 0.01;  // per fix, that an outage starts
+  double min_outage_s = 5.0;
+  double max_outage_s = 30.0;
+  Eigen::Vector3d p_body_antenna = Eigen::Vector3d::Zero();
+};
+
+struct SimGpsFix {
+  int64_t stamp_ns = 0;
+  bool valid = false;  // false during an outage
+  Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
+  Eigen::Vector3d true_p_world_antenna = Eigen::Vector3d::Zero();
+};
+
+std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const GpsModel& model,
+                                     uint64_t seed);
+
+// GGA then RMC of one fix (no position and quality 0 / status V when invalid).
+std::vector<std::string> formatNmeaEpoch(const SimGpsFix& fix, const SiteProjection& projection);
+
+struct CompassModel {
+  double rate_hz = 10.0;
+  double sigma_rad = 0.035;
+  double magnetic_declination_rad = 0.0;
+  double disturbance_rate_hz = 1.0 / 60.0;
+  double min_disturbance_rad = 0.17;
+  double max_disturbance_rad = 0.7;
+  double min_disturbance_s = 2.0;
+  double max_disturbance_s = 6.0;
+};
+
+struct SimCompassReading {
+  int64_t stamp_ns = 0;
+  double magnetic_heading_rad = 0.0;  // clockwise from magnetic north, [0, 2 pi)
+  bool disturbed = false;
+};
+
+// `grid_bearing_of_true_north_rad` from SiteProjection: magnetic heading =
+// pi/2 - yaw - grid bearing of true north - declination.
+std::vector<SimCompassReading> synthesiseCompass(const TruthTrajectory& trajectory,
+                                                 const CompassModel& model,
+                                                 double grid_bearing_of_true_north_rad,
+                                                 uint64_t seed);
+
+// Writers; each throws std::runtime_error naming the path it cannot write.
+void writeEurocImuCsv(const std::string& path, const std::vector<SimImuSample>& samples);
+void writeCompassCsv(const std::string& path, const std::vector<SimCompassReading>& readings);
+void writeNmeaFile(const std::string& path, const std::vector<SimGpsFix>& fixes,
+                   const SiteProjection& projection);
+
+}  // namespace lineloc::sim

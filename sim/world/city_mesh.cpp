@@ -1,0 +1,101 @@
+#include "sim/world/city_mesh.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/geometry/polygon_triangulation.h"
+#include "db/citymodel/cityjson_reader.h"
+
+namespace lineloc {
+namespace {
+
+SurfaceKind sceneKind(citymodel::SurfaceKind kind) {
+  return kind == citymodel::SurfaceKind::kRoof ? SurfaceKind::kRoof : SurfaceKind::kWall;
+}
+
+}  // namespace
+
+Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model) {
+  Eigen::AlignedBox2d bounds;
+  for (const auto& building : model.buildings) {
+    for (const auto& face : building.faces) {
+      for (const auto& vertex : face.rings.front()) {
+        bounds.extend(vertex.head<2>());
+      }
+    }
+  }
+  if (bounds.isEmpty()) {
+    throw std::invalid_argument("defaultSiteOrigin: the city model has no building vertices");
+  }
+  const Eigen::Vector2d centre = bounds.center();
+  return {std::round(centre.x()), std::round(centre.y()), 0.0};
+}
+
+CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d& site_origin) {
+  if (model.buildings.empty()) {
+    throw std::invalid_argument("buildCityMesh: the city model has no buildings");
+  }
+  CityMesh city;
+  city.site_origin = site_origin;
+  std::vector<double> base_heights;
+  for (const citymodel::Building& building : model.buildings) {
+    double base_z = std::numeric_limits<double>::infinity();
+    double top_z = -base_z;
+    for (const citymodel::Face& face : building.faces) {
+      for (const Eigen::Vector3d& vertex : face.rings.front()) {
+        base_z = std::min(base_z, vertex.z() - site_origin.z());
+        top_z = std::max(top_z, vertex.z() - site_origin.z());
+      }
+    }
+    if (!std::isfinite(base_z)) {
+      continue;
+    }
+    ++city.building_count;
+    base_heights.push_back(base_z);
+    const SurfaceTag wall{SurfaceKind::kWall, static_cast<uint32_t>(city.building_count),
+                          static_cast<float>(base_z), static_cast<float>(top_z)};
+    for (const citymodel::Face& face : building.faces) {
+      if (face.kind == citymodel::SurfaceKind::kGround) {
+        continue;
+      }
+      const std::vector<Eigen::Vector3d>& ring = face.rings.front();
+      const auto triangles = triangulatePolygon(ring);
+      city.skipped_faces += triangles.empty();
+      SurfaceTag tag = wall;
+      tag.kind = sceneKind(face.kind);
+      for (const auto& t : triangles) {
+        city.mesh.addTriangle(ring[t[0]] - site_origin, ring[t[1]] - site_origin,
+                              ring[t[2]] - site_origin, tag);
+      }
+    }
+  }
+  if (base_heights.empty()) {
+    throw std::invalid_argument("buildCityMesh: no building has any vertex");
+  }
+  std::nth_element(base_heights.begin(), base_heights.begin() + base_heights.size() / 2,
+                   base_heights.end());
+  city.ground_z_m = base_heights[base_heights.size() / 2];
+  return city;
+}
+
+citymodel::CityModel readCityModelFile(const std::string& path) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) {
+    throw std::runtime_error(fmt::format("cannot open city model '{}'", path));
+  }
+  std::ostringstream text;
+  text << stream.rdbuf();
+  const citymodel::ReadOptions options{.lod = "",
+                                       .invalid_objects = citymodel::InvalidObjectPolicy::kSkip};
+  const bool lines = path.size() >= 6 && path.compare(path.size() - 6, 6, ".jsonl") == 0;
+  return lines ? citymodel::readCityJsonLines(text.str(), path, options)
+               : citymodel::readCityJson(text.str(), path, options);
+}
+
+}  // namespace lineloc

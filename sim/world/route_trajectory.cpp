@@ -1,0 +1,252 @@
+#include "sim/world/route_trajectory.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace lineloc {
+namespace {
+
+constexpr double kTableStep = 0.02;  // spline parameter step of the arclength table
+constexpr int kNewtonIterations = 8;
+// 5-point Gauss-Legendre nodes and weights on [-1, 1].
+constexpr double kGaussNodes[5] = {0.0, -0.5384693101056831, 0.5384693101056831,
+                                   -0.9061798459386640, 0.9061798459386640};
+constexpr double kGaussWeights[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                     0.2369268850561891, 0.2369268850561891};
+
+double smoothstep(double u) {
+  return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+}
+double smoothstepRate(double u) {
+  return 30.0 * u * u * (1.0 - u) * (1.0 - u);
+}
+double smoothstepIntegral(double u) {
+  return u * u * u * u * (2.5 + u * (-3.0 + u));
+}
+
+// Control points every `spacing` metres along the polyline, the ends doubled:
+// the spline starts and ends a sixth of a spacing inside them, with a
+// non-zero tangent (tripled ends would reach them with a zero tangent).
+std::vector<Eigen::Vector2d> resample(const std::vector<Eigen::Vector2d>& waypoints,
+                                      double spacing) {
+  std::vector<Eigen::Vector2d> points{waypoints.front(), waypoints.front()};
+  double carried = 0.0;
+  for (size_t i = 1; i < waypoints.size(); ++i) {
+    const Eigen::Vector2d from = waypoints[i - 1];
+    const double length = (waypoints[i] - from).norm();
+    const Eigen::Vector2d direction = (waypoints[i] - from) / std::max(length, 1e-12);
+    double at = spacing - carried;
+    for (; at <= length; at += spacing) {
+      points.push_back(from + at * direction);
+    }
+    carried = length - (at - spacing);
+  }
+  points.push_back(waypoints.back());
+  points.push_back(waypoints.back());
+  return points;
+}
+
+}  // namespace
+
+RouteTrajectory::RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, double ground_z_m,
+                                 const RouteDriveOptions& options)
+    : options_(options), ground_z_m_(ground_z_m) {
+  if (waypoints.size() < 2 || !(options.control_spacing_m > 0.0) ||
+      !(options.min_speed_m_s > 0.0) || options.max_speed_m_s < options.min_speed_m_s ||
+      !(options.ramp_s > 0.0) || !(options.duration_s > 0.0)) {
+    throw std::invalid_argument(fmt::format(
+        "RouteTrajectory: need two waypoints ({} given), positive control spacing, ramp and "
+        "duration, and 0 < min_speed <= max_speed",
+        waypoints.size()));
+  }
+  control_ = resample(waypoints, options.control_spacing_m);
+  if (control_.size() < 6) {
+    throw std::invalid_argument(
+        fmt::format("RouteTrajectory: route of {:.2f} m is shorter than the control spacing",
+                    (waypoints.back() - waypoints.front()).norm()));
+  }
+  // Arclength table by Gauss-Legendre quadrature of |p'(U)| per step.
+  const double U_end = static_cast<double>(control_.size() - 3);
+  const int steps = static_cast<int>(std::ceil(U_end / kTableStep));
+  arclength_.assign(1, 0.0);
+  for (int i = 0; i < steps; ++i) {
+    const double a = i * kTableStep;
+    const double b = std::min(U_end, a + kTableStep);
+    double length = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      length +=
+          kGaussWeights[k] * spline(0.5 * (a + b) + 0.5 * (b - a) * kGaussNodes[k]).first.norm();
+    }
+    arclength_.push_back(arclength_.back() + 0.5 * (b - a) * length);
+  }
+  planSpeed();
+}
+
+RouteTrajectory::SplinePoint RouteTrajectory::spline(double U) const {
+  const double U_end = static_cast<double>(control_.size() - 3);
+  U = std::clamp(U, 0.0, U_end);
+  const int j = std::min(static_cast<int>(U), static_cast<int>(control_.size()) - 4);
+  const double u = U - j;
+  const Eigen::Vector2d& c0 = control_[j];
+  const Eigen::Vector2d& c1 = control_[j + 1];
+  const Eigen::Vector2d& c2 = control_[j + 2];
+  const Eigen::Vector2d& c3 = control_[j + 3];
+  // Uniform cubic B-spline basis and its derivatives.
+  const double u2 = u * u;
+  const double u3 = u2 * u;
+  SplinePoint point;
+  point.position = ((1 - u) * (1 - u) * (1 - u) * c0 + (3 * u3 - 6 * u2 + 4) * c1 +
+                    (-3 * u3 + 3 * u2 + 3 * u + 1) * c2 + u3 * c3) /
+                   6.0;
+  point.first =
+      (-(1 - u) * (1 - u) * c0 + (3 * u2 - 4 * u) * c1 + (-3 * u2 + 2 * u + 1) * c2 + u2 * c3) /
+      2.0;
+  point.second = (1 - u) * c0 + (3 * u - 2) * c1 + (1 - 3 * u) * c2 + u * c3;
+  return point;
+}
+
+double RouteTrajectory::parameterAt(double arclength_m) const {
+  const double s = std::clamp(arclength_m, 0.0, arclength_.back());
+  const auto above = std::upper_bound(arclength_.begin(), arclength_.end(), s);
+  const size_t i = std::clamp<size_t>(static_cast<size_t>(above - arclength_.begin()), 1,
+                                      arclength_.size() - 1) -
+                   1;
+  const double U_end = static_cast<double>(control_.size() - 3);
+  // Newton on L(U) = s from the table cell's start; L'(U) = |p'(U)|.
+  double U = i * kTableStep;
+  double length = arclength_[i];
+  for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+    const double a = i * kTableStep;
+    double segment = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      segment +=
+          kGaussWeights[k] * spline(0.5 * (a + U) + 0.5 * (U - a) * kGaussNodes[k]).first.norm();
+    }
+    length = arclength_[i] + 0.5 * (U - a) * segment;
+    if (std::abs(length - s) < 1e-12) {
+      break;
+    }
+    const double speed = spline(U).first.norm();
+    if (!(speed > 1e-12)) {
+      break;
+    }
+    U = std::clamp(U - (length - s) / speed, 0.0, U_end);
+  }
+  return U;
+}
+
+void RouteTrajectory::planSpeed() {
+  // The sharpest bend caps the cruise speed: k_max v^2 <= a_lat.
+  double max_curvature = 1e-9;
+  for (double U = 0.0; U < static_cast<double>(control_.size() - 3); U += kTableStep) {
+    const SplinePoint p = spline(U);
+    const double speed = p.first.norm();
+    if (speed > 1e-9) {
+      const double k = std::abs(p.first.x() * p.second.y() - p.first.y() * p.second.x()) /
+                       (speed * speed * speed);
+      max_curvature = std::max(max_curvature, k);
+    }
+  }
+  const double top_speed =
+      std::clamp(std::sqrt(options_.max_lateral_acceleration_m_s2 / max_curvature),
+                 options_.min_speed_m_s, options_.max_speed_m_s);
+  std::mt19937_64 random(options_.seed);
+  const auto uniform = [&](double low, double high) {
+    return std::uniform_real_distribution<double>(low, high)(random);
+  };
+  const double ramp = options_.ramp_s;
+  double t = options_.initial_still_s;
+  double v = 0.0;
+  double covered = 0.0;  // distance at time t
+  const double length = arclength_.back();
+  while (t < options_.duration_s) {
+    const bool stop = v > 0.0 && uniform(0.0, 1.0) < options_.stop_probability;
+    const double target = stop ? 0.0 : uniform(options_.min_speed_m_s, top_speed);
+    const double cruise = stop ? uniform(options_.min_stop_s, options_.max_stop_s)
+                               : uniform(options_.min_leg_s, options_.max_leg_s);
+    // Distance of this ramp and cruise, and of a final stop from `target`.
+    const double leg = 0.5 * (v + target) * ramp + target * cruise;
+    if (covered + leg + 0.5 * target * ramp > length) {
+      // Not enough road left: cruise at v as far as possible, then stop.
+      const double cruise_to_stop =
+          std::max(0.0, (length - covered - 0.5 * v * ramp) / std::max(v, 1e-9));
+      if (v > 0.0) {
+        ramps_.push_back({t + cruise_to_stop, ramp, -v});
+      }
+      break;
+    }
+    ramps_.push_back({t, ramp, target - v});
+    t += ramp + cruise;
+    covered += leg;
+    v = target;
+  }
+}
+
+double RouteTrajectory::speed(double t) const {
+  double v = 0.0;
+  for (const Ramp& r : ramps_) {
+    v += r.change_m_s * smoothstep(std::clamp((t - r.start_s) / r.duration_s, 0.0, 1.0));
+  }
+  return v;
+}
+
+double RouteTrajectory::acceleration(double t) const {
+  double a = 0.0;
+  for (const Ramp& r : ramps_) {
+    const double u = (t - r.start_s) / r.duration_s;
+    if (u > 0.0 && u < 1.0) {
+      a += r.change_m_s * smoothstepRate(u) / r.duration_s;
+    }
+  }
+  return a;
+}
+
+// s(t) = sum over ramps of change * (d S(u) for u in the ramp, + (t - end) after it).
+double RouteTrajectory::distance(double t) const {
+  double s = 0.0;
+  for (const Ramp& r : ramps_) {
+    const double u = (t - r.start_s) / r.duration_s;
+    if (u <= 0.0) {
+      continue;
+    }
+    s += r.change_m_s * (u < 1.0 ? r.duration_s * smoothstepIntegral(u)
+                                 : r.duration_s * 0.5 + (t - r.start_s - r.duration_s));
+  }
+  return s;
+}
+
+int64_t RouteTrajectory::endStamp_ns() const {
+  return options_.start_stamp_ns + static_cast<int64_t>(std::llround(options_.duration_s * 1e9));
+}
+
+sim::TruthSample RouteTrajectory::at(int64_t stamp_ns) const {
+  const int64_t clamped = std::clamp(stamp_ns, startStamp_ns(), endStamp_ns());
+  const double t = static_cast<double>(clamped - options_.start_stamp_ns) * 1e-9;
+  const double v = speed(t);
+  const double dv = acceleration(t);
+  const SplinePoint p = spline(parameterAt(distance(t)));
+  const double dp = p.first.norm();
+  const Eigen::Vector2d tangent = p.first / dp;
+  const Eigen::Vector2d normal(-tangent.y(), tangent.x());
+  const double curvature =
+      (p.first.x() * p.second.y() - p.first.y() * p.second.x()) / (dp * dp * dp);
+  const double yaw = std::atan2(tangent.y(), tangent.x());
+  sim::TruthSample sample;
+  sample.stamp_ns = clamped;
+  sample.p_world_body =
+      Eigen::Vector3d(p.position.x(), p.position.y(), ground_z_m_ + options_.body_height_m);
+  sample.v_world_body << v * tangent, 0.0;
+  sample.a_world_body << dv * tangent + curvature * v * v * normal, 0.0;
+  sample.q_world_body = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  sample.gyro_body_radps = Eigen::Vector3d(0.0, 0.0, curvature * v);
+  sample.specific_force_body_mps2 =
+      sample.q_world_body.conjugate() *
+      (sample.a_world_body + Eigen::Vector3d(0.0, 0.0, options_.gravity_m_s2));
+  return sample;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,85 @@
+// A ground robot driving a street route: the waypoint polyline smoothed into
+// a uniform cubic B-spline (curvature-continuous, so yaw rate and lateral
+// acceleration have no steps) through control points every few metres, driven
+// with a speed profile of quintic smoothstep ramps s(u) = 6u^5 - 15u^4 + 10u^3
+// between random cruise speeds, with stops. Distance along the path is the
+// closed-form integral of the speed (S(u) = u^6 - 3u^5 + 5u^4/2); arclength
+// is inverted by Newton's method on the spline parameter. The robot stays
+// level: with unit tangent T, left normal N and signed curvature k,
+//   v_world = v T,  a_world = v' T + k v^2 N,  yaw rate = k v,
+// and the specific force is R^T (a + g z).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "sim/sensors/ground_truth_trajectory.h"
+
+namespace lineloc {
+
+struct RouteDriveOptions {
+  int64_t start_stamp_ns = 1'700'000'000'000'000'000;
+  double duration_s = 60.0;
+  // Standing still at the start, so the IMU can be aligned (s).
+  double initial_still_s = 5.0;
+  double min_speed_m_s = 0.5;
+  double max_speed_m_s = 2.0;
+  // Cruise speeds are capped so that k_max v^2 stays below this (m/s^2).
+  double max_lateral_acceleration_m_s2 = 1.0;
+  double ramp_s = 2.0;
+  double min_leg_s = 4.0;
+  double max_leg_s = 12.0;
+  double stop_probability = 0.2;
+  double min_stop_s = 2.0;
+  double max_stop_s = 5.0;
+  // Spacing of the spline's control points along the route (m).
+  double control_spacing_m = 5.0;
+  // Height of the body frame above the ground plane z = 0 of the route (m).
+  double body_height_m = 0.3;
+  double gravity_m_s2 = 9.80665;
+  uint64_t seed = 1;
+};
+
+class RouteTrajectory : public sim::TruthTrajectory {
+ public:
+  // `waypoints` in the world frame, `ground_z_m` their ground height. Throws
+  // std::invalid_argument when the route is shorter than one control spacing
+  // or the options are inconsistent.
+  RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, double ground_z_m,
+                  const RouteDriveOptions& options);
+
+  sim::TruthSample at(int64_t stamp_ns) const override;
+  int64_t startStamp_ns() const override { return options_.start_stamp_ns; }
+  int64_t endStamp_ns() const override;
+  // Arclength of the smoothed path (m).
+  double pathLength() const { return arclength_.back(); }
+
+ private:
+  struct Ramp {
+    double start_s;
+    double duration_s;
+    double change_m_s;
+  };
+  struct SplinePoint {
+    Eigen::Vector2d position;
+    Eigen::Vector2d first;   // d/dU
+    Eigen::Vector2d second;  // d2/dU2
+  };
+
+  void planSpeed();
+  double speed(double t) const;
+  double acceleration(double t) const;
+  double distance(double t) const;
+  SplinePoint spline(double U) const;
+  double parameterAt(double arclength_m) const;
+
+  RouteDriveOptions options_;
+  double ground_z_m_;
+  std::vector<Eigen::Vector2d> control_;
+  // Arclength at U = 0, h, 2h, ... (h = kTableStep).
+  std::vector<double> arclength_;
+  std::vector<Ramp> ramps_;
+};
+
+}  // namespace lineloc

@@ -1,0 +1,53 @@
+// A drive through the streets: a polyline through the free space between
+// building footprints, from a random start along the centre of the streets to
+// random goals until it is long enough. Each leg is an A* search on the
+// occupancy grid with step cost length (1 + w / clearance), which keeps the
+// route on the street centre line; the cells are then simplified to waypoints
+// (Douglas-Peucker, cv::approxPolyDP).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "sim/world/occupancy_map.h"
+
+namespace lineloc {
+
+struct StreetRouteOptions {
+  // Total length to drive (m).
+  double length_m = 120.0;
+  // The robot keeps at least this far from façades (m).
+  double min_clearance_m = 3.0;
+  // Goals lie at most this far from a building, so the camera sees façades,
+  // and inside the convex hull of the footprints (m).
+  double max_clearance_m = 20.0;
+  // Weight w of the clearance term in the step cost (m).
+  double centre_weight_m = 6.0;
+  // Goals are at least this far apart in a straight line (m).
+  double min_leg_m = 30.0;
+  // Waypoints deviate at most this far from the searched path (m).
+  double simplify_tolerance_m = 0.75;
+  // At most this many legs (goal to goal searches).
+  int max_legs = 64;
+  uint32_t seed = 1;
+};
+
+enum class RouteStatus { kOk, kNoStreets, kTooShort };
+
+struct StreetRoute {
+  RouteStatus status = RouteStatus::kNoStreets;
+  // xy waypoints in the world frame; the first is the start.
+  std::vector<Eigen::Vector2d> waypoints;
+  double length_m = 0.0;
+};
+
+// kNoStreets: no cell has the clearance asked for. kTooShort: the street
+// network reachable from the start is too small for length_m (the waypoints
+// hold the longest route found).
+StreetRoute planStreetRoute(const OccupancyMap& map, const StreetRouteOptions& options);
+
+// Length of a polyline (m).
+double polylineLength(const std::vector<Eigen::Vector2d>& points);
+
+}  // namespace lineloc

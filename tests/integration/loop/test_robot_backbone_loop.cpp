@@ -1,0 +1,273 @@
+// The robot <-> backbone loop with real processes: lineloc-backbone and
+// lineloc-robot as separate programs, a real PostGIS database, real DDS
+// participants on loopback. The test process is a third DDS participant that
+// listens to every LineSet and PoseFix and injects malformed LineSets.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <thread>
+
+#include "common/messages/messages.h"
+#include "common/messages/topics.h"
+#include "common/time/clock.h"
+#include "common/trajectory/tum_trajectory.h"
+#include "tests/support/child_process.h"
+#include "tests/support/test_database.h"
+#include "tests/support/test_dds.h"
+
+namespace fs = std::filesystem;
+
+namespace lineloc {
+namespace {
+
+constexpr int kFrames = 12;
+constexpr int kBackboneMaxSegments = 1000;
+constexpr int kTimeoutMs = 30'000;
+
+// Synthetic façade frames: a building outline with a grid of windows, shifted
+// a little from frame to frame, so the extractor finds segments in each.
+void writeFacadeFrames(const fs::path& folder, int count) {
+  fs::create_directories(folder);
+  for (int i = 0; i < count; ++i) {
+    cv::Mat image(480, 640, CV_8UC1, cv::Scalar(200));
+    const int shift = 3 * i;
+    cv::rectangle(image, {100 + shift, 80}, {540 + shift, 470}, cv::Scalar(90), cv::FILLED);
+    for (int row = 0; row < 3; ++row) {
+      for (int col = 0; col < 4; ++col) {
+        const cv::Point corner(130 + shift + col * 100, 110 + row * 110);
+        cv::rectangle(image, corner, corner + cv::Point(60, 70), cv::Scalar(30), cv::FILLED);
+      }
+    }
+    cv::imwrite((folder / cv::format("frame%03d.png", i)).string(), image);
+  }
+}
+
+void writeCalibration(const fs::path& path) {
+  cv::FileStorage storage(path.string(), cv::FileStorage::WRITE);
+  storage << "image_width" << 640 << "image_height" << 480;
+  storage << "camera_matrix" << (cv::Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
+  storage << "distortion_coefficients" << cv::Mat::zeros(5, 1, CV_64F);
+}
+
+// The test's own DDS participant: sees every LineSet and PoseFix on the domain.
+class Observer {
+ public:
+  Observer()
+      : domain_(test::testDomainId(), test::testDdsConfig()),
+        participant_(domain_),
+        line_sets_(participant_, dds::Qos(256)),
+        fixes_(participant_, dds::Qos(256)),
+        writer_(participant_, dds::Qos(32)) {}
+
+  void poll() {
+    fixes_.waitForData(5'000'000);
+    fixes_.takeEach([this](const lineloc_msg_PoseFix& m) { fixes.push_back(fromMessage(m)); });
+    line_sets_.takeEach([this](const lineloc_msg_LineSet& m) {
+      sent_stamps[m.robot_id][m.sequence_number] = m.stamp_ns;
+    });
+  }
+
+  template <typename Predicate>
+  bool pollUntil(Predicate&& done, int timeout_ms = kTimeoutMs) {
+    const int64_t deadline = steadyClockNs() + int64_t{timeout_ms} * 1'000'000;
+    while (!done()) {
+      if (steadyClockNs() > deadline) {
+        return false;
+      }
+      poll();
+    }
+    return true;
+  }
+
+  dds::Writer<lineloc_msg_LineSet>& writer() { return writer_; }
+  // The observer's own LineSet reader is one of the writer's matched readers.
+  bool backboneListening() const { return writer_.matchedReaders() >= 2; }
+  size_t fixesFor(const std::string& robot_id) const {
+    return std::count_if(fixes.begin(), fixes.end(),
+                         [&](const PoseFixData& f) { return f.robot_id == robot_id; });
+  }
+
+  std::vector<PoseFixData> fixes;
+  std::map<std::string, std::map<uint32_t, int64_t>> sent_stamps;
+
+ private:
+  dds::Domain domain_;
+  dds::Participant participant_;
+  dds::Reader<lineloc_msg_LineSet> line_sets_;
+  dds::Reader<lineloc_msg_PoseFix> fixes_;
+  dds::Writer<lineloc_msg_LineSet> writer_;
+};
+
+LineSetData probeLineSet(const std::string& robot_id, uint32_t sequence, int segments) {
+  LineSetData data;
+  data.robot_id = robot_id;
+  data.sequence_number = sequence;
+  data.stamp_ns = wallClockNs();
+  data.camera = {500, 500, 320, 240, 0, 640, 480};
+  data.segments.resize(segments);
+  for (ImageSegment& segment : data.segments) {
+    segment.start = {10, 10};
+    segment.end = {200, 10};
+  }
+  data.predicted_T_world_camera.pose = makePose({5, -20, 1.5}, Eigen::Quaterniond::Identity());
+  return data;
+}
+
+class RobotBackboneLoop : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    work_ = fs::temp_directory_path() / ("loop_" + std::to_string(getpid()));
+    fs::remove_all(work_);
+    writeFacadeFrames(work_ / "images", kFrames);
+    writeCalibration(work_ / "camera.yml");
+    test::insertCubeBuilding(database_.conninfo(), 85000, 447000, 0, 0);
+  }
+  void TearDown() override { fs::remove_all(work_); }
+
+  std::unique_ptr<test::ChildProcess> startBackbone() {
+    return std::make_unique<test::ChildProcess>(
+        std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
+        std::vector<std::string>{"--domain-id", std::to_string(test::testDomainId()),
+                                 "--dds-config", test::testDdsConfig(), "--db",
+                                 database_.conninfo(), "--site", "test", "--max-segments",
+                                 std::to_string(kBackboneMaxSegments), "--stats-file",
+                                 (work_ / "stats.json").string(), "--stats-period-s", "0.1"},
+        (work_ / "backbone.log").string());
+  }
+
+  std::unique_ptr<test::ChildProcess> startRobot(const std::string& robot_id, double rate_hz) {
+    return std::make_unique<test::ChildProcess>(
+        std::string(LINELOC_BIN_DIR) + "/lineloc-robot",
+        std::vector<std::string>{"--domain-id",
+                                 std::to_string(test::testDomainId()),
+                                 "--dds-config",
+                                 test::testDdsConfig(),
+                                 "--robot-id",
+                                 robot_id,
+                                 "--images",
+                                 (work_ / "images").string(),
+                                 "--calibration",
+                                 (work_ / "camera.yml").string(),
+                                 "--predicted-pose",
+                                 "5",
+                                 "-20",
+                                 "1.5",
+                                 "0",
+                                 "0",
+                                 "0",
+                                 "1",
+                                 "--rate-hz",
+                                 std::to_string(rate_hz),
+                                 "--trajectory-out",
+                                 (work_ / (robot_id + ".tum")).string(),
+                                 "--fix-timeout-s",
+                                 "3"},
+        (work_ / (robot_id + ".log")).string());
+  }
+
+  nlohmann::json stats() const {
+    std::ifstream stream(work_ / "stats.json");
+    return stream ? nlohmann::json::parse(stream, nullptr, false) : nlohmann::json();
+  }
+
+  std::string log(const std::string& name) const {
+    std::ifstream stream(work_ / name);
+    return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+  }
+
+  test::TestDatabase database_{"loop"};
+  fs::path work_;
+};
+
+TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
+  Observer observer;
+  auto backbone = startBackbone();
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+
+  // Malformed LineSets first: each is dropped and counted, none answered.
+  LineSetData nan_segment = probeLineSet("probe", 1, 5);
+  nan_segment.segments[3].start.x() = std::numeric_limits<float>::quiet_NaN();
+  LineSetData oversized = probeLineSet("probe", 2, kBackboneMaxSegments + 500);
+  LineSetData bad_robot_id = probeLineSet("bad id!", 3, 5);
+  for (LineSetData* bad : {&nan_segment, &oversized, &bad_robot_id}) {
+    observer.writer().write(LineSetMessage(*bad).message());
+  }
+  // The next good one is answered.
+  observer.writer().write(LineSetMessage(probeLineSet("probe", 4, 5)).message());
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") > 0; }))
+      << log("backbone.log");
+  ASSERT_EQ(observer.fixes.size(), 1u);
+  EXPECT_EQ(observer.fixes[0].sequence_number, 4u);
+  EXPECT_EQ(observer.fixes[0].model_lines, 12u);
+  // The probe's segments match no building: the fix says so rather than guess.
+  EXPECT_EQ(observer.fixes[0].status, lineloc_msg_FIX_TOO_FEW_MATCHES);
+  ASSERT_TRUE(observer.pollUntil([&] { return stats().value("answered", 0) == 1; }));
+  EXPECT_EQ(stats()["dropped_invalid"], 3);
+  EXPECT_EQ(stats()["received"], 4);
+
+  // Two robots at once.
+  auto robot_a = startRobot("robot-a", 20.0);
+  auto robot_b = startRobot("robot-b", 25.0);
+  ASSERT_EQ(robot_a->wait(kTimeoutMs), 0) << log("robot-a.log");
+  ASSERT_EQ(robot_b->wait(kTimeoutMs), 0) << log("robot-b.log");
+  observer.pollUntil([&] {
+    return observer.fixesFor("robot-a") == kFrames && observer.fixesFor("robot-b") == kFrames;
+  });
+
+  for (const std::string robot_id : {"robot-a", "robot-b"}) {
+    const auto& stamps = observer.sent_stamps[robot_id];
+    EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames)) << robot_id;
+    std::set<uint32_t> answered;
+    for (const PoseFixData& fix : observer.fixes) {
+      if (fix.robot_id != robot_id)
+        continue;
+      EXPECT_TRUE(answered.insert(fix.sequence_number).second)
+          << robot_id << " frame " << fix.sequence_number << " answered twice";
+      ASSERT_TRUE(stamps.count(fix.sequence_number)) << "fix for a frame never sent";
+      EXPECT_EQ(fix.stamp_ns, stamps.at(fix.sequence_number));
+      EXPECT_EQ(fix.model_lines, 12u);
+    }
+    EXPECT_EQ(answered.size(), static_cast<size_t>(kFrames)) << robot_id;
+    // The robot wrote one pose per answered frame.
+    EXPECT_EQ(readTumFile((work_ / (robot_id + ".tum")).string()).size(),
+              static_cast<size_t>(kFrames));
+    EXPECT_NE(log(robot_id + ".log").find(fmt::format("{} fixes received", kFrames)),
+              std::string::npos)
+        << log(robot_id + ".log");
+  }
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+}
+
+TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
+  Observer observer;
+  auto backbone = startBackbone();
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }));
+  auto robot = startRobot("robot-c", 8.0);  // 12 frames take 1.5 s
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("robot-c") >= 3; }));
+  backbone->signal(SIGKILL);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 128 + SIGKILL);
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-c.log");
+  const size_t written = readTumFile((work_ / "robot-c.tum").string()).size();
+  // Fixes in flight when the backbone died may or may not have reached the robot.
+  EXPECT_GE(written, 1u);
+  EXPECT_LT(written, static_cast<size_t>(kFrames));
+  observer.poll();
+  EXPECT_EQ(observer.sent_stamps["robot-c"].size(), static_cast<size_t>(kFrames))
+      << "the robot must keep sending after the backbone is gone";
+}
+
+}  // namespace
+}  // namespace lineloc

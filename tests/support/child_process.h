@@ -1,0 +1,33 @@
+// A program started by a test as a separate process (posix_spawn), with its
+// output sent to a log file; killed on destruction if still running.
+#pragma once
+
+#include <sys/types.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lineloc::test {
+
+class ChildProcess {
+ public:
+  // Starts `program` with `args`; stdout and stderr go to `log_path`.
+  ChildProcess(const std::string& program, const std::vector<std::string>& args,
+               const std::string& log_path);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  // Waits for the exit; returns the exit code, or nullopt on timeout. A
+  // process ended by a signal returns 128 + the signal number.
+  std::optional<int> wait(int timeout_ms);
+  void signal(int signal_number);
+  bool running();
+
+ private:
+  pid_t pid_ = -1;
+  std::optional<int> exit_code_;
+};
+
+}  // namespace lineloc::test

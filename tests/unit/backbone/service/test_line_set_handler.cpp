@@ -1,0 +1,162 @@
+// The backbone's per-message pipeline against a real PostGIS database:
+// validation, map tiles, hidden-line removal, model alignment.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <memory>
+#include <random>
+
+#include "backbone/map/database_tile_fetcher.h"
+#include "backbone/matching/line_matcher.h"
+#include "backbone/service/line_set_handler.h"
+#include "tests/support/test_database.h"
+
+namespace lineloc {
+namespace {
+
+const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
+
+// Camera 1.5 m above ground, looking north.
+PoseWithCovariance lookingNorth(const Eigen::Vector3d& position) {
+  Eigen::Matrix3d R_world_camera;
+  R_world_camera << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  PoseWithCovariance pose;
+  pose.pose.linear() = R_world_camera;
+  pose.pose.translation() = position;
+  pose.covariance = diagonalPoseCovariance(0.3, 0.02);
+  return pose;
+}
+
+std::unique_ptr<LineSetMessage> lineSetMessage(std::vector<ImageSegment> segments,
+                                               const PoseWithCovariance& predicted) {
+  LineSetData data;
+  data.robot_id = "handler-test";
+  data.sequence_number = 3;
+  data.stamp_ns = 1'000'000;
+  data.camera = kCamera;
+  data.segments = std::move(segments);
+  data.predicted_T_world_camera = predicted;
+  return std::make_unique<LineSetMessage>(data);
+}
+
+std::vector<ImageSegment> fewSegments() {
+  std::vector<ImageSegment> segments(4);
+  for (ImageSegment& segment : segments) {
+    segment.start = {10, 10};
+    segment.end = {100, 10};
+  }
+  return segments;
+}
+
+class LineSetHandlerTest : public ::testing::Test {
+ protected:
+  LineSetHandlerTest() {
+    test::insertCubeBuilding(database_.conninfo(), 85000, 447000, 0, 0);
+    test::insertCubeBuilding(database_.conninfo(), 85000, 447000, 16, 4);
+  }
+
+  MapTileCache makeCache(const std::string& conninfo) {
+    return MapTileCache([conninfo] { return makeDatabaseTileFetcher(conninfo, "test"); }, 100.0,
+                        64);
+  }
+
+  test::TestDatabase database_{"handler"};
+};
+
+// What the camera at `truth` sees of the two cubes, with 0.3 px noise.
+std::vector<ImageSegment> observedEdges(const std::string& conninfo,
+                                        const PoseWithCovariance& truth) {
+  db::Connection connection(conninfo);
+  db::MapTileQuery query(connection, *db::findSite(connection, "test"));
+  const db::TileContents tile =
+      query.within({Eigen::Vector2d(-100, -100), Eigen::Vector2d(100, 100)});
+  std::vector<FaceRing> faces;
+  for (const auto& face : tile.faces)
+    faces.push_back(face.ring_world);
+  std::vector<ModelSegment> lines;
+  for (const auto& line : tile.lines)
+    lines.push_back({line.id, 0, line.start_world, line.end_world});
+  const OcclusionScene scene(faces);
+  std::mt19937 random(1);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::vector<ImageSegment> segments;
+  for (const VisibleSegment& seen : visibleSegments(lines, scene, truth, kCamera, {})) {
+    const ProjectedSegment p = projectSegment(seen.start_world, seen.end_world, truth, kCamera);
+    ImageSegment segment;
+    segment.start = (p.start_px + Eigen::Vector2d(noise(random), noise(random))).cast<float>();
+    segment.end = (p.end_px + Eigen::Vector2d(noise(random), noise(random))).cast<float>();
+    segment.start_covariance = Eigen::Matrix2f::Identity() * 0.09f;
+    segment.end_covariance = segment.start_covariance;
+    segments.push_back(segment);
+  }
+  return segments;
+}
+
+TEST_F(LineSetHandlerTest, AlignsTheModelSeenFromAPerturbedPrediction) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  PoseWithCovariance predicted = truth;
+  predicted.pose.translation() += Eigen::Vector3d(0.25, -0.2, 0.05);
+  const auto message = lineSetMessage(observedEdges(database_.conninfo(), truth), predicted);
+  ASSERT_GE(message->message().segments._length, 6u);
+
+  const std::optional<PoseFixData> fix = handler.handle(message->message());
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->robot_id, "handler-test");
+  EXPECT_EQ(fix->sequence_number, 3u);
+  EXPECT_EQ(fix->stamp_ns, 1'000'000);
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  EXPECT_EQ(fix->model_lines, 24u);
+  // Within 3 sigma of the reported covariance along each axis.
+  const Eigen::Vector3d error = fix->T_world_camera.pose.translation() - truth.pose.translation();
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_LT(std::abs(error[axis]), 3.0 * std::sqrt(fix->T_world_camera.covariance(axis, axis)))
+        << "axis " << axis;
+  }
+  EXPECT_GT(fix->timings.total, 0);
+  EXPECT_GE(fix->timings.total, fix->timings.map);
+  EXPECT_EQ(handler.counters().fixes_ok, 1u);
+}
+
+TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const auto near = lineSetMessage(fewSegments(), lookingNorth({5, -20, 1.5}));
+  EXPECT_EQ(handler.handle(near->message())->status, lineloc_msg_FIX_TOO_FEW_MATCHES);
+  const auto far = lineSetMessage(fewSegments(), lookingNorth({5000, 0, 1.5}));
+  EXPECT_EQ(handler.handle(far->message())->status, lineloc_msg_FIX_NO_MAP_LINES);
+  EXPECT_EQ(handler.counters().answered, 2u);
+}
+
+TEST_F(LineSetHandlerTest, DropsAndCountsMalformedInputThenKeepsServing) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  MessageLimits limits;
+  limits.max_segments = 3;
+  LineSetHandler handler(cache, limits, PipelineOptions{});
+  const auto holder = lineSetMessage(fewSegments(), lookingNorth({5, -20, 1.5}));
+  lineloc_msg_LineSet message = holder->message();
+  EXPECT_FALSE(handler.handle(message).has_value());
+  message.segments._length = 2;
+  message.segments._buffer[1].end[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(handler.handle(message).has_value());
+  EXPECT_NE(handler.counters().last_drop_reason.find("segments[1].end"), std::string::npos);
+  message.segments._buffer[1].end[0] = 5.0f;
+  EXPECT_TRUE(handler.handle(message).has_value());
+  EXPECT_EQ(handler.counters().received, 3u);
+  EXPECT_EQ(handler.counters().dropped_invalid, 2u);
+  EXPECT_EQ(handler.counters().answered, 1u);
+}
+
+TEST_F(LineSetHandlerTest, UnreachableDatabaseIsAnsweredAsInternalErrorAndCounted) {
+  MapTileCache cache = makeCache("host=127.0.0.1 port=1 user=nobody dbname=none connect_timeout=2");
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const auto message = lineSetMessage(fewSegments(), lookingNorth({0, 0, 0}));
+  const auto fix = handler.handle(message->message());
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->status, lineloc_msg_FIX_INTERNAL_ERROR);
+  EXPECT_EQ(handler.counters().map_errors, 1u);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "common/camera/camera_calibration.h"
+
+namespace lineloc {
+namespace {
+
+std::filesystem::path temporaryFile(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+          name);
+}
+
+CameraCalibration exampleCalibration() {
+  CameraCalibration calibration;
+  calibration.camera = {535.9, 535.8, 342.3, 235.6, 0.01, 640, 480};
+  calibration.distortion = {-0.26, -0.04, 0.0018, -0.0003, 0.25};
+  return calibration;
+}
+
+TEST(CameraCalibrationFile, WriteThenReadRoundTrips) {
+  const std::filesystem::path path = temporaryFile("camera.yml");
+  const CameraCalibration written = exampleCalibration();
+  writeCameraCalibration(path.string(), written);
+  const CameraCalibration read = readCameraCalibration(path.string());
+  EXPECT_EQ(read.camera.K(), written.camera.K());
+  EXPECT_EQ(read.camera.width, 640);
+  EXPECT_EQ(read.camera.height, 480);
+  EXPECT_EQ(read.distortion, written.distortion);
+  std::filesystem::remove(path);
+}
+
+TEST(CameraCalibrationFile, OpenCvReadsTheWrittenFile) {
+  const std::filesystem::path path = temporaryFile("camera.yml");
+  writeCameraCalibration(path.string(), exampleCalibration());
+  cv::FileStorage storage(path.string(), cv::FileStorage::READ);
+  cv::Mat K;
+  cv::Mat distortion;
+  storage["camera_matrix"] >> K;
+  storage["distortion_coefficients"] >> distortion;
+  EXPECT_EQ(static_cast<int>(storage["image_width"]), 640);
+  EXPECT_DOUBLE_EQ(K.at<double>(0, 2), 342.3);
+  EXPECT_EQ(distortion.total(), 5u);
+  std::filesystem::remove(path);
+}
+
+TEST(CameraCalibrationFile, NoDistortionIsWrittenAsZeros) {
+  const std::filesystem::path path = temporaryFile("camera.yml");
+  CameraCalibration calibration = exampleCalibration();
+  calibration.distortion.clear();
+  writeCameraCalibration(path.string(), calibration);
+  EXPECT_EQ(readCameraCalibration(path.string()).distortion, std::vector<double>(5, 0.0));
+  std::filesystem::remove(path);
+}
+
+TEST(CameraCalibrationFile, UnwritablePathIsNamed) {
+  try {
+    writeCameraCalibration("/nonexistent-folder/camera.yml", exampleCalibration());
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("/nonexistent-folder/camera.yml"), std::string::npos);
+  }
+}
+
+TEST(CameraCalibrationFile, MissingKeyIsNamed) {
+  const std::filesystem::path path = temporaryFile("camera.yml");
+  std::ofstream(path) << "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n";
+  try {
+    readCameraCalibration(path.string());
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("camera_matrix"), std::string::npos);
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,85 @@
+// Real Cyclone DDS participants on loopback, configured by deploy/cyclonedds.xml.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "common/messages/messages.h"
+#include "common/messages/topics.h"
+#include "common/time/clock.h"
+#include "tests/support/test_dds.h"
+
+namespace lineloc {
+namespace {
+
+constexpr int64_t kTimeoutNs = 10'000'000'000;
+
+template <typename Predicate>
+bool waitFor(Predicate&& predicate) {
+  const int64_t deadline = steadyClockNs() + kTimeoutNs;
+  while (!predicate()) {
+    if (steadyClockNs() > deadline) {
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+TEST(DdsLoopback, LineSetOf300SegmentsArrivesIntactBetweenParticipants) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant sender_participant(domain);
+  dds::Participant receiver_participant(domain);
+  dds::Writer<lineloc_msg_LineSet> writer(sender_participant, dds::Qos(8));
+  dds::Reader<lineloc_msg_LineSet> reader(receiver_participant, dds::Qos(8));
+  ASSERT_TRUE(waitFor([&] { return writer.matchedReaders() == 1; }));
+  EXPECT_EQ(reader.matchedWriters(), 1u);
+
+  LineSetData sent;
+  sent.robot_id = "loopback";
+  sent.sequence_number = 7;
+  sent.stamp_ns = wallClockNs();
+  sent.camera = {400, 400, 320, 240, 0, 640, 480};
+  for (int i = 0; i < 300; ++i) {
+    ImageSegment segment;
+    segment.start = {static_cast<float>(i), 1.0f};
+    segment.end = {static_cast<float>(i), 400.0f};
+    segment.polarity = 1;
+    sent.segments.push_back(segment);
+  }
+  const LineSetMessage message(sent);
+  writer.write(message.message());
+
+  std::vector<LineSetData> received;
+  ASSERT_TRUE(waitFor([&] {
+    reader.waitForData(10'000'000);
+    reader.takeEach([&](const lineloc_msg_LineSet& m) { received.push_back(fromMessage(m)); });
+    return !received.empty();
+  }));
+  ASSERT_EQ(received.size(), 1u);
+  EXPECT_EQ(received[0].robot_id, "loopback");
+  EXPECT_EQ(received[0].sequence_number, 7u);
+  EXPECT_EQ(received[0].stamp_ns, sent.stamp_ns);
+  ASSERT_EQ(received[0].segments.size(), 300u);
+  EXPECT_EQ(received[0].segments[299].start.x(), 299.0f);
+}
+
+TEST(DdsLoopback, MissingConfigFileIsAClearError) {
+  try {
+    dds::Domain domain(test::testDomainId(), "/nonexistent/cyclonedds.xml");
+    FAIL() << "a missing DDS config must throw";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("/nonexistent/cyclonedds.xml"), std::string::npos);
+  }
+}
+
+TEST(DdsLoopback, WaitTimesOutWithoutData) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant participant(domain);
+  dds::Reader<lineloc_msg_PoseFix> reader(participant, dds::Qos(8));
+  EXPECT_FALSE(reader.waitForData(20'000'000));
+  EXPECT_EQ(reader.takeEach([](const lineloc_msg_PoseFix&) {}), 0);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,181 @@
+// The city-model readers on the real files (counts computed independently in
+// tests/unit/db/independent_counts.h), on malformed input, and the CRS
+// transform against GeographicLib.
+#include <gtest/gtest.h>
+
+#include <GeographicLib/UTMUPS.hpp>
+
+#include "db/citymodel/cityjson_reader.h"
+#include "db/citymodel/crs_transform.h"
+#include "db/citymodel/footprint_reader.h"
+#include "db/citymodel/obj_reader.h"
+#include "tests/unit/db/independent_counts.h"
+
+namespace lineloc::citymodel {
+namespace {
+
+struct RealFile {
+  std::string name;
+  std::string highest_lod;  // read from the files by hand (README and a look at each)
+  std::optional<int> epsg;
+};
+
+class RealCityModels : public ::testing::TestWithParam<RealFile> {};
+
+TEST_P(RealCityModels, LoadAllBuildingsAndFacesAtTheHighestLod) {
+  const RealFile& file = GetParam();
+  const std::string text = test::readSharedCityModel(file.name);
+  const CityModel model = file.name.ends_with(".jsonl") ? readCityJsonLines(text, file.name, {})
+                                                        : readCityJson(text, file.name, {});
+  const test::CityModelCounts expected = test::countCityModel(file.name, file.highest_lod);
+  EXPECT_EQ(model.epsg, file.epsg);
+  EXPECT_EQ(static_cast<int>(model.buildings.size()), expected.buildings);
+  int faces = 0;
+  for (const Building& building : model.buildings) {
+    faces += static_cast<int>(building.faces.size());
+    if (!building.faces.empty()) {
+      EXPECT_EQ(building.lod, file.highest_lod);
+    }
+  }
+  EXPECT_EQ(faces, expected.faces);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, RealCityModels,
+                         ::testing::Values(RealFile{"delft.json", "1", 7415},
+                                           RealFile{"delft_1b.json", "1", 7415},
+                                           RealFile{"DH_01_subs.city.json", "2", std::nullopt},
+                                           RealFile{"multi_lod.json", "2.2", std::nullopt},
+                                           RealFile{"503100000000296.city.jsonl", "2.2", 7415}),
+                         [](const auto& info) { return "file" + std::to_string(info.index); });
+
+TEST(CityJsonReader, DelftSkipsTheNonBuildingObjectsByType) {
+  const CityModel model = readCityJson(test::readSharedCityModel("delft.json"), "delft.json", {});
+  // README: 143 roads, 126 plant covers, 81 land-use areas, 3 bridges, and the
+  // file also holds 54 generic objects and 3 water bodies: 410 in all.
+  EXPECT_EQ(model.skipped.total(), 410);
+  EXPECT_EQ(model.skipped.count_by_reason.at("not a building (Road)"), 143);
+}
+
+TEST(CityJsonReader, LodOptionPicksALevelAndRefusesAMissingOne) {
+  const std::string text = test::readSharedCityModel("multi_lod.json");
+  const CityModel lod12 = readCityJson(text, "multi_lod.json", {.lod = "1.2"});
+  ASSERT_FALSE(lod12.buildings.empty());
+  EXPECT_EQ(lod12.buildings.front().lod, "1.2");
+  EXPECT_EQ(readCityJson(text, "multi_lod.json", {.lod = "2"}).buildings.front().lod, "2.2");
+  EXPECT_THROW(readCityJson(text, "multi_lod.json", {.lod = "3"}), ModelError);
+}
+
+constexpr const char* kOneCube = R"({"type":"CityJSON","version":"2.0",
+ "transform":{"scale":[1,1,1],"translate":[0,0,0]},
+ "metadata":{"referenceSystem":"https://www.opengis.net/def/crs/EPSG/0/7415"},
+ "CityObjects":{"cube":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":
+ [[[[0,3,2,1]],[[4,5,6,7]],[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]],[[3,0,4,7]]]]}]}},
+ "vertices":[[0,0,0],[1,0,0],[1,1,0],[0,1,0],[0,0,1],[1,0,1],[1,1,1],[0,1,1]]})";
+
+std::string withReplaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+void expectModelError(const std::string& text, const std::string& reason,
+                      const std::string& object_id) {
+  try {
+    readCityJson(text, "bad.json", {});
+    FAIL() << "expected a ModelError: " << reason;
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.reason(), reason);
+    EXPECT_NE(std::string(error.what()).find("bad.json"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(object_id), std::string::npos) << error.what();
+  }
+}
+
+TEST(CityJsonReader, MalformedInputNamesFileObjectAndReason) {
+  ASSERT_EQ(readCityJson(kOneCube, "cube.json", {}).buildings.at(0).faces.size(), 6u);
+  expectModelError(std::string(kOneCube).substr(0, 100), "malformed JSON", "");
+  expectModelError(withReplaced(kOneCube, "[[0,3,2,1]]", "[[0,3,2,99]]"),
+                   "vertex index out of range", "cube");
+  expectModelError(withReplaced(kOneCube, "EPSG/0/7415", "OGC/1.3/CRS84"), "unknown CRS", "");
+  expectModelError(withReplaced(kOneCube, "\"Solid\"", "\"Bogus\""), "unsupported geometry type",
+                   "cube");
+  // 1e308 * 10 overflows to infinity when the vertex is decoded.
+  expectModelError(
+      withReplaced(withReplaced(kOneCube, "\"scale\":[1,1,1]", "\"scale\":[1e308,1,1]"), "[0,1,1]]",
+                   "[10,1,1]]"),
+      "non-finite vertex coordinate", "");
+  expectModelError(withReplaced(kOneCube, "\"scale\":[1,1,1]", "\"scale\":[1,1]"),
+                   "malformed transform", "");
+}
+
+TEST(CityJsonReader, SkipInvalidCountsTheBadObjectAndKeepsTheRest) {
+  const std::string two = withReplaced(
+      kOneCube, "\"CityObjects\":{",
+      R"("CityObjects":{"broken":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[[[[0,1,42]]]]}]},)");
+  EXPECT_THROW(readCityJson(two, "two.json", {}), ModelError);
+  const CityModel model =
+      readCityJson(two, "two.json", {.lod = "", .invalid_objects = InvalidObjectPolicy::kSkip});
+  ASSERT_EQ(model.buildings.size(), 1u);
+  EXPECT_EQ(model.buildings[0].id, "cube");
+  EXPECT_EQ(model.skipped.count_by_reason.at("vertex index out of range"), 1);
+}
+
+TEST(WavefrontObjReader, ReadsObjectsWithOffsetAndRejectsBadIndices) {
+  const std::string obj =
+      "# a unit square wall and a roof triangle\n"
+      "o wall\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n"
+      "o roof\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf -3/1/1 -2/2/2 -1/3/3\n";
+  const CityModel model = readWavefrontObj(obj, "m.obj", {100, 200, 0}, {});
+  ASSERT_EQ(model.buildings.size(), 2u);
+  EXPECT_EQ(model.buildings[0].id, "wall");
+  EXPECT_EQ(model.buildings[0].faces[0].kind, SurfaceKind::kWall);
+  EXPECT_EQ(model.buildings[1].faces[0].kind, SurfaceKind::kRoof);
+  EXPECT_EQ(model.buildings[0].faces[0].rings[0][1], Eigen::Vector3d(101, 200, 0));
+  EXPECT_FALSE(model.epsg.has_value());
+  try {
+    readWavefrontObj("o a\nv 0 0 0\nf 1 2 3\n", "bad.obj", {0, 0, 0}, {});
+    FAIL();
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.reason(), "vertex index out of range");
+    EXPECT_NE(std::string(error.what()).find("line 3"), std::string::npos);
+  }
+  EXPECT_THROW(readWavefrontObj("v 0 nan 0\n", "bad.obj", {0, 0, 0}, {}), ModelError);
+}
+
+TEST(GeoJsonFootprints, ExtrudesAndReadsTheNamedCrs) {
+  const std::string geojson = R"({"type":"FeatureCollection",
+    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::28992"}},
+    "features":[{"type":"Feature","id":"a","properties":{"height":9.5},
+      "geometry":{"type":"Polygon","coordinates":[[[0,0],[0,10],[10,10],[10,0],[0,0]]]}},
+     {"type":"Feature","id":"b","properties":{},
+      "geometry":{"type":"Polygon","coordinates":[[[0,0],[0,10],[10,10],[0,0]]]}}]})";
+  EXPECT_THROW(readGeoJsonFootprints(geojson, "f.geojson", {}, {}), ModelError);
+  const CityModel model = readGeoJsonFootprints(
+      geojson, "f.geojson", {}, {.lod = "", .invalid_objects = InvalidObjectPolicy::kSkip});
+  EXPECT_EQ(model.epsg, 28992);
+  ASSERT_EQ(model.buildings.size(), 1u);
+  EXPECT_EQ(model.skipped.count_by_reason.at("missing height"), 1);
+  // Ground, roof and 4 walls; the roof at the height, whatever the input orientation.
+  ASSERT_EQ(model.buildings[0].faces.size(), 6u);
+  EXPECT_EQ(model.buildings[0].faces[1].kind, SurfaceKind::kRoof);
+  EXPECT_DOUBLE_EQ(model.buildings[0].faces[1].rings[0][0].z(), 9.5);
+}
+
+TEST(CrsTransform, Wgs84ToUtmAgreesWithGeographicLib) {
+  const CrsTransform transform(4326, 32631);  // WGS 84 -> UTM zone 31N
+  for (const auto& [latitude, longitude] : {std::pair{52.0116, 4.3571}, {51.5, 2.1}, {53.2, 5.9}}) {
+    int zone;
+    bool north;
+    double easting, northing;
+    GeographicLib::UTMUPS::Forward(latitude, longitude, zone, north, easting, northing, 31);
+    const Eigen::Vector3d utm = transform.apply({longitude, latitude, 7.0});
+    // Both implement Krüger's series to well below a millimetre.
+    EXPECT_NEAR(utm.x(), easting, 1e-3);
+    EXPECT_NEAR(utm.y(), northing, 1e-3);
+    EXPECT_DOUBLE_EQ(utm.z(), 7.0);
+  }
+  EXPECT_THROW(CrsTransform(4326, 999999), std::invalid_argument);
+  EXPECT_EQ(parseEpsgCode("urn:ogc:def:crs:EPSG::7415"), 7415);
+  EXPECT_THROW(parseEpsgCode("EPSG:abc"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lineloc::citymodel

@@ -1,0 +1,234 @@
+// lineloc-load's pipeline on a real PostGIS server: the shared city models
+// load with counts computed independently from the files, loads are idempotent
+// and transactional (a failure or a killed loader leaves the previous state),
+// and the backbone's read-only role can read but not write.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "db/loader/line_export.h"
+#include "db/loader/loader.h"
+#include "db/model_line_query.h"
+#include "db/site.h"
+#include "tests/support/test_database.h"
+#include "tests/unit/db/independent_counts.h"
+
+namespace lineloc::db {
+namespace {
+
+int count(Connection& connection, const std::string& sql) {
+  return std::stoi(connection.exec(sql).text(0, 0));
+}
+
+struct SharedFile {
+  std::string name;
+  std::string lod;
+  bool names_crs;
+};
+
+const std::vector<SharedFile> kSharedFiles = {{"delft.json", "1", true},
+                                              {"delft_1b.json", "1", true},
+                                              {"DH_01_subs.city.json", "2", false},
+                                              {"multi_lod.json", "2.2", false},
+                                              {"503100000000296.city.jsonl", "2.2", true}};
+
+TEST(Loader, AllFiveSharedFilesLoadWithTheirIndependentCounts) {
+  test::TestDatabase database("loader_shared");
+  Connection connection(database.conninfo());
+  LoadOptions options;
+  options.site = "delft";
+  for (const SharedFile& file : kSharedFiles) {
+    const std::string path = test::sharedCityModelPath(file.name);
+    if (!file.names_crs) {
+      try {
+        loadFile(path, options, &connection, nullptr);
+        FAIL() << file.name << " names no CRS and must be refused without --crs";
+      } catch (const citymodel::ModelError& error) {
+        EXPECT_EQ(error.reason(), "no CRS");
+        EXPECT_NE(std::string(error.what()).find(file.name), std::string::npos);
+      }
+    }
+    LoadOptions with_crs = options;
+    with_crs.file_epsg = 7415;
+    const LoadReport report =
+        loadFile(path, file.names_crs ? options : with_crs, &connection, nullptr);
+    const test::CityModelCounts expected = test::countCityModel(file.name, file.lod);
+    const std::string where = fmt::format("WHERE source = '{}'", file.name);
+    EXPECT_EQ(count(connection, "SELECT count(*) FROM building " + where), expected.buildings)
+        << file.name;
+    EXPECT_EQ(count(connection,
+                    "SELECT count(*) FROM face JOIN building b ON b.id = building_id " + where),
+              expected.faces - expected.collapsed_faces)
+        << file.name;
+    EXPECT_EQ(report.lod, file.lod);
+    EXPECT_GT(count(connection,
+                    "SELECT count(*) FROM line JOIN building b ON b.id = building_id " + where),
+              0);
+  }
+  // BuildingParts point at their Building: DH_01 has 8 parts, the 3D BAG file 1.
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM building WHERE parent_id IS NOT NULL"), 9);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM source_file"), 5);
+}
+
+TEST(Loader, ReloadingTheSameFileChangesNothing) {
+  test::TestDatabase database("loader_reload");
+  Connection connection(database.conninfo());
+  const std::string path = test::sharedCityModelPath("delft_1b.json");
+  const std::string snapshot_sql =
+      "SELECT string_agg(b.id || '/' || b.loaded_at || '/' || "
+      "(SELECT count(*) FROM line l WHERE l.building_id = b.id), ',' ORDER BY b.id) FROM building "
+      "b";
+  EXPECT_FALSE(loadFile(path, {}, &connection, nullptr).unchanged);
+  const std::string before = connection.exec(snapshot_sql).text(0, 0);
+  const int lines = count(connection, "SELECT count(*) FROM line");
+  EXPECT_TRUE(loadFile(path, {}, &connection, nullptr).unchanged);
+  EXPECT_EQ(connection.exec(snapshot_sql).text(0, 0), before);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), lines);
+}
+
+std::string writeTemporary(const std::string& name, const std::string& text) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / fmt::format("{}-{}", getpid(), name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+// A 10 m cube per id, side by side along x.
+std::string cubes(const std::vector<std::string>& ids, const std::string& broken_id = "") {
+  std::string objects, vertices;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int base = static_cast<int>(8 * i);
+    const auto v = [&](int k) { return base + k + (ids[i] == broken_id && k == 1 ? 999 : 0); };
+    objects += fmt::format(
+        R"({}"{}":{{"type":"Building","geometry":[{{"type":"Solid","lod":"1","boundaries":[[[[{},{},{},{}]],[[{},{},{},{}]],[[{},{},{},{}]],[[{},{},{},{}]],[[{},{},{},{}]],[[{},{},{},{}]]]]}}]}})",
+        i == 0 ? "" : ",", ids[i], v(0), v(3), v(2), v(1), v(4), v(5), v(6), v(7), v(0), v(1), v(5),
+        v(4), v(1), v(2), v(6), v(5), v(2), v(3), v(7), v(6), v(3), v(0), v(4), v(7));
+    const int x = 20 * static_cast<int>(i);
+    for (const auto& [dx, dy, z] : std::vector<std::tuple<int, int, int>>{{0, 0, 0},
+                                                                          {10, 0, 0},
+                                                                          {10, 10, 0},
+                                                                          {0, 10, 0},
+                                                                          {0, 0, 10},
+                                                                          {10, 0, 10},
+                                                                          {10, 10, 10},
+                                                                          {0, 10, 10}}) {
+      vertices += fmt::format("{}[{},{},{}]", vertices.empty() ? "" : ",", x + dx, dy, z);
+    }
+  }
+  return fmt::format(
+      R"({{"type":"CityJSON","version":"2.0","transform":{{"scale":[1,1,1],"translate":[85000,447000,0]}},"metadata":{{"referenceSystem":"https://www.opengis.net/def/crs/EPSG/0/7415"}},"CityObjects":{{{}}},"vertices":[{}]}})",
+      objects, vertices);
+}
+
+TEST(Loader, AFailedLoadLeavesThePreviousVersionAndSkipInvalidCounts) {
+  test::TestDatabase database("loader_failure");
+  Connection connection(database.conninfo());
+  const std::string path = writeTemporary("block.json", cubes({"a", "b"}));
+  loadFile(path, {}, &connection, nullptr);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), 24);
+
+  std::ofstream(path) << cubes({"a", "b", "c"}, "c");
+  EXPECT_THROW(loadFile(path, {}, &connection, nullptr), citymodel::ModelError);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM building"), 2);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), 24);
+
+  LoadOptions skip;
+  skip.read.invalid_objects = citymodel::InvalidObjectPolicy::kSkip;
+  const LoadReport report = loadFile(path, skip, &connection, nullptr);
+  EXPECT_EQ(report.skipped.count_by_reason.at("vertex index out of range"), 1);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM building"), 2);
+
+  std::ofstream(path) << cubes({"a"});
+  LoadOptions dry_run;
+  dry_run.dry_run = true;
+  EXPECT_EQ(loadFile(path, dry_run, &connection, nullptr).lines, 12);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), 24) << "a dry run writes nothing";
+  loadFile(path, {}, &connection, nullptr);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), 12) << "a new version replaces";
+  std::filesystem::remove(path);
+}
+
+TEST(Loader, AKilledLoaderLeavesThePreviousState) {
+  test::TestDatabase database("loader_killed");
+  LoadOptions options;
+  options.site = "synthetic";
+  const SourceRecord record{"city", "v1", ""};
+  {
+    Connection connection(database.conninfo());
+    storeModel(connection, options, record, prepareSynthetic({.building_count = 50}, options),
+               nullptr);
+  }
+  const PreparedModel bigger = prepareSynthetic({.building_count = 3000, .seed = 2}, options);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // The child replaces the city and dies by SIGKILL halfway through writing lines.
+    Connection connection(database.conninfo());
+    storeModel(connection, options, {"city", "v2", ""}, bigger, [](size_t done, size_t) {
+      if (done == 1500)
+        raise(SIGKILL);
+    });
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  Connection connection(database.conninfo());
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM building"), 50);
+  EXPECT_EQ(connection.exec("SELECT hash FROM source_file").text(0, 0), "v1");
+}
+
+TEST(Loader, ReaderRoleSelectsButCannotWrite) {
+  test::TestDatabase database("loader_reader_role");
+  test::insertCubeBuilding(database.conninfo(), 85000, 447000, 0, 0);
+  std::string reader_conninfo = database.conninfo();
+  reader_conninfo.replace(reader_conninfo.find("user=lineloc"), 12, "user=lineloc_reader");
+  Connection reader(reader_conninfo);
+  EXPECT_EQ(count(reader, "SELECT count(*) FROM line"), 12);
+  EXPECT_THROW(reader.exec("DELETE FROM line"), DatabaseError);
+  EXPECT_THROW(
+      reader.exec("INSERT INTO site (name, srid, origin_x, origin_y) VALUES ('x', 1, 0, 0)"),
+      DatabaseError);
+}
+
+TEST(Loader, LinesQueryAndExportOfASyntheticCity) {
+  test::TestDatabase database("loader_query");
+  Connection connection(database.conninfo());
+  LoadOptions options;
+  options.site = "synthetic";
+  const citymodel::SyntheticCityOptions city{.building_count = 400};
+  const PreparedModel prepared = prepareSynthetic(city, options);
+  storeModel(connection, options, {"city", "1", ""}, prepared, nullptr);
+  const Site site = *findSite(connection, "synthetic");
+  ModelLineQuery query(connection, site);
+  for (uint32_t draw = 0; draw < 5; ++draw) {
+    const Eigen::Vector2d street = citymodel::randomStreetPoint(city, draw);
+    const Eigen::Vector3d centre(street.x() - site.origin.x(), street.y() - site.origin.y(), 1.5);
+    const int plain =
+        count(connection, fmt::format("SELECT count(*) FROM line WHERE ST_3DDWithin(geom, "
+                                      "ST_SetSRID(ST_MakePoint({:.6f}, {:.6f}, 1.5), {}), 60)",
+                                      street.x(), street.y(), site.srid));
+    EXPECT_GT(plain, 0);
+    EXPECT_EQ(static_cast<int>(query.linesWithin(centre, 60.0).size()), plain);
+  }
+  const std::string path = writeTemporary("lines.obj", "");
+  size_t expected_lines = 0;
+  for (const auto& lines : prepared.lines)
+    expected_lines += lines.size();
+  EXPECT_EQ(exportLines(connection, site, path), static_cast<int>(expected_lines));
+  std::ifstream exported(path);
+  size_t l_elements = 0;
+  for (std::string line; std::getline(exported, line);)
+    l_elements += line.starts_with("l ");
+  EXPECT_EQ(l_elements, expected_lines);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace lineloc::db

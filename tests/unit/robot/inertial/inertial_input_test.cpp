@@ -1,0 +1,164 @@
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <pty.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "common/nmea/nmea_sentence.h"
+#include "robot/inertial/nmea_gps_decoder.h"
+#include "robot/inertial/sensor_csv.h"
+#include "robot/inertial/serial_line_reader.h"
+
+namespace lineloc {
+namespace {
+
+constexpr int64_t kNsPerDay = 86'400'000'000'000;
+
+TEST(SensorCsv, ParsesEurocImuLines) {
+  // The first data line of EuRoC MH_01_easy imu0/data.csv.
+  const auto line = parseEurocImuLine(
+      "1403636579758555392,-0.099134701513277898,0.14730578886832138,0.02722713633111154,"
+      "8.1476917083333333,-0.37592158333333331,-2.4026292499999999\r");
+  ASSERT_EQ(line.kind, CsvLineKind::kRecord) << line.error;
+  EXPECT_EQ(line.record.stamp_ns, 1403636579758555392);
+  EXPECT_DOUBLE_EQ(line.record.gyro_radps.y(), 0.14730578886832138);
+  EXPECT_DOUBLE_EQ(line.record.accel_mps2.x(), 8.1476917083333333);
+  EXPECT_EQ(parseEurocImuLine("#timestamp [ns],w_RS_S_x [rad s^-1]").kind, CsvLineKind::kSkipped);
+  EXPECT_EQ(parseEurocImuLine("   ").kind, CsvLineKind::kSkipped);
+}
+
+TEST(SensorCsv, RejectsMalformedLinesSayingWhy) {
+  for (const char* text :
+       {"1,2,3", "1,2,3,4,5,6,7,8", "x,0,0,0,0,0,9.8", "-5,0,0,0,0,0,9.8", "1,0,0,zero,0,0,9.8",
+        "1,0,0,0,0,0,", "1.5,0,0,0,0,0,9.8", "1,0,0,0,0,0,9.8,,,,,,,,,,"}) {
+    const auto line = parseEurocImuLine(text);
+    EXPECT_EQ(line.kind, CsvLineKind::kMalformed) << text;
+    EXPECT_FALSE(line.error.empty());
+  }
+  // "nan" is a number: it reaches the navigator, which drops and counts it.
+  EXPECT_EQ(parseEurocImuLine("1,nan,0,0,0,0,9.8").kind, CsvLineKind::kRecord);
+}
+
+TEST(SensorCsv, ParsesCompassLines) {
+  const auto line = parseCompassLine("1700000000000000000, 90.5");
+  ASSERT_EQ(line.kind, CsvLineKind::kRecord) << line.error;
+  EXPECT_DOUBLE_EQ(line.record.magnetic_heading_rad, 90.5 * M_PI / 180.0);
+  EXPECT_EQ(parseCompassLine("1,inf").kind, CsvLineKind::kMalformed);
+  EXPECT_EQ(parseCompassLine("1,90,3").kind, CsvLineKind::kMalformed);
+  EXPECT_EQ(parseCompassLine("# t, heading").kind, CsvLineKind::kSkipped);
+}
+
+TEST(SensorCsv, FileReaderCountsAndLocatesBadLines) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("lineloc_compass_" + std::to_string(::getpid()) + ".csv");
+  {
+    std::ofstream file(path);
+    file << "#timestamp [ns],magnetic_heading [deg]\n1,10\n2,ten\n3,30\n";
+  }
+  const auto file = readCompassCsv(path.string());
+  ASSERT_EQ(file.records.size(), 2u);
+  EXPECT_EQ(file.malformed_lines, 1);
+  ASSERT_EQ(file.errors.size(), 1u);
+  EXPECT_NE(file.errors[0].find(path.string() + ":3:"), std::string::npos) << file.errors[0];
+  std::filesystem::remove(path);
+  EXPECT_THROW(readEurocImuCsv(path.string()), std::runtime_error);
+}
+
+SiteProjection delftSite() {
+  return SiteProjection("UTM:31N", Eigen::Vector3d(593000.0, 5763000.0, 0.0));
+}
+
+TEST(NmeaGpsDecoder, DatesGgaWithRmcAndProjectsToTheSite) {
+  NmeaGpsDecoder decoder(delftSite());
+  const Eigen::Vector3d p_site(120.0, -45.0, 2.0);
+  const GeodeticPosition position = decoder.projection().toGeodetic(p_site);
+  RmcSentence rmc;
+  rmc.valid = true;
+  rmc.time_of_day_ns = 36'000'000'000'000;
+  rmc.year = 2026;
+  rmc.month = 11;
+  rmc.day = 22;
+  rmc.latitude_deg = position.latitude_deg;
+  rmc.longitude_deg = position.longitude_deg;
+  GgaSentence gga;
+  gga.time_of_day_ns = rmc.time_of_day_ns;
+  gga.fix_quality = 2;
+  gga.latitude_deg = position.latitude_deg;
+  gga.longitude_deg = position.longitude_deg;
+  gga.altitude_msl_m = position.height_msl_m;
+  EXPECT_FALSE(decoder.decode(formatGga(gga)).has_value());
+  EXPECT_EQ(decoder.counters().undated, 1);
+  EXPECT_FALSE(decoder.decode(formatRmc(rmc)).has_value());
+  const auto fix = decoder.decode(formatGga(gga));
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->stamp_ns, rmc.utcStamp_ns());
+  // NMEA keeps 0.2 mm of latitude/longitude and 1 mm of altitude.
+  EXPECT_LT((fix->p_world_antenna - p_site).norm(), 2e-3);
+  EXPECT_EQ(decoder.counters().fixes, 1);
+}
+
+TEST(NmeaGpsDecoder, CountsBadSentencesAndDatesByReference) {
+  NmeaGpsDecoder decoder(delftSite());
+  std::string good = formatGga([] {
+    GgaSentence gga;
+    gga.time_of_day_ns = 100'000'000'000;  // 00:01:40 UTC
+    gga.fix_quality = 1;
+    gga.latitude_deg = 52.01;
+    gga.longitude_deg = 4.35;
+    return gga;
+  }());
+  std::string corrupted = good;
+  corrupted[10] = corrupted[10] == '1' ? '2' : '1';
+  EXPECT_FALSE(decoder.decode(corrupted, 1).has_value());
+  EXPECT_FALSE(
+      decoder.decode(fmt::format("$GPGGA,bad*{:02X}", nmeaChecksum("GPGGA,bad"))).has_value());
+  EXPECT_FALSE(decoder.decode(formatGga(GgaSentence{})).has_value());  // quality 0
+  EXPECT_FALSE(decoder.decode("$GPGSV,1,1,00*79").has_value());
+  // Reference late on the previous day: the fix is just after midnight.
+  const int64_t reference = 20'000 * kNsPerDay - 60'000'000'000;
+  const auto fix = decoder.decode(good, reference);
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->stamp_ns, 20'000 * kNsPerDay + 100'000'000'000);
+  const NmeaCounters& counters = decoder.counters();
+  EXPECT_EQ(counters.bad_checksum, 1);
+  EXPECT_EQ(counters.malformed, 1);
+  EXPECT_EQ(counters.no_fix, 1);
+  EXPECT_EQ(counters.unsupported, 1);
+}
+
+TEST(SerialLineReader, ReadsNmeaLinesFromAPseudoTerminal) {
+  int master = -1;
+  int slave = -1;
+  char name[256] = {};
+  ASSERT_EQ(::openpty(&master, &slave, name, nullptr, nullptr), 0);
+  {
+    SerialLineReader reader(name, 9600);
+    const std::string sentence =
+        "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
+    const std::string data = sentence + "\r\n" + std::string(300, 'x') + "\n" + "$GPRMC,par";
+    ASSERT_EQ(::write(master, data.data(), data.size()), static_cast<ssize_t>(data.size()));
+    std::vector<std::string> lines = reader.readLines(1000);
+    ASSERT_GE(lines.size(), 1u);
+    EXPECT_EQ(lines[0], sentence);
+    const std::string rest = "tial\n";
+    ASSERT_EQ(::write(master, rest.data(), rest.size()), static_cast<ssize_t>(rest.size()));
+    std::vector<std::string> more = reader.readLines(1000);
+    lines.insert(lines.end(), more.begin(), more.end());
+    ASSERT_EQ(lines.size(), 2u);  // the 300-byte line is dropped
+    EXPECT_EQ(lines[1], "$GPRMC,partial");
+    EXPECT_EQ(reader.overlongLines(), 1);
+    EXPECT_TRUE(reader.readLines(10).empty());  // nothing more: times out
+  }
+  ::close(slave);
+  ::close(master);
+  EXPECT_THROW(SerialLineReader(name, 12345), std::invalid_argument);
+  EXPECT_THROW(SerialLineReader("/nonexistent/ttyUSB9", 9600), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,394 @@
+#include "robot/inertial/inertial_navigator.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "navigator_scenario.h"
+#include "robot/inertial/chi_square.h"
+#include "robot/inertial/measurement_models.h"
+
+namespace lineloc {
+namespace {
+
+using testing::initialCovariance;
+using testing::toImuSample;
+using testing::truthState;
+
+struct Drive {
+  explicit Drive(uint64_t seed, double duration_s = 20.0, double still_s = 2.0)
+      : trajectory([&] {
+          sim::TrajectoryConfig config;
+          config.seed = seed;
+          config.duration_s = duration_s;
+          config.initial_still_s = still_s;
+          return config;
+        }()),
+        imu(sim::synthesiseImu(trajectory, sim::ImuModel{}, seed)) {}
+
+  InertialNavigator startedNavigator(const InertialNavigatorConfig& config = {}) const {
+    InertialNavigator navigator(config);
+    navigator.addImu(toImuSample(imu.front()));
+    EXPECT_TRUE(
+        navigator.initialise(truthState(trajectory, imu.front().stamp_ns), initialCovariance()));
+    return navigator;
+  }
+
+  sim::GroundTruthTrajectory trajectory;
+  std::vector<sim::SimImuSample> imu;
+};
+
+double maxDifference(const NavigatorEstimate& a, const NavigatorEstimate& b) {
+  const double state = std::max(
+      {(a.state.p_world_body - b.state.p_world_body).cwiseAbs().maxCoeff(),
+       (a.state.v_world_body - b.state.v_world_body).cwiseAbs().maxCoeff(),
+       (a.state.q_world_body.coeffs() - b.state.q_world_body.coeffs()).cwiseAbs().maxCoeff(),
+       (a.state.gyro_bias_radps - b.state.gyro_bias_radps).cwiseAbs().maxCoeff(),
+       (a.state.accel_bias_mps2 - b.state.accel_bias_mps2).cwiseAbs().maxCoeff()});
+  return std::max(state, (a.covariance - b.covariance).cwiseAbs().maxCoeff());
+}
+
+// The requirement: a fix delivered 300 ms late leaves the same state
+// (within 1e-9) as the same fix delivered on time, with compass updates and
+// zero-velocity updates interleaved that the late path must replay.
+TEST(InertialNavigator, LateFixGivesTheSameStateAsAnOnTimeFix) {
+  const Drive drive(4);
+  InertialNavigator on_time = drive.startedNavigator();
+  InertialNavigator late = drive.startedNavigator();
+  constexpr int64_t kLatency_ns = 300'000'000;
+  std::mt19937_64 random(9);
+  std::vector<std::pair<int64_t, PoseWithCovariance>> fixes;
+  const int64_t t0 = drive.imu.front().stamp_ns;
+  const int64_t last_fix = drive.imu.back().stamp_ns - 2 * kLatency_ns;
+  for (int64_t t = t0 + 52'500'000; t < last_fix; t += 100'000'000) {
+    fixes.emplace_back(t, testing::noisyCameraFix(drive.trajectory, t,
+                                                  InertialNavigatorConfig::defaultBodyCamera(),
+                                                  0.03, 0.002, random));
+  }
+  size_t next_on_time = 0;
+  size_t next_late = 0;
+  int replays = 0;
+  for (size_t i = 1; i < drive.imu.size(); ++i) {
+    const int64_t now = drive.imu[i].stamp_ns;
+    for (; next_on_time < fixes.size() && fixes[next_on_time].first <= now; ++next_on_time) {
+      EXPECT_EQ(on_time.applyVisionFix(fixes[next_on_time].first, fixes[next_on_time].second),
+                MeasurementOutcome::kPending);
+    }
+    for (; next_late < fixes.size() && fixes[next_late].first + kLatency_ns <= now; ++next_late) {
+      replays += late.applyVisionFix(fixes[next_late].first, fixes[next_late].second) !=
+                 MeasurementOutcome::kPending;
+    }
+    if (i % 20 == 7) {
+      const CompassReading reading{now - 1'000'000,
+                                   M_PI_2 - yawOf(drive.trajectory.at(now).q_world_body)};
+      on_time.addCompass(reading);
+      late.addCompass(reading);
+    }
+    on_time.addImu(toImuSample(drive.imu[i]));
+    late.addImu(toImuSample(drive.imu[i]));
+  }
+  ASSERT_EQ(next_late, fixes.size());
+  EXPECT_EQ(replays, static_cast<int>(fixes.size()));
+  EXPECT_LE(maxDifference(*on_time.state(), *late.state()), 1e-9);
+  EXPECT_EQ(on_time.health().vision.accepted, late.health().vision.accepted);
+  EXPECT_EQ(on_time.health().compass.accepted, late.health().compass.accepted);
+  EXPECT_GT(late.health().vision.accepted, 150);
+  EXPECT_GT(late.health().compass.accepted, 0);
+}
+
+// NEES (15 states) and camera-fix NIS (6) over a Monte Carlo of drives: their
+// averages over N runs follow chi2(N k) / N, so each must lie in the 95 %
+// interval [chi2^-1(0.025, N k), chi2^-1(0.975, N k)] / N. Checked at 1 s
+// intervals: at 95 % per check some checks fall outside by chance, and the
+// errors of consecutive seconds are correlated, so at least 80 % must be inside.
+// The time-averaged NIS over all fixes, with N_fix k degrees of freedom
+// (fixes' innovations are independent for a consistent filter), must be inside.
+TEST(InertialNavigatorConsistency, NeesAndNisInsideChiSquareBounds) {
+  constexpr int kRuns = 6;
+  constexpr double kDuration_s = 60.0;
+  std::vector<std::vector<testing::Record>> runs;
+  std::vector<double> nis;
+  for (int run = 0; run < kRuns; ++run) {
+    testing::ScenarioConfig scenario;
+    scenario.seed = 100 + run;
+    scenario.duration_s = kDuration_s;
+    const auto result = testing::runScenario(scenario);
+    runs.push_back(result.records);
+    nis.insert(nis.end(), result.fix_nis.begin(), result.fix_nis.end());
+  }
+  const double low = chiSquareQuantile(0.025, kRuns * kErrorStateSize) / kRuns;
+  const double high = chiSquareQuantile(0.975, kRuns * kErrorStateSize) / kRuns;
+  int inside = 0;
+  const size_t checks = runs.front().size();
+  for (size_t k = 0; k < checks; ++k) {
+    double average = 0.0;
+    for (const auto& records : runs) {
+      average += records[k].nees() / kRuns;
+    }
+    inside += average >= low && average <= high;
+  }
+  EXPECT_GE(inside, static_cast<int>(0.8 * checks)) << inside << " of " << checks;
+
+  double nis_sum = 0.0;
+  for (const double value : nis) {
+    nis_sum += value;
+  }
+  const double dof = 6.0 * static_cast<double>(nis.size());
+  EXPECT_GT(nis_sum, chiSquareQuantile(0.025, dof));
+  EXPECT_LT(nis_sum, chiSquareQuantile(0.975, dof));
+
+  // Biases converge: at the end every bias error is inside 3 sigma and the
+  // gyro bias sigma has shrunk well below its turn-on sigma.
+  for (const auto& records : runs) {
+    const testing::Record& last = records.back();
+    for (int i = kGyroBias; i < kGyroBias + 6; ++i) {
+      EXPECT_LT(std::abs(last.error(i)), 3.0 * std::sqrt(last.covariance(i, i))) << "state " << i;
+    }
+    EXPECT_LT(std::sqrt(last.covariance(kGyroBias + 2, kGyroBias + 2)), 0.2 * 0.0035);
+  }
+}
+
+// Five minutes of driving with 10 Hz fixes (3 cm, 0.1 deg), 100 ms late, and a
+// 10 s outage from 150 s. Tracking: the 6-DoF pose error stays inside its
+// covariance (pose NEES below the 99.9 % chi2(3) bound on position in at
+// least 97 % of the 1 s checks). Outage: the error grows with the covariance,
+// which covers it at the end (position NEES below the 99.9 % bound), health
+// says dead reckoning, and the fixes pull it back in after.
+TEST(InertialNavigatorConsistency, FiveMinuteDriveWithOutage) {
+  testing::ScenarioConfig scenario;
+  scenario.seed = 77;
+  scenario.duration_s = 300.0;
+  scenario.outage_start_ns = 150'000'000'000;
+  scenario.outage_length_ns = 10'000'000'000;
+  const auto result = testing::runScenario(scenario);
+  const double bound = chiSquareQuantile(0.999, 3);
+  int inside = 0;
+  int tracked = 0;
+  double worst_tracking_error = 0.0;
+  const testing::Record* before_outage = nullptr;
+  const testing::Record* outage_end = nullptr;
+  for (const testing::Record& record : result.records) {
+    const int64_t since_start = record.stamp_ns - result.records.front().stamp_ns + 1'000'000'000;
+    if (since_start > 149'000'000'000 && since_start <= 150'000'000'000) {
+      before_outage = &record;
+    }
+    if (since_start > 159'500'000'000 && since_start <= 160'500'000'000) {
+      outage_end = &record;
+    }
+    if (record.health.mode != NavigatorMode::kTracking) {
+      continue;
+    }
+    ++tracked;
+    inside += record.positionNees() < bound;
+    worst_tracking_error = std::max(worst_tracking_error, record.error.head<3>().norm());
+  }
+  ASSERT_NE(before_outage, nullptr);
+  ASSERT_NE(outage_end, nullptr);
+  EXPECT_GE(tracked, 285);
+  EXPECT_GE(inside, static_cast<int>(0.97 * tracked)) << inside << " of " << tracked;
+  EXPECT_LT(worst_tracking_error, 0.1);
+
+  EXPECT_EQ(outage_end->health.mode, NavigatorMode::kDeadReckoning);
+  EXPECT_GT(*outage_end->health.since_vision_fix_ns, 9'000'000'000);
+  EXPECT_GT(outage_end->health.position_sigma_m, 3.0 * before_outage->health.position_sigma_m);
+  EXPECT_LT(outage_end->positionNees(), bound);
+  EXPECT_EQ(result.final_health.mode, NavigatorMode::kTracking);
+  // A consistent filter gates 0.1 % of ~2900 good fixes: Poisson(2.9), and
+  // more than 10 has probability 1e-4.
+  EXPECT_LE(result.final_health.vision.rejected(), 10);
+  EXPECT_GT(result.final_health.vision.accepted, 2800);
+}
+
+TEST(InertialNavigator, BadImuInputIsDroppedAndCounted) {
+  const Drive drive(5, 10.0);
+  InertialNavigator navigator = drive.startedNavigator();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (size_t i = 1; i < drive.imu.size(); ++i) {
+    ImuSample sample = toImuSample(drive.imu[i]);
+    if (i == 100) {
+      sample.gyro_radps.x() = nan;
+    } else if (i == 200) {
+      sample.accel_mps2.z() = 1000.0;
+    } else if (i >= 300 && i < 320) {
+      continue;  // a 100 ms gap
+    }
+    navigator.addImu(sample);
+    if (i == 400) {
+      navigator.addImu(sample);  // duplicate
+      ImuSample old = sample;
+      old.stamp_ns -= 50'000'000;
+      navigator.addImu(old);  // time going backwards
+    }
+  }
+  const NavigatorHealth health = navigator.health();
+  EXPECT_EQ(health.imu.non_finite, 1);
+  EXPECT_EQ(health.imu.saturated, 1);
+  EXPECT_EQ(health.imu.duplicate, 1);
+  EXPECT_EQ(health.imu.out_of_order, 1);
+  // Only the 100 ms gap is one: a single dropped sample leaves 10 ms, under 20.
+  EXPECT_EQ(health.imu.gaps, 1);
+  // All samples but the 20 of the gap, the non-finite one and the saturated one.
+  EXPECT_EQ(health.imu.accepted, static_cast<int64_t>(drive.imu.size()) - 22);
+  const auto estimate = navigator.state();
+  ASSERT_TRUE(estimate);
+  EXPECT_EQ(estimate->state.stamp_ns, drive.imu.back().stamp_ns);
+  EXPECT_TRUE(estimate->covariance.allFinite());
+  // Dead reckoning for 10 s with a MEMS IMU and a 0.1 m start: within metres.
+  EXPECT_LT(
+      (estimate->state.p_world_body - drive.trajectory.at(drive.imu.back().stamp_ns).p_world_body)
+          .norm(),
+      5.0);
+}
+
+TEST(InertialNavigator, BadFixesAreRejectedAndCounted) {
+  const Drive drive(6, 5.0);
+  InertialNavigatorConfig config;
+  config.history_ns = 500'000'000;
+  InertialNavigator navigator = drive.startedNavigator(config);
+  for (size_t i = 1; i < drive.imu.size(); ++i) {
+    navigator.addImu(toImuSample(drive.imu[i]));
+  }
+  const int64_t now = drive.imu.back().stamp_ns;
+  std::mt19937_64 random(1);
+  PoseWithCovariance good = testing::noisyCameraFix(drive.trajectory, now - 100'000'000,
+                                                    config.T_body_camera, 0.03, 0.002, random);
+  PoseWithCovariance nan_pose = good;
+  nan_pose.pose.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  PoseWithCovariance not_positive = good;
+  not_positive.covariance(0, 0) = -1.0;
+  PoseWithCovariance far = good;
+  far.pose.translation().x() += 5.0;  // 5 m off with a 3 cm sigma
+  EXPECT_EQ(navigator.applyVisionFix(now - 100'000'000, nan_pose), MeasurementOutcome::kInvalid);
+  EXPECT_EQ(navigator.applyVisionFix(now - 100'000'000, not_positive),
+            MeasurementOutcome::kInvalid);
+  EXPECT_EQ(navigator.applyVisionFix(now - 900'000'000, good), MeasurementOutcome::kTooLate);
+  EXPECT_EQ(navigator.applyVisionFix(now - 100'000'000, far), MeasurementOutcome::kGated);
+  EXPECT_EQ(navigator.applyVisionFix(now - 100'000'000, good), MeasurementOutcome::kAccepted);
+  const NavigatorHealth health = navigator.health();
+  EXPECT_EQ(health.vision.invalid, 2);
+  EXPECT_EQ(health.vision.too_late, 1);
+  EXPECT_EQ(health.vision.gated, 1);
+  EXPECT_EQ(health.vision.accepted, 1);
+  EXPECT_EQ(health.vision.rejected(), 4);
+  EXPECT_EQ(health.mode, NavigatorMode::kTracking);
+}
+
+// Start-up without a known pose: standing still for the alignment window,
+// compass (with declination and convergence) and DGPS start the filter with
+// metre-level covariance; then vision fixes pull it in to centimetres, DGPS is
+// no longer used, and compass disturbances are gated.
+TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
+  sim::TrajectoryConfig trajectory_config;
+  trajectory_config.seed = 12;
+  trajectory_config.duration_s = 120.0;
+  trajectory_config.initial_still_s = 5.0;
+  trajectory_config.start_yaw_rad = 0.7;
+  const sim::GroundTruthTrajectory trajectory(trajectory_config);
+  const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 3);
+  sim::GpsModel gps_model;
+  gps_model.outage_probability = 0.0;
+  const auto gps = sim::synthesiseGps(trajectory, gps_model, 3);
+  sim::CompassModel compass_model;
+  compass_model.magnetic_declination_rad = 0.03;
+  compass_model.disturbance_rate_hz = 1.0 / 20.0;
+  constexpr double kGridBearingOfTrueNorth = -0.0186;
+  const auto compass =
+      sim::synthesiseCompass(trajectory, compass_model, kGridBearingOfTrueNorth, 3);
+
+  InertialNavigatorConfig config;
+  config.magnetic_declination_rad = compass_model.magnetic_declination_rad;
+  config.grid_bearing_of_true_north_rad = kGridBearingOfTrueNorth;
+  InertialNavigator navigator(config);
+  std::mt19937_64 random(5);
+  size_t next_gps = 0;
+  size_t next_compass = 0;
+  const int64_t t0 = imu.front().stamp_ns;
+  const int64_t vision_from = t0 + 20'000'000'000;
+  int64_t next_fix = vision_from;
+  std::optional<double> yaw_error_at_start;
+  for (const sim::SimImuSample& sample : imu) {
+    for (; next_gps < gps.size() && gps[next_gps].stamp_ns <= sample.stamp_ns; ++next_gps) {
+      navigator.addGps({gps[next_gps].stamp_ns, gps[next_gps].p_world_antenna});
+    }
+    for (; next_compass < compass.size() && compass[next_compass].stamp_ns <= sample.stamp_ns;
+         ++next_compass) {
+      navigator.addCompass(
+          {compass[next_compass].stamp_ns, compass[next_compass].magnetic_heading_rad});
+    }
+    if (sample.stamp_ns >= next_fix + 100'000'000) {
+      navigator.applyVisionFix(
+          next_fix,
+          testing::noisyCameraFix(trajectory, next_fix, config.T_body_camera, 0.03, 0.002, random));
+      next_fix += 100'000'000;
+    }
+    navigator.addImu(toImuSample(sample));
+    const auto estimate = navigator.state();
+    if (estimate && !yaw_error_at_start) {
+      // Started at the end of the 2 s alignment window, still standing.
+      EXPECT_LT(sample.stamp_ns - t0, 3'000'000'000);
+      const ErrorVector error =
+          errorBetween(truthState(trajectory, sample.stamp_ns, &sample), estimate->state);
+      yaw_error_at_start = error(kAttitude + 2);
+      // Roll and pitch from gravity: within 3 sigma of the accelerometer-bias tilt.
+      EXPECT_LT(error.segment<2>(kAttitude).norm(), 3 * 0.05 / 9.8);
+      EXPECT_LT(std::abs(*yaw_error_at_start),
+                3 * std::sqrt(estimate->covariance(kAttitude + 2, kAttitude + 2)));
+      EXPECT_LT(error.head<3>().norm(),
+                3 * std::sqrt(estimate->covariance.block<3, 3>(0, 0).trace()));
+      EXPECT_GT(navigator.health().position_sigma_m, 3.0);
+      // Gyro bias from standing still: N / sqrt(2 s) = 1.2e-4 rad/s per axis.
+      EXPECT_LT(error.segment<3>(kGyroBias).norm(), 3 * std::sqrt(3.0) * 1.2e-4 + 1e-4);
+    }
+  }
+  ASSERT_TRUE(yaw_error_at_start);
+  const auto estimate = navigator.state();
+  const ErrorVector error =
+      errorBetween(truthState(trajectory, imu.back().stamp_ns, &imu.back()), estimate->state);
+  EXPECT_LT(error.head<3>().norm(), 0.1);
+  EXPECT_LT(std::abs(error(kAttitude + 2)), 0.005);
+  const NavigatorHealth health = navigator.health();
+  EXPECT_EQ(health.mode, NavigatorMode::kTracking);
+  EXPECT_LT(health.position_sigma_m, 0.1);
+  EXPECT_GT(health.gps.accepted, 0);   // before the vision fixes
+  EXPECT_GT(health.gps.skipped, 80);   // after them
+  EXPECT_GT(health.compass.gated, 0);  // disturbances
+}
+
+TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {
+  const Drive drive(8, 10.0);
+  InertialNavigator navigator(InertialNavigatorConfig{});
+  EXPECT_EQ(navigator.predictAt(drive.imu.front().stamp_ns).status,
+            PredictionStatus::kNotInitialised);
+  navigator = drive.startedNavigator();
+  for (size_t i = 1; i < drive.imu.size(); ++i) {
+    navigator.addImu(toImuSample(drive.imu[i]));
+  }
+  const int64_t last = drive.imu.back().stamp_ns;
+  const auto estimate = navigator.state();
+  const PosePrediction at_last = navigator.predictAt(last);
+  ASSERT_EQ(at_last.status, PredictionStatus::kOk);
+  const PoseWithCovariance expected = cameraPoseOf(estimate->state, estimate->covariance,
+                                                   InertialNavigatorConfig::defaultBodyCamera());
+  EXPECT_TRUE(at_last.T_world_camera.pose.isApprox(expected.pose, 1e-12));
+  EXPECT_TRUE(at_last.T_world_camera.covariance.isApprox(expected.covariance, 1e-12));
+  // Between two samples, the pose lies between theirs; 20 ms beyond the last
+  // it is extrapolated with the estimated velocity: p + v dt to within
+  // |a| dt^2 / 2 < 1 mm (|a| < 2 m/s^2; the default camera sits at the body origin).
+  const PosePrediction between = navigator.predictAt(last - 2'500'000);
+  ASSERT_EQ(between.status, PredictionStatus::kOk);
+  EXPECT_LT((between.T_world_camera.pose.translation() - expected.pose.translation() +
+             estimate->state.v_world_body * 2.5e-3)
+                .norm(),
+            1e-3);
+  const PosePrediction beyond = navigator.predictAt(last + 20'000'000);
+  ASSERT_EQ(beyond.status, PredictionStatus::kOk);
+  EXPECT_LT((beyond.T_world_camera.pose.translation() - expected.pose.translation() -
+             estimate->state.v_world_body * 20e-3)
+                .norm(),
+            1e-3);
+  EXPECT_GT(beyond.T_world_camera.covariance.trace(), at_last.T_world_camera.covariance.trace());
+  EXPECT_EQ(navigator.predictAt(last - 2'000'000'000).status, PredictionStatus::kBeforeHistory);
+}
+
+}  // namespace
+}  // namespace lineloc

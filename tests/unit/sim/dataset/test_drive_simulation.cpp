@@ -1,0 +1,135 @@
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "common/geodesy/site_projection.h"
+#include "common/nmea/nmea_sentence.h"
+#include "common/trajectory/tum_trajectory.h"
+#include "sim/dataset/drive_simulation.h"
+#include "tests/unit/sim/dataset/read_file.h"
+
+namespace lineloc {
+namespace {
+
+namespace fs = std::filesystem;
+
+DriveSimulationConfig shortDelftDrive(const std::string& name) {
+  const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+  if (!fs::exists(city)) {
+    throw std::runtime_error("shared data missing: " + city.string() +
+                             " (set LINELOC_SHARED_DATA_DIR)");
+  }
+  DriveSimulationConfig config;
+  config.city_model = city.string();
+  config.output = (fs::temp_directory_path() / ("lineloc_test_drive_" + name)).string();
+  fs::remove_all(config.output);
+  config.duration_s = 8.0;
+  config.drive.initial_still_s = 1.0;
+  config.camera_rate_hz = 2.0;
+  config.camera_time_offset_s = 0.01;
+  return config;
+}
+
+TEST(DriveSimulation, WritesADatasetOfTheDriveThroughDelft) {
+  const DriveSimulationConfig config = shortDelftDrive("delft");
+  const DriveSimulationSummary summary = simulateDrive(config);
+  EXPECT_EQ(summary.images, 17);            // 8 s at 2 Hz, both ends
+  EXPECT_EQ(summary.imu_samples, 1601);     // 200 Hz
+  EXPECT_EQ(summary.compass_readings, 81);  // 10 Hz
+  EXPECT_GE(summary.gps_fixes, 8);
+  EXPECT_GT(summary.clutter.cars + summary.clutter.trees + summary.clutter.poles, 0);
+  const fs::path root(config.output);
+  const std::vector<StampedPose> truth = readTumFile((root / "groundtruth_cam0.tum").string());
+  ASSERT_EQ(truth.size(), 17u);
+  // The camera rides at its configured height above the street level.
+  const std::string world = readAll(root / "world.yaml");
+  const double ground_z =
+      std::stod(world.substr(world.find("ground_z_m: ") + std::string("ground_z_m: ").size()));
+  EXPECT_NEAR(truth[5].pose.translation().z() - ground_z, config.camera_height_m, 1e-6);
+  // Image stamps are the camera clock's: truth + 10 ms.
+  const std::string images = readAll(root / "cam0" / "data.csv");
+  EXPECT_NE(images.find(std::to_string(truth[3].stamp_ns + 10'000'000) + ".png"),
+            std::string::npos);
+  // A street scene: sky, façades and ground give a wide spread of grey levels.
+  const cv::Mat image = cv::imread(
+      (root / "cam0" / "data" / (std::to_string(truth[8].stamp_ns + 10'000'000) + ".png")).string(),
+      cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(image.empty());
+  cv::Scalar mean;
+  cv::Scalar sigma;
+  cv::meanStdDev(image, mean, sigma);
+  EXPECT_GT(sigma[0], 25.0);
+  EXPECT_NE(readAll(root / "gps0" / "nmea.txt").find("$GPRMC"), std::string::npos);
+}
+
+TEST(DriveSimulation, NmeaSentencesHaveValidChecksumsAndParseBackNearTheTruth) {
+  DriveSimulationConfig config = shortDelftDrive("nmea");
+  config.duration_s = 20.0;
+  config.gps.outage_probability = 0.0;
+  config.camera_rate_hz = 1.0;  // ground truth at every fix
+  simulateDrive(config);
+  const fs::path root(config.output);
+  const YAML::Node world = YAML::LoadFile((root / "world.yaml").string());
+  const SiteProjection projection(
+      world["crs"].as<std::string>(),
+      Eigen::Vector3d(world["site_origin"][0].as<double>(), world["site_origin"][1].as<double>(),
+                      world["site_origin"][2].as<double>()));
+  const std::vector<StampedPose> truth = readTumFile((root / "groundtruth_cam0.tum").string());
+  std::istringstream lines(readAll(root / "gps0" / "nmea.txt"));
+  std::string line;
+  int fixes = 0;
+  int sentence = 0;
+  while (std::getline(lines, line)) {
+    const NmeaParseResult parsed = parseNmeaSentence(line);
+    ASSERT_EQ(parsed.status, NmeaStatus::kOk) << line << ": " << parsed.error;
+    const auto* gga = std::get_if<GgaSentence>(&parsed.sentence);
+    // GGA and RMC alternate, one pair per second from the start.
+    const StampedPose& at_fix = truth[sentence++ / 2];
+    if (gga == nullptr) {
+      continue;
+    }
+    ++fixes;
+    const Eigen::Vector3d p_site =
+        projection.toSite({gga->latitude_deg, gga->longitude_deg, gga->altitude_msl_m});
+    // DGPS errors are 5-10 m (4 m sigma per axis, correlated); RD New's
+    // Helmert transformation adds ~1 m: 30 m is over 5 sigma.
+    EXPECT_LT((p_site - at_fix.pose.translation()).head<2>().norm(), 30.0) << line;
+  }
+  EXPECT_EQ(fixes, 21);
+}
+
+TEST(DriveSimulation, SameSeedSameBytes) {
+  DriveSimulationConfig a = shortDelftDrive("bytes_a");
+  DriveSimulationConfig b = shortDelftDrive("bytes_b");
+  a.duration_s = b.duration_s = 3.0;
+  simulateDrive(a);
+  simulateDrive(b);
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(a.output)) {
+    if (entry.is_regular_file()) {
+      ++files;
+      EXPECT_EQ(readAll(entry.path()),
+                readAll(fs::path(b.output) / fs::relative(entry.path(), a.output)))
+          << entry.path();
+    }
+  }
+  EXPECT_GT(files, 10);
+}
+
+TEST(DriveSimulation, MissingCityModelIsNamed) {
+  DriveSimulationConfig config = shortDelftDrive("missing");
+  config.city_model = "no_such_city.json";
+  try {
+    simulateDrive(config);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("no_such_city.json"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,230 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "sim/render/city_renderer.h"
+#include "sim/render/sample_camera.h"
+
+namespace lineloc {
+namespace {
+
+// Camera 1.5 m above the ground looking along world +x, yawed by `yaw_rad`.
+Eigen::Isometry3d forwardLookingCamera(double yaw_rad = 0.0) {
+  Eigen::Matrix3d R_body_camera;
+  R_body_camera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
+  T_world_camera.linear() = Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * R_body_camera;
+  T_world_camera.translation() = Eigen::Vector3d(0.0, 0.0, 1.5);
+  return T_world_camera;
+}
+
+struct Box {
+  Eigen::Isometry3d T_world_box;
+  Eigen::Vector3d half_size;
+
+  // Slab test: distance along the unit ray to the box, if it is hit.
+  std::optional<double> intersect(const Eigen::Vector3d& origin,
+                                  const Eigen::Vector3d& direction) const {
+    const Eigen::Vector3d o = T_world_box.inverse() * origin;
+    const Eigen::Vector3d d = T_world_box.linear().transpose() * direction;
+    double t_enter = 0.0;
+    double t_exit = std::numeric_limits<double>::infinity();
+    for (int axis = 0; axis < 3; ++axis) {
+      const double t1 = (-half_size[axis] - o[axis]) / d[axis];
+      const double t2 = (half_size[axis] - o[axis]) / d[axis];
+      t_enter = std::max(t_enter, std::min(t1, t2));
+      t_exit = std::min(t_exit, std::max(t1, t2));
+    }
+    if (t_enter > t_exit) {
+      return std::nullopt;
+    }
+    return t_enter;
+  }
+};
+
+Box rotatedBox() {
+  Eigen::Isometry3d T_world_box = Eigen::Isometry3d::Identity();
+  T_world_box.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_world_box.translation() = Eigen::Vector3d(9.0, 0.8, 2.0);
+  return {T_world_box, Eigen::Vector3d(1.5, 2.0, 1.8)};
+}
+
+SceneMesh meshOf(const Box& box) {
+  SceneMesh mesh;
+  mesh.addBox(box.T_world_box, box.half_size, SurfaceTag{SurfaceKind::kWall, 1, 0.2f, 3.8f});
+  return mesh;
+}
+
+RenderOptions noiselessOptions() {
+  RenderOptions options;
+  options.noise_sigma = 0.0f;
+  return options;
+}
+
+// The world ray of pixel (u, v) computed by OpenCV's own iterative undistortion.
+Eigen::Vector3d openCvRay(const CameraCalibration& calibration,
+                          const Eigen::Isometry3d& T_world_camera, double u, double v) {
+  const cv::Matx33d K(calibration.camera.fx, 0.0, calibration.camera.cx, 0.0, calibration.camera.fy,
+                      calibration.camera.cy, 0.0, 0.0, 1.0);
+  std::vector<cv::Point2d> undistorted;
+  cv::undistortPoints(
+      std::vector<cv::Point2d>{{u, v}}, undistorted, K, calibration.distortion, cv::noArray(),
+      cv::noArray(), cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-15));
+  return T_world_camera.linear() *
+         Eigen::Vector3d(undistorted[0].x, undistorted[0].y, 1.0).normalized();
+}
+
+// The rendered silhouette of a box agrees with the box seen through OpenCV's
+// camera model at every pixel centre farther than 0.3 px from its outline: a
+// pixel that disagrees must agree somewhere on the 0.3 px circle around it.
+void expectBoxWhereOpenCvSeesIt(const CameraCalibration& calibration) {
+  const Box box = rotatedBox();
+  const CityRenderer renderer(meshOf(box), calibration, noiselessOptions());
+  const Eigen::Isometry3d T_world_camera = forwardLookingCamera(0.1);
+  const PixelHits hits = renderer.castPrimaryRays(T_world_camera);
+  const Eigen::Vector3d origin = T_world_camera.translation();
+  constexpr double kEdgeTolerance_px = 0.3;
+  int box_pixels = 0;
+  int disagreements = 0;
+  for (int v = 0; v < hits.height; v += 2) {
+    for (int u = 0; u < hits.width; u += 2) {
+      const size_t index = static_cast<size_t>(v) * hits.width + u;
+      const bool rendered_box =
+          hits.triangle[index] != kNoTriangle && hits.triangle[index] != kGroundTriangle;
+      const std::optional<double> t =
+          box.intersect(origin, openCvRay(calibration, T_world_camera, u, v));
+      box_pixels += rendered_box;
+      if (rendered_box && t) {
+        // float ray directions and hit distance on a ~10 m ray: ~1e-5 m.
+        EXPECT_NEAR(hits.distance_m[index], *t, 1e-3) << "pixel " << u << "," << v;
+      }
+      if (rendered_box == t.has_value()) {
+        continue;
+      }
+      ++disagreements;
+      bool agrees_nearby = false;
+      for (int k = 0; k < 16 && !agrees_nearby; ++k) {
+        const double angle = k * std::numbers::pi / 8.0;
+        const Eigen::Vector3d d =
+            openCvRay(calibration, T_world_camera, u + kEdgeTolerance_px * std::cos(angle),
+                      v + kEdgeTolerance_px * std::sin(angle));
+        agrees_nearby = box.intersect(origin, d).has_value() == rendered_box;
+      }
+      EXPECT_TRUE(agrees_nearby) << "pixel " << u << "," << v << " more than " << kEdgeTolerance_px
+                                 << " px inside the wrong side of the edge";
+    }
+  }
+  EXPECT_GT(box_pixels, 5000);
+  EXPECT_LT(disagreements, 20);
+}
+
+TEST(CityRenderer, BoxEdgesLieWhereOpenCvProjectsThemWithDistortion) {
+  expectBoxWhereOpenCvSeesIt(opencvSampleCamera());
+}
+
+TEST(CityRenderer, BoxEdgesLieWhereOpenCvProjectsThemForAPinhole) {
+  CameraCalibration calibration = opencvSampleCamera();
+  calibration.distortion.clear();
+  expectBoxWhereOpenCvSeesIt(calibration);
+}
+
+TEST(CityRenderer, SameSeedSameBytesOtherSeedOtherNoise) {
+  const CityRenderer renderer(meshOf(rotatedBox()), opencvSampleCamera(), RenderOptions{});
+  const Eigen::Isometry3d pose = forwardLookingCamera();
+  const cv::Mat a = renderer.renderImage(pose, pose, 42);
+  const cv::Mat b = renderer.renderImage(pose, pose, 42);
+  const cv::Mat c = renderer.renderImage(pose, pose, 43);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a, c, cv::NORM_INF), 0.0);
+}
+
+TEST(CityRenderer, SensorNoiseHasTheConfiguredSigma) {
+  RenderOptions options;
+  options.noise_sigma = 3.0f;
+  const CityRenderer renderer(meshOf(rotatedBox()), opencvSampleCamera(), options);
+  const Eigen::Isometry3d pose = forwardLookingCamera();
+  cv::Mat clean;
+  renderer.renderRadiance(pose).convertTo(clean, CV_32F, 255.0);
+  cv::Mat noisy;
+  renderer.renderImage(pose, pose, 5).convertTo(noisy, CV_32F);
+  cv::Scalar mean;
+  cv::Scalar sigma;
+  cv::meanStdDev(noisy - clean, mean, sigma);
+  // Rounding to integers adds variance 1/12: sqrt(9 + 1/12) = 3.014. With
+  // 307,200 samples the sample sigma is within 0.5% of that; 3% allows for
+  // the few pixels clipped at 0 or 255.
+  EXPECT_NEAR(sigma[0], std::sqrt(9.0 + 1.0 / 12.0), 0.09);
+  EXPECT_NEAR(mean[0], 0.0, 0.05);
+}
+
+TEST(CityRenderer, ShadowedGroundIsLitOnlyByAmbientLight) {
+  RenderOptions options = noiselessOptions();
+  options.shading.sun_direction = Eigen::Vector3f(-0.5f, 0.0f, 0.8f).normalized();
+  const Box box = rotatedBox();
+  const CityRenderer renderer(meshOf(box), opencvSampleCamera(), options);
+  const Eigen::Isometry3d pose = forwardLookingCamera(0.1);
+  const PixelHits hits = renderer.castPrimaryRays(pose);
+  const cv::Mat radiance = renderer.renderRadiance(pose);
+  double sum[2] = {0.0, 0.0};
+  int count[2] = {0, 0};
+  const Eigen::Vector3d sun = options.shading.sun_direction.cast<double>();
+  for (int v = 0; v < hits.height; ++v) {
+    for (int u = 0; u < hits.width; ++u) {
+      const size_t index = static_cast<size_t>(v) * hits.width + u;
+      if (hits.triangle[index] != kGroundTriangle) {
+        continue;
+      }
+      const Eigen::Vector3d d = (pose.linear() * renderer.rays().direction(u, v).cast<double>());
+      const Eigen::Vector3d ground = pose.translation() + hits.distance_m[index] * d;
+      const bool shadowed = box.intersect(ground, sun).has_value();
+      sum[shadowed] += radiance.at<float>(v, u);
+      ++count[shadowed];
+    }
+  }
+  ASSERT_GT(count[0], 1000);
+  ASSERT_GT(count[1], 1000);
+  // Lambert: shadow / lit = ambient / (ambient + (1 - ambient) s_z). The
+  // asphalt grain (uniform +-4% of albedo per 25 cm cell) averages over
+  // hundreds of cells to well under 1%; 3% tolerance.
+  const double ambient = options.shading.ambient;
+  const double expected = ambient / (ambient + (1.0 - ambient) * sun.z());
+  EXPECT_NEAR((sum[1] / count[1]) / (sum[0] / count[0]), expected, 0.03 * expected);
+}
+
+TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
+  RenderOptions options = noiselessOptions();
+  options.motion_blur_samples = 4;
+  const CityRenderer blurred(meshOf(rotatedBox()), opencvSampleCamera(), options);
+  const CityRenderer sharp(meshOf(rotatedBox()), opencvSampleCamera(), noiselessOptions());
+  const Eigen::Isometry3d open = forwardLookingCamera(0.1);
+  const Eigen::Isometry3d close = forwardLookingCamera(0.14);
+  const cv::Mat still = blurred.renderImage(open, open, 0);
+  // The mean of 4 equal renders differs from one render by float rounding only.
+  EXPECT_LE(cv::norm(still, sharp.renderImage(open, open, 0), cv::NORM_INF), 1.0);
+  const cv::Mat moving = blurred.renderImage(open, close, 0);
+  cv::Mat gradient_still;
+  cv::Mat gradient_moving;
+  cv::Sobel(still, gradient_still, CV_32F, 1, 0);
+  cv::Sobel(moving, gradient_moving, CV_32F, 1, 0);
+  // A 0.04 rad pan is ~21 px: vertical edges spread and weaken.
+  EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
+}
+
+TEST(CityRenderer, RejectsInvalidOptions) {
+  RenderOptions options;
+  options.motion_blur_samples = 0;
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
+  options = RenderOptions{};
+  options.exposure = 0.0f;
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
+  options = RenderOptions{};
+  options.shading.sun_direction = Eigen::Vector3f(0.0f, 0.0f, 2.0f);
+  EXPECT_THROW(CityRenderer(SceneMesh{}, opencvSampleCamera(), options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lineloc

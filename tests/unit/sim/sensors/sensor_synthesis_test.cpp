@@ -1,0 +1,203 @@
+#include "sim/sensors/sensor_synthesis.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "common/nmea/nmea_sentence.h"
+
+namespace lineloc::sim {
+namespace {
+
+TrajectoryConfig shortDrive(uint64_t seed) {
+  TrajectoryConfig config;
+  config.seed = seed;
+  config.duration_s = 120.0;
+  return config;
+}
+
+TEST(GroundTruthTrajectory, DeterministicPerSeed) {
+  const GroundTruthTrajectory a(shortDrive(7));
+  const GroundTruthTrajectory b(shortDrive(7));
+  const GroundTruthTrajectory c(shortDrive(8));
+  const int64_t t = a.startStamp_ns() + 100'000'000'000;
+  EXPECT_EQ(a.at(t).p_world_body, b.at(t).p_world_body);
+  EXPECT_GT((a.at(t).p_world_body - c.at(t).p_world_body).norm(), 1.0);
+}
+
+TEST(GroundTruthTrajectory, StandsStillThenDrivesWithinSpeedLimits) {
+  const GroundTruthTrajectory trajectory(shortDrive(3));
+  const TrajectoryConfig& config = trajectory.config();
+  const int64_t still_end = trajectory.startStamp_ns() + 4'900'000'000;
+  EXPECT_EQ(trajectory.at(still_end).v_world_body.norm(), 0.0);
+  EXPECT_EQ(trajectory.at(still_end).gyro_body_radps.norm(), 0.0);
+  double max_speed = 0.0;
+  bool stopped_later = false;
+  for (int64_t t = still_end + 10'000'000'000; t < trajectory.endStamp_ns(); t += 100'000'000) {
+    const double speed = trajectory.at(t).v_world_body.head<2>().norm();
+    max_speed = std::max(max_speed, speed);
+    stopped_later |= speed == 0.0;
+  }
+  EXPECT_LE(max_speed, config.max_speed_mps + 1e-12);
+  EXPECT_GE(max_speed, config.min_speed_mps);
+  EXPECT_TRUE(stopped_later) << "a 120 s drive with stop probability 0.15 per leg should stop";
+}
+
+// Velocity, acceleration and body rates must be the derivatives of position
+// and attitude. Central differences over h = 1 ms have truncation error
+// f''' h^2 / 6: jerk <= ~1 m/s^3 gives < 1e-6; rounding adds eps |p| / h ~ 1e-11.
+TEST(GroundTruthTrajectory, DerivativesMatchFiniteDifferences) {
+  const GroundTruthTrajectory trajectory(shortDrive(5));
+  constexpr int64_t h_ns = 1'000'000;
+  constexpr double h = 1e-3;
+  for (int64_t t = trajectory.startStamp_ns() + 6'000'000'000; t < trajectory.endStamp_ns() - h_ns;
+       t += 3'333'000'000) {
+    const TruthSample before = trajectory.at(t - h_ns);
+    const TruthSample now = trajectory.at(t);
+    const TruthSample after = trajectory.at(t + h_ns);
+    const Eigen::Vector3d velocity = (after.p_world_body - before.p_world_body) / (2 * h);
+    const Eigen::Vector3d acceleration = (after.v_world_body - before.v_world_body) / (2 * h);
+    EXPECT_LT((velocity - now.v_world_body).norm(), 1e-6);
+    EXPECT_LT((acceleration - now.a_world_body).norm(), 1e-5);
+    // R(t+h) = R(t-h) Exp(w 2h) to second order.
+    const Eigen::AngleAxisd delta(before.q_world_body.conjugate() * after.q_world_body);
+    const Eigen::Vector3d rate = delta.angle() * delta.axis() / (2 * h);
+    EXPECT_LT((rate - now.gyro_body_radps).norm(), 1e-6);
+  }
+}
+
+// The white noise of N samples has sample standard deviation within
+// sigma (1 +- 3 / sqrt(2N)) at 99.7 %; with N = 24000 that is +-1.4 %.
+TEST(SynthesiseImu, NoiseMatchesTheDensities) {
+  const GroundTruthTrajectory trajectory(shortDrive(11));
+  ImuModel noisy;
+  ImuModel exact;
+  exact.noise = false;
+  const auto with_noise = synthesiseImu(trajectory, noisy, 1);
+  const auto without = synthesiseImu(trajectory, exact, 1);
+  ASSERT_EQ(with_noise.size(), without.size());
+  ASSERT_EQ(with_noise.size(), 24001u);
+  double gyro_sum_squares = 0.0;
+  for (size_t i = 0; i < with_noise.size(); ++i) {
+    const Eigen::Vector3d error =
+        with_noise[i].gyro_radps - without[i].gyro_radps - with_noise[i].true_gyro_bias_radps;
+    gyro_sum_squares += error.x() * error.x();
+  }
+  const double gyro_std = std::sqrt(gyro_sum_squares / static_cast<double>(with_noise.size()));
+  const double expected = noisy.gyro_noise_radps_per_sqrt_hz * std::sqrt(noisy.rate_hz);
+  EXPECT_NEAR(gyro_std / expected, 1.0, 3.0 / std::sqrt(2.0 * with_noise.size()));
+  EXPECT_EQ(without.front().true_gyro_bias_radps.norm(), 0.0);
+  EXPECT_EQ(synthesiseImu(trajectory, noisy, 1).back().accel_mps2, with_noise.back().accel_mps2);
+}
+
+TEST(SynthesiseGps, ErrorsAreMetresAndCorrelatedWithOutages) {
+  TrajectoryConfig config = shortDrive(2);
+  config.duration_s = 600.0;
+  const GroundTruthTrajectory trajectory(config);
+  GpsModel model;
+  model.outage_probability = 0.02;
+  const auto fixes = synthesiseGps(trajectory, model, 4);
+  ASSERT_EQ(fixes.size(), 601u);
+  double sum_squares = 0.0;
+  double step_squares = 0.0;
+  int invalid = 0;
+  for (size_t i = 0; i < fixes.size(); ++i) {
+    const Eigen::Vector2d error =
+        (fixes[i].p_world_antenna - fixes[i].true_p_world_antenna).head<2>();
+    sum_squares += error.squaredNorm();
+    invalid += fixes[i].valid ? 0 : 1;
+    if (i > 0) {
+      const Eigen::Vector2d previous =
+          (fixes[i - 1].p_world_antenna - fixes[i - 1].true_p_world_antenna).head<2>();
+      step_squares += (error - previous).squaredNorm();
+    }
+  }
+  // Horizontal RMS error sqrt(2) 4 m = 5.7 m, loosely (600 s is 10 correlation times).
+  const double rms = std::sqrt(sum_squares / fixes.size());
+  EXPECT_GT(rms, 2.5);
+  EXPECT_LT(rms, 10.0);
+  // Correlated: the error moves far less from one second to the next than its size.
+  EXPECT_LT(std::sqrt(step_squares / fixes.size()), 0.25 * rms);
+  EXPECT_GT(invalid, 0);
+}
+
+TEST(SynthesiseGps, NmeaEpochDecodesToTheSamePosition) {
+  const GroundTruthTrajectory trajectory(shortDrive(1));
+  const SiteProjection projection("UTM:31N", Eigen::Vector3d(593000.0, 5763000.0, 0.0));
+  const auto fixes = synthesiseGps(trajectory, GpsModel{}, 3);
+  const auto lines = formatNmeaEpoch(fixes[10], projection);
+  ASSERT_EQ(lines.size(), 2u);
+  const NmeaParseResult gga = parseNmeaSentence(lines[0]);
+  ASSERT_EQ(gga.status, NmeaStatus::kOk) << lines[0];
+  const auto& sentence = std::get<GgaSentence>(gga.sentence);
+  const Eigen::Vector3d decoded =
+      projection.toSite({sentence.latitude_deg, sentence.longitude_deg, sentence.altitude_msl_m});
+  // 7 decimals of arc minutes (0.2 mm) and altitude to the millimetre.
+  EXPECT_LT((decoded - fixes[10].p_world_antenna).norm(), 2e-3);
+  const NmeaParseResult rmc = parseNmeaSentence(lines[1]);
+  ASSERT_EQ(rmc.status, NmeaStatus::kOk) << lines[1];
+  // Millisecond time in NMEA.
+  EXPECT_EQ(std::get<RmcSentence>(rmc.sentence).utcStamp_ns(),
+            fixes[10].stamp_ns / 1'000'000 * 1'000'000);
+}
+
+TEST(SynthesiseCompass, NoiseAndDisturbances) {
+  TrajectoryConfig config = shortDrive(9);
+  config.duration_s = 600.0;
+  const GroundTruthTrajectory trajectory(config);
+  CompassModel model;
+  model.magnetic_declination_rad = 0.03;
+  const double grid_bearing = -0.0186;
+  const auto readings = synthesiseCompass(trajectory, model, grid_bearing, 5);
+  ASSERT_EQ(readings.size(), 6001u);
+  double sum_squares = 0.0;
+  int clean = 0;
+  int disturbed = 0;
+  for (const SimCompassReading& r : readings) {
+    const Eigen::Vector3d forward =
+        trajectory.at(r.stamp_ns).q_world_body * Eigen::Vector3d::UnitX();
+    const double expected = M_PI_2 - std::atan2(forward.y(), forward.x()) - grid_bearing - 0.03;
+    const double error = std::remainder(r.magnetic_heading_rad - expected, 2.0 * M_PI);
+    EXPECT_GE(r.magnetic_heading_rad, 0.0);
+    EXPECT_LT(r.magnetic_heading_rad, 2.0 * M_PI);
+    if (r.disturbed) {
+      ++disturbed;
+      EXPECT_GT(std::abs(error), model.min_disturbance_rad - 5 * model.sigma_rad);
+    } else {
+      ++clean;
+      sum_squares += error * error;
+    }
+  }
+  EXPECT_GT(disturbed, 0);
+  EXPECT_NEAR(std::sqrt(sum_squares / clean) / model.sigma_rad, 1.0, 0.05);
+}
+
+TEST(SensorFiles, WritersProduceParseableFiles) {
+  const GroundTruthTrajectory trajectory(shortDrive(1));
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("lineloc_sensor_files_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  const SiteProjection projection("UTM:31N", Eigen::Vector3d(593000.0, 5763000.0, 0.0));
+  writeEurocImuCsv((folder / "imu.csv").string(), synthesiseImu(trajectory, ImuModel{}, 1));
+  writeCompassCsv((folder / "compass.csv").string(),
+                  synthesiseCompass(trajectory, CompassModel{}, 0.0, 1));
+  writeNmeaFile((folder / "gps.nmea").string(), synthesiseGps(trajectory, GpsModel{}, 1),
+                projection);
+  std::ifstream nmea(folder / "gps.nmea");
+  std::string line;
+  int sentences = 0;
+  while (std::getline(nmea, line)) {
+    const NmeaStatus status = parseNmeaSentence(line).status;
+    EXPECT_TRUE(status == NmeaStatus::kOk || status == NmeaStatus::kNoFix) << line;
+    ++sentences;
+  }
+  EXPECT_EQ(sentences, 2 * 121);
+  EXPECT_THROW(writeCompassCsv((folder / "missing" / "x.csv").string(), {}), std::runtime_error);
+  std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace lineloc::sim

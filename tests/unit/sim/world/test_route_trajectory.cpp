@@ -1,0 +1,121 @@
+#include <gtest/gtest.h>
+
+#include "sim/sensors/sensor_synthesis.h"
+#include "sim/world/route_trajectory.h"
+
+namespace lineloc {
+namespace {
+
+// An L-shaped street route with a sharp corner and a gentle bend.
+std::vector<Eigen::Vector2d> lRoute() {
+  return {{0, 0}, {60, 0}, {60, 40}, {90, 70}};
+}
+
+RouteDriveOptions testDrive() {
+  RouteDriveOptions options;
+  options.duration_s = 60.0;
+  options.seed = 3;
+  return options;
+}
+
+TEST(RouteTrajectory, FollowsTheRouteWithinTheSplineCornerCut) {
+  const RouteTrajectory trajectory(lRoute(), 0.5, testDrive());
+  // A uniform cubic B-spline cuts a 90-degree corner by at most ~ spacing / 3.
+  const double allowed_m = testDrive().control_spacing_m / 3.0 + 1e-6;
+  const auto route = lRoute();
+  for (int64_t t = trajectory.startStamp_ns(); t <= trajectory.endStamp_ns(); t += 100'000'000) {
+    const sim::TruthSample sample = trajectory.at(t);
+    double distance = 1e9;
+    for (size_t i = 1; i < route.size(); ++i) {
+      const Eigen::Vector2d ab = route[i] - route[i - 1];
+      const Eigen::Vector2d p = sample.p_world_body.head<2>();
+      const double s = std::clamp((p - route[i - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      distance = std::min(distance, (p - route[i - 1] - s * ab).norm());
+    }
+    ASSERT_LE(distance, allowed_m) << "at " << (t - trajectory.startStamp_ns()) * 1e-9 << " s";
+    EXPECT_NEAR(sample.p_world_body.z(), 0.8, 1e-12);
+    const double speed = sample.v_world_body.norm();
+    EXPECT_LE(speed, testDrive().max_speed_m_s + 1e-9);
+  }
+  // Still during the alignment period.
+  EXPECT_EQ(trajectory.at(trajectory.startStamp_ns() + 4'000'000'000).v_world_body.norm(), 0.0);
+}
+
+TEST(RouteTrajectory, VelocityAndAccelerationAreDerivativesOfPosition) {
+  const RouteTrajectory trajectory(lRoute(), 0.0, testDrive());
+  constexpr int64_t kStep_ns = 1'000'000;  // central differences over 1 ms
+  for (double t_s = 6.0; t_s < 59.0; t_s += 1.7) {
+    const int64_t t = trajectory.startStamp_ns() + static_cast<int64_t>(t_s * 1e9);
+    const sim::TruthSample before = trajectory.at(t - kStep_ns);
+    const sim::TruthSample now = trajectory.at(t);
+    const sim::TruthSample after = trajectory.at(t + kStep_ns);
+    const Eigen::Vector3d velocity = (after.p_world_body - before.p_world_body) / 2e-3;
+    const Eigen::Vector3d acceleration =
+        (after.p_world_body - 2.0 * now.p_world_body + before.p_world_body) / 1e-6;
+    // Central-difference truncation h^2/6 p''' ~ 1e-7 m/s; the second
+    // difference amplifies the ~1e-12 m arclength inversion error by 1/h^2.
+    EXPECT_NEAR((velocity - now.v_world_body).norm(), 0.0, 1e-5) << t_s;
+    EXPECT_NEAR((acceleration - now.a_world_body).norm(), 0.0, 5e-3) << t_s;
+    const double yaw_before = before.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0)[0];
+    const double yaw_after = after.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0)[0];
+    const double yaw_rate = std::remainder(yaw_after - yaw_before, 2 * M_PI) / 2e-3;
+    EXPECT_NEAR(yaw_rate, now.gyro_body_radps.z(), 1e-4) << t_s;
+  }
+}
+
+TEST(RouteTrajectory, IntegratingNoiselessImuReproducesTheTrajectory) {
+  const RouteTrajectory trajectory(lRoute(), 0.0, testDrive());
+  sim::ImuModel model;
+  model.noise = false;
+  const std::vector<sim::SimImuSample> imu = sim::synthesiseImu(trajectory, model, 1);
+  ASSERT_GT(imu.size(), 11000u);
+  const sim::TruthSample start = trajectory.at(imu.front().stamp_ns);
+  Eigen::Quaterniond q = start.q_world_body;
+  Eigen::Vector3d v = start.v_world_body;
+  Eigen::Vector3d p = start.p_world_body;
+  const Eigen::Vector3d gravity(0.0, 0.0, -testDrive().gravity_m_s2);
+  double max_position_error = 0.0;
+  for (size_t k = 1; k < imu.size(); ++k) {
+    const double dt = static_cast<double>(imu[k].stamp_ns - imu[k - 1].stamp_ns) * 1e-9;
+    // Trapezoidal strapdown: mean rate over the step, acceleration at both ends.
+    const Eigen::Vector3d a0 = q * imu[k - 1].accel_mps2 + gravity;
+    const Eigen::Vector3d rotation = 0.5 * (imu[k - 1].gyro_radps + imu[k].gyro_radps) * dt;
+    if (rotation.norm() > 0.0) {
+      q = q * Eigen::Quaterniond(Eigen::AngleAxisd(rotation.norm(), rotation.normalized()));
+    }
+    const Eigen::Vector3d a1 = q * imu[k].accel_mps2 + gravity;
+    p += v * dt + (a0 / 3.0 + a1 / 6.0) * dt * dt;
+    v += 0.5 * (a0 + a1) * dt;
+    const sim::TruthSample truth = trajectory.at(imu[k].stamp_ns);
+    max_position_error = std::max(max_position_error, (p - truth.p_world_body).norm());
+  }
+  const sim::TruthSample end = trajectory.at(imu.back().stamp_ns);
+  // Rotation is about z only, so summing mean rates is exact up to rounding.
+  // The trapezoid on acceleration errs by ~ dt^2 / 12 |a''| per unit time:
+  // with |a''| < 0.5 m/s^4 over 60 s, about 6e-5 m/s in velocity and under
+  // 1e-4 m in position (the run gives ~1e-6 m).
+  EXPECT_LT(max_position_error, 1e-4);
+  EXPECT_LT((v - end.v_world_body).norm(), 6e-5);
+  EXPECT_LT(q.angularDistance(end.q_world_body), 1e-9);
+}
+
+TEST(RouteTrajectory, StopsAtTheEndOfAShortRoute) {
+  RouteDriveOptions options = testDrive();
+  options.duration_s = 120.0;
+  const RouteTrajectory trajectory({{0, 0}, {40, 0}}, 0.0, options);
+  const sim::TruthSample start = trajectory.at(trajectory.startStamp_ns());
+  const sim::TruthSample end = trajectory.at(trajectory.endStamp_ns());
+  EXPECT_NEAR(end.v_world_body.norm(), 0.0, 1e-9);
+  ASSERT_TRUE(end.q_world_body.coeffs().allFinite());
+  // It stops where the road ends (the planner brakes to reach it exactly).
+  EXPECT_NEAR(end.p_world_body.x() - start.p_world_body.x(), trajectory.pathLength(), 0.05);
+  EXPECT_LE(end.p_world_body.x(), 40.0 + 1e-6);
+}
+
+TEST(RouteTrajectory, RejectsDegenerateRoutes) {
+  EXPECT_THROW(RouteTrajectory({{0, 0}}, 0.0, testDrive()), std::invalid_argument);
+  EXPECT_THROW(RouteTrajectory({{0, 0}, {1, 0}}, 0.0, testDrive()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,66 @@
+#include <gtest/gtest.h>
+
+#include "sim/world/street_clutter.h"
+#include "sim/world/street_route.h"
+#include "tests/unit/sim/world/box_city.h"
+
+namespace lineloc {
+namespace {
+
+double distanceToPolyline(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& line) {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < line.size(); ++i) {
+    const Eigen::Vector2d ab = line[i] - line[i - 1];
+    const double s = std::clamp((p - line[i - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (p - (line[i - 1] + s * ab)).norm());
+  }
+  return best;
+}
+
+TEST(StreetClutter, PlacesObjectsBesideTheRouteNotOnItNorInBuildings) {
+  const SceneMesh city = makeBoxCity(3, 16.0);
+  const OccupancyMap map(city, 0.5);
+  StreetRouteOptions route_options;
+  route_options.length_m = 250.0;
+  const StreetRoute route = planStreetRoute(map, route_options);
+  ASSERT_EQ(route.status, RouteStatus::kOk);
+  StreetClutterOptions options;
+  options.route_keep_out_m = 3.0;
+  SceneMesh clutter;
+  const StreetClutterCounts counts = addStreetClutter(map, route.waypoints, options, 1000, clutter);
+  EXPECT_GT(counts.cars, 5);
+  EXPECT_GT(counts.trees, 2);
+  EXPECT_GT(counts.poles, 3);
+  EXPECT_GT(counts.pedestrians, 3);
+  ASSERT_GT(clutter.triangleCount(), 0u);
+  for (size_t i = 0; i < clutter.triangleCount(); ++i) {
+    EXPECT_GE(clutter.tag(i).object_id, 1000u);
+    EXPECT_NE(clutter.tag(i).kind, SurfaceKind::kWall);
+  }
+  for (size_t i = 0; i < clutter.vertices().size(); ++i) {
+    const Eigen::Vector3f& vertex = clutter.vertices()[i];
+    const Eigen::Vector2d xy = vertex.head<2>().cast<double>();
+    // An object's centre keeps route_keep_out; below the crowns (which may
+    // overhang the street above the camera) its farthest vertex is at most
+    // 2.3 m (half a car's diagonal) from it.
+    if (clutter.tag(i / 3).kind != SurfaceKind::kFoliage) {
+      EXPECT_GE(distanceToPolyline(xy, route.waypoints), options.route_keep_out_m - 2.3);
+    }
+    EXPECT_GT(map.clearanceAt(xy), 0.0) << "clutter inside a building at " << xy.transpose();
+    EXPECT_GE(vertex.z(), options.ground_z_m - 1e-4f);
+  }
+}
+
+TEST(StreetClutter, SameSeedSameScene) {
+  const OccupancyMap map(makeBoxCity(2, 16.0), 0.5);
+  const StreetRoute route = planStreetRoute(map, StreetRouteOptions{});
+  SceneMesh a;
+  SceneMesh b;
+  addStreetClutter(map, route.waypoints, StreetClutterOptions{}, 1, a);
+  addStreetClutter(map, route.waypoints, StreetClutterOptions{}, 1, b);
+  ASSERT_EQ(a.vertices().size(), b.vertices().size());
+  EXPECT_TRUE(std::equal(a.vertices().begin(), a.vertices().end(), b.vertices().begin()));
+}
+
+}  // namespace
+}  // namespace lineloc

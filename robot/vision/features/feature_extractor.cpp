@@ -112,10 +112,6 @@ void FeatureExtractor::exportCorners() {
   }
 }
 
-}  // namespace lineloc
-
-namespace lineloc {
-
 const Junction* FeatureExtractor::nearestJunction(const Eigen::Vector2f& position) const {
   const Junction* nearest = nullptr;
   double nearest_distance = options_.junction_radius_px;

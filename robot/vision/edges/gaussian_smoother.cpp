@@ -37,6 +37,7 @@ void GaussianSmoother::smooth(const cv::Mat& grey, cv::Mat& smoothed) {
   const int width = grey.cols;
   const int height = grey.rows;
   column_sums_.resize(static_cast<size_t>(width) + 2 * radius_);
+  row_totals_.resize(width);
   uint32_t* sums = column_sums_.data() + radius_;
   for (int y = 0; y < height; ++y) {
     std::fill(column_sums_.begin(), column_sums_.end(), 0);
@@ -51,13 +52,18 @@ void GaussianSmoother::smooth(const cv::Mat& grey, cv::Mat& smoothed) {
       sums[-x] = sums[0];
       sums[width - 1 + x] = sums[width - 1];
     }
+    uint32_t* totals = row_totals_.data();
+    std::fill(row_totals_.begin(), row_totals_.end(), kRounding);
+    for (int k = -radius_; k <= radius_; ++k) {
+      const uint32_t weight = weights_[k + radius_];
+      const uint32_t* shifted = sums + k;
+      for (int x = 0; x < width; ++x) {
+        totals[x] += weight * shifted[x];
+      }
+    }
     uint8_t* out = smoothed.ptr<uint8_t>(y);
     for (int x = 0; x < width; ++x) {
-      uint32_t total = kRounding;
-      for (int k = -radius_; k <= radius_; ++k) {
-        total += static_cast<uint32_t>(weights_[k + radius_]) * sums[x + k];
-      }
-      out[x] = static_cast<uint8_t>(total >> (2 * kWeightBits));
+      out[x] = static_cast<uint8_t>(totals[x] >> (2 * kWeightBits));
     }
   }
 }

@@ -27,6 +27,7 @@ class GaussianSmoother {
   int radius_;
   std::vector<uint16_t> weights_;  // 2 radius + 1 taps, sum 2^10
   std::vector<uint32_t> column_sums_;
+  std::vector<uint32_t> row_totals_;
 };
 
 }  // namespace lineloc

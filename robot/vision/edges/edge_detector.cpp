@@ -13,7 +13,9 @@ constexpr float kSobelGain = 8.0f;
 // |gy| <= tan(22.5 deg) |gx| selects the horizontal neighbours; 2/5 ~ 0.414.
 constexpr int kTanNumerator = 2;
 constexpr int kTanDenominator = 5;
-constexpr int kBorderPx = 2;
+// Room for the step samples 3 px either side.
+constexpr int kStepSampleDistancePx = 3;
+constexpr int kBorderPx = kStepSampleDistancePx;
 
 struct Direction {
   int dx, dy;
@@ -103,7 +105,7 @@ void EdgeDetector::suppressNonMaxima() {
       const float delta = curvature < 0.0f
                               ? std::clamp(0.5f * (log_before - log_after) / curvature, -0.5f, 0.5f)
                               : 0.0f;
-      const int step_offset = 2 * (d.dy * smoothed_stride + d.dx);
+      const int step_offset = kStepSampleDistancePx * (d.dy * smoothed_stride + d.dx);
       EdgePoint point;
       point.position = {static_cast<float>(x) + delta * static_cast<float>(d.dx),
                         static_cast<float>(y) + delta * static_cast<float>(d.dy)};

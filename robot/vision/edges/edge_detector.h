@@ -10,7 +10,8 @@
 //   p = pixel + delta d,  delta = (l- - l+) / (2 (l- - 2 l0 + l+)),  |delta| <= 1/2,
 // which lies on the edge for any d that crosses it, because |g| across a
 // straight blurred step is symmetric about the step. The grey-level step is
-// I(p + 2d) - I(p - 2d) in the smoothed image, d pointing dark -> bright.
+// I(p + 3d) - I(p - 3d) in the smoothed image, d pointing dark -> bright: for
+// a step of height h blurred to sigma s in all, h erf(3 / (sqrt(2) s)).
 //
 // Buffers are kept between calls: no allocation once the image size is stable.
 #pragma once
@@ -41,7 +42,7 @@ class EdgeDetector {
   explicit EdgeDetector(const EdgeDetectorOptions& options);
 
   // `grey`: CV_8UC1, at least 5 x 5 (checked by the caller). Edge points are
-  // found at least 2 px from the border.
+  // found at least 3 px from the border.
   void detect(const cv::Mat& grey);
 
   const std::vector<EdgePoint>& points() const { return points_; }

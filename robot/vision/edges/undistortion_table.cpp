@@ -1,9 +1,12 @@
 #include "robot/vision/edges/undistortion_table.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <stdexcept>
 
 namespace lineloc {
 namespace {
@@ -33,6 +36,12 @@ UndistortionTable::UndistortionTable(const CameraCalibration& calibration)
                       cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-9));
   table_.reserve(undistorted.size());
   for (const cv::Point2f& u : undistorted) {
+    if (!std::isfinite(u.x) || !std::isfinite(u.y)) {
+      const size_t at = table_.size();
+      throw std::invalid_argument(
+          fmt::format("calibration: the distortion model cannot be inverted at pixel ({}, {})",
+                      at % width_, at / width_));
+    }
     table_.emplace_back(u.x, u.y);
   }
 }

@@ -18,6 +18,8 @@ namespace lineloc {
 
 class UndistortionTable {
  public:
+  // Throws std::invalid_argument naming the pixel where the model has no
+  // finite inverse.
   explicit UndistortionTable(const CameraCalibration& calibration);
 
   // True when the calibration has no distortion: u(p) = p.

@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "common/geodesy/site_projection.h"
+#include "common/nmea/nmea_sentence.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "sim/dataset/drive_simulation.h"
 #include "tests/unit/sim/dataset/read_file.h"
@@ -61,6 +64,42 @@ TEST(DriveSimulation, WritesADatasetOfTheDriveThroughDelft) {
   cv::meanStdDev(image, mean, sigma);
   EXPECT_GT(sigma[0], 25.0);
   EXPECT_NE(readAll(root / "gps0" / "nmea.txt").find("$GPRMC"), std::string::npos);
+}
+
+TEST(DriveSimulation, NmeaSentencesHaveValidChecksumsAndParseBackNearTheTruth) {
+  DriveSimulationConfig config = shortDelftDrive("nmea");
+  config.duration_s = 20.0;
+  config.gps.outage_probability = 0.0;
+  config.camera_rate_hz = 1.0;  // ground truth at every fix
+  simulateDrive(config);
+  const fs::path root(config.output);
+  const YAML::Node world = YAML::LoadFile((root / "world.yaml").string());
+  const SiteProjection projection(
+      world["crs"].as<std::string>(),
+      Eigen::Vector3d(world["site_origin"][0].as<double>(), world["site_origin"][1].as<double>(),
+                      world["site_origin"][2].as<double>()));
+  const std::vector<StampedPose> truth = readTumFile((root / "groundtruth_cam0.tum").string());
+  std::istringstream lines(readAll(root / "gps0" / "nmea.txt"));
+  std::string line;
+  int fixes = 0;
+  int sentence = 0;
+  while (std::getline(lines, line)) {
+    const NmeaParseResult parsed = parseNmeaSentence(line);
+    ASSERT_EQ(parsed.status, NmeaStatus::kOk) << line << ": " << parsed.error;
+    const auto* gga = std::get_if<GgaSentence>(&parsed.sentence);
+    // GGA and RMC alternate, one pair per second from the start.
+    const StampedPose& at_fix = truth[sentence++ / 2];
+    if (gga == nullptr) {
+      continue;
+    }
+    ++fixes;
+    const Eigen::Vector3d p_site =
+        projection.toSite({gga->latitude_deg, gga->longitude_deg, gga->altitude_msl_m});
+    // DGPS errors are 5-10 m (4 m sigma per axis, correlated); RD New's
+    // Helmert transformation adds ~1 m: 30 m is over 5 sigma.
+    EXPECT_LT((p_site - at_fix.pose.translation()).head<2>().norm(), 30.0) << line;
+  }
+  EXPECT_EQ(fixes, 21);
 }
 
 TEST(DriveSimulation, SameSeedSameBytes) {

@@ -2,13 +2,53 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
-#include <regex>
+#include <string_view>
 
 namespace lineloc::citymodel {
 namespace {
 
 constexpr size_t kMaxKeptMessages = 20;
+constexpr size_t kMaxEpsgDigits = 9;
+
+// Removes `prefix` from the front of `text` when it is there (ignoring case).
+bool consumePrefix(std::string_view& text, std::string_view prefix) {
+  const bool match = text.size() >= prefix.size() &&
+                     std::equal(prefix.begin(), prefix.end(), text.begin(), [](char a, char b) {
+                       return std::tolower(static_cast<unsigned char>(a)) ==
+                              std::tolower(static_cast<unsigned char>(b));
+                     });
+  if (match) {
+    text.remove_prefix(prefix.size());
+  }
+  return match;
+}
+
+// Removes a version ([0-9.]*, at least one character unless `may_be_empty`)
+// and the `separator` after it from the front of `text`.
+bool consumeVersion(std::string_view& text, char separator, bool may_be_empty) {
+  const size_t end = text.find_first_not_of("0123456789.");
+  if (end == std::string_view::npos || text[end] != separator || (end == 0 && !may_be_empty)) {
+    return false;
+  }
+  text.remove_prefix(end + 1);
+  return true;
+}
+
+// The digits of the EPSG code once the prefix is removed, or empty when the
+// string is none of the accepted forms.
+std::string_view epsgDigits(std::string_view crs) {
+  const bool prefixed =
+      consumePrefix(crs, "EPSG:") ||
+      (consumePrefix(crs, "urn:ogc:def:crs:EPSG:") && consumeVersion(crs, ':', true)) ||
+      ((consumePrefix(crs, "http://") || consumePrefix(crs, "https://")) &&
+       consumePrefix(crs, "www.opengis.net/def/crs/EPSG/") && consumeVersion(crs, '/', false));
+  const bool digits = !crs.empty() && crs.size() <= kMaxEpsgDigits &&
+                      crs.find_first_not_of("0123456789") == std::string_view::npos;
+  return prefixed && digits ? crs : std::string_view();
+}
 
 }  // namespace
 
@@ -57,16 +97,12 @@ void handleInvalidObject(const ModelError& error, InvalidObjectPolicy policy,
 }
 
 int parseEpsgCode(const std::string& crs) {
-  static const std::regex kPatterns(
-      R"(^(?:EPSG:|urn:ogc:def:crs:EPSG:[0-9.]*:|https?://www\.opengis\.net/def/crs/EPSG/[0-9.]+/)([0-9]{1,9})$)",
-      std::regex::icase);
-  std::smatch match;
-  if (!std::regex_match(crs, match, kPatterns)) {
+  const std::string_view digits = epsgDigits(crs);
+  if (digits.empty()) {
     throw std::invalid_argument(fmt::format(
         "unknown CRS '{}': expected EPSG:N, urn:ogc:def:crs:EPSG::N or an opengis.net EPSG URL",
         crs));
   }
-  const std::string digits = match[1].str();
   int code = 0;
   std::from_chars(digits.data(), digits.data() + digits.size(), code);
   if (code <= 0) {

@@ -8,16 +8,14 @@ namespace lineloc::db {
 namespace {
 
 constexpr const char* kFacesStatement = "lineloc_tile_faces";
-// Heights far beyond any building: the box is a column over the square.
-constexpr double kColumnHalfHeightM = 1e5;
 
-// $1 site, $2..$5 xmin ymin xmax ymax (site CRS), $6 half height.
+// $1 site, $2..$5 xmin ymin xmax ymax (site CRS). The 2D GiST index answers &&
+// (bounding boxes overlap; the envelope's SRID does not matter to &&).
 constexpr const char* kFacesSql = R"sql(
 SELECT id, building_id, kind, geom
 FROM face
 WHERE site_id = $1::int4
-  AND geom &&& ST_3DMakeBox(ST_MakePoint($2::float8, $3::float8, -$6::float8),
-                            ST_MakePoint($4::float8, $5::float8, $6::float8))
+  AND geom && ST_MakeEnvelope($2::float8, $3::float8, $4::float8, $5::float8)
 )sql";
 
 std::string number(double value) {
@@ -35,8 +33,7 @@ TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
   const Eigen::Vector2d low = bounds_world.min() + site_.origin.head<2>();
   const Eigen::Vector2d high = bounds_world.max() + site_.origin.head<2>();
   const std::vector<std::string> params = {std::to_string(site_.id), number(low.x()),
-                                           number(low.y()),          number(high.x()),
-                                           number(high.y()),         number(kColumnHalfHeightM)};
+                                           number(low.y()), number(high.x()), number(high.y())};
   TileContents contents;
   contents.lines = lines_.linesOfBuildingsMeeting(bounds_world);
   const Result faces = connection_.execPrepared(kFacesStatement, params, true);

@@ -1,6 +1,6 @@
 // The backbone's tile query: the model lines of every building whose box meets
 // a square of the ground plane (ModelLineQuery's line packs), and every face
-// whose 3D bounding box meets it (n-D GiST index, binary EWKB), decoded into
+// whose bounding box meets it (2D GiST index, binary EWKB), decoded into
 // world-frame (site CRS minus origin) Eigen values.
 #pragma once
 

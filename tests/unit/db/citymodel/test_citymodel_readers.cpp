@@ -173,8 +173,23 @@ TEST(CrsTransform, Wgs84ToUtmAgreesWithGeographicLib) {
     EXPECT_DOUBLE_EQ(utm.z(), 7.0);
   }
   EXPECT_THROW(CrsTransform(4326, 999999), std::invalid_argument);
+}
+
+TEST(CityModel, EpsgCodesFromEveryAcceptedFormAndNoOther) {
+  EXPECT_EQ(parseEpsgCode("EPSG:7415"), 7415);
+  EXPECT_EQ(parseEpsgCode("epsg:28992"), 28992);
   EXPECT_EQ(parseEpsgCode("urn:ogc:def:crs:EPSG::7415"), 7415);
-  EXPECT_THROW(parseEpsgCode("EPSG:abc"), std::invalid_argument);
+  EXPECT_EQ(parseEpsgCode("urn:ogc:def:crs:EPSG:9.8.15:4326"), 4326);
+  EXPECT_EQ(parseEpsgCode("https://www.opengis.net/def/crs/EPSG/0/7415"), 7415);
+  EXPECT_EQ(parseEpsgCode("http://www.opengis.net/def/crs/EPSG/9.8/25832"), 25832);
+  for (const char* bad :
+       {"EPSG:abc", "EPSG:", "EPSG:0", "EPSG:-1", "EPSG:7415x", "EPSG:1234567890", "7415",
+        "urn:ogc:def:crs:EPSG:7415", "urn:ogc:def:crs:OGC:1.3:CRS84",
+        "https://www.opengis.net/def/crs/EPSG//7415", "https://www.opengis.net/def/crs/EPSG/0/",
+        "https://www.opengis.net/def/crs/OGC/1.3/CRS84", "ftp://www.opengis.net/def/crs/EPSG/0/1",
+        ""}) {
+    EXPECT_THROW(parseEpsgCode(bad), std::invalid_argument) << bad;
+  }
 }
 
 }  // namespace

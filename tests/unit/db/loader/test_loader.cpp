@@ -191,7 +191,11 @@ TEST(Loader, ReaderRoleSelectsButCannotWrite) {
   reader_conninfo.replace(reader_conninfo.find("user=lineloc"), 12, "user=lineloc_reader");
   Connection reader(reader_conninfo);
   EXPECT_EQ(count(reader, "SELECT count(*) FROM line"), 12);
+  // The backbone's query reads the line packs.
+  ModelLineQuery query(reader, *findSite(reader, "test"));
+  EXPECT_EQ(query.linesWithin({5.0, 5.0, 5.0}, 10.0).size(), 12u);
   EXPECT_THROW(reader.exec("DELETE FROM line"), DatabaseError);
+  EXPECT_THROW(reader.exec("DELETE FROM building_line_pack"), DatabaseError);
   EXPECT_THROW(
       reader.exec("INSERT INTO site (name, srid, origin_x, origin_y) VALUES ('x', 1, 0, 0)"),
       DatabaseError);

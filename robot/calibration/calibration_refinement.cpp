@@ -5,7 +5,7 @@
 
 #include <array>
 #include <cmath>
-#include <memory>
+#include <stdexcept>
 
 #include "common/camera/lens_distortion.h"
 
@@ -125,6 +125,137 @@ Eigen::Matrix<double, N, 1> blockStdDev(const ceres::Covariance& covariance, con
   return (variance_scale * block_covariance.diagonal()).cwiseMax(0.0).cwiseSqrt();
 }
 
+// The parameters Ceres optimises, in place.
+struct ParameterBlocks {
+  std::array<double, kIntrinsicCount> intrinsics{};
+  std::array<double, kDistortionCoefficients> distortion{};
+  std::vector<Pose> poses;
+};
+
+ParameterBlocks parameterBlocksOf(const CalibrationState& initial,
+                                  const CalibrationOptions& options) {
+  ParameterBlocks blocks;
+  blocks.intrinsics = intrinsicsOf(initial.calibration.camera, options);
+  std::copy_n(initial.calibration.distortion.begin(),
+              std::min<size_t>(kDistortionCoefficients, initial.calibration.distortion.size()),
+              blocks.distortion.begin());
+  for (const Eigen::Isometry3d& T : initial.T_camera_model) {
+    blocks.poses.push_back(poseOf(T));
+  }
+  return blocks;
+}
+
+// Adds one residual per model point and view and holds the fixed parameters;
+// returns the number of free parameters.
+int buildProblem(const PlanarViews& views, const CalibrationOptions& options, RefinementScope scope,
+                 ParameterBlocks* blocks, ceres::Problem* problem) {
+  const double fixed_aspect_ratio = options.fix_aspect_ratio ? options.aspect_ratio : 0.0;
+  for (size_t view = 0; view < views.image_points.size(); ++view) {
+    double* pose = blocks->poses[view].data();
+    for (size_t i = 0; i < views.model_points.size(); ++i) {
+      problem->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<ModelPointReprojection, 2, kIntrinsicCount,
+                                          kDistortionCoefficients, 3, 3>(new ModelPointReprojection(
+              views.model_points[i], views.image_points[view][i], fixed_aspect_ratio)),
+          nullptr, blocks->intrinsics.data(), blocks->distortion.data(), pose, pose + 3);
+    }
+  }
+  const int pose_parameters = 6 * static_cast<int>(blocks->poses.size());
+  if (scope == RefinementScope::kPosesOnly) {
+    problem->SetParameterBlockConstant(blocks->intrinsics.data());
+    problem->SetParameterBlockConstant(blocks->distortion.data());
+    return pose_parameters;
+  }
+  return pose_parameters +
+         holdFixed(*problem, blocks->intrinsics.data(), kIntrinsicCount, fixedIntrinsics(options)) +
+         holdFixed(*problem, blocks->distortion.data(), kDistortionCoefficients,
+                   fixedDistortion(options.distortion_model));
+}
+
+ceres::Solver::Options solverOptions(const CalibrationOptions& options) {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_SCHUR;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = 1e-14;
+  solver_options.gradient_tolerance = 1e-14;
+  solver_options.parameter_tolerance = 1e-12;
+  solver_options.num_threads = 1;
+  return solver_options;
+}
+
+RefinementStatus statusOf(const ceres::Solver::Summary& summary) {
+  if (!std::isfinite(summary.final_cost)) {
+    return RefinementStatus::kDiverged;
+  }
+  if (summary.termination_type == ceres::CONVERGENCE) {
+    return RefinementStatus::kConverged;
+  }
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    return RefinementStatus::kNoConvergence;
+  }
+  return RefinementStatus::kDiverged;
+}
+
+CalibrationState stateOf(const ParameterBlocks& blocks, const PinholeCamera& initial_camera,
+                         const CalibrationOptions& options) {
+  CalibrationState state;
+  PinholeCamera& camera = state.calibration.camera;
+  camera = initial_camera;
+  camera.fx = blocks.intrinsics[kFx];
+  camera.fy = options.fix_aspect_ratio ? camera.fx / options.aspect_ratio : blocks.intrinsics[kFy];
+  camera.cx = blocks.intrinsics[kCx];
+  camera.cy = blocks.intrinsics[kCy];
+  camera.skew = blocks.intrinsics[kSkew];
+  state.calibration.distortion.assign(blocks.distortion.begin(), blocks.distortion.end());
+  for (const Pose& pose : blocks.poses) {
+    state.T_camera_model.push_back(isometryOf(pose));
+  }
+  return state;
+}
+
+// Cov = variance (J^T J)^-1 over the free parameters (zero for fixed ones);
+// not available when J^T J is rank deficient.
+CalibrationUncertainty uncertaintyOf(const ParameterBlocks& blocks, double variance,
+                                     const CalibrationOptions& options, RefinementScope scope,
+                                     ceres::Problem* problem) {
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::DENSE_SVD;
+  covariance_options.min_reciprocal_condition_number = 1e-14;
+  ceres::Covariance covariance(covariance_options);
+  std::vector<std::pair<const double*, const double*>> wanted;
+  if (scope == RefinementScope::kAllParameters) {
+    wanted.emplace_back(blocks.intrinsics.data(), blocks.intrinsics.data());
+    wanted.emplace_back(blocks.distortion.data(), blocks.distortion.data());
+  }
+  for (const Pose& pose : blocks.poses) {
+    wanted.emplace_back(pose.data(), pose.data());
+    wanted.emplace_back(pose.data() + 3, pose.data() + 3);
+  }
+  CalibrationUncertainty uncertainty;
+  if (!covariance.Compute(wanted, problem)) {
+    return uncertainty;
+  }
+  uncertainty.available = true;
+  uncertainty.noise_sigma_px = std::sqrt(variance);
+  if (scope == RefinementScope::kAllParameters) {
+    uncertainty.intrinsics_std_dev =
+        blockStdDev<kIntrinsicCount>(covariance, blocks.intrinsics.data(), variance);
+    uncertainty.distortion_std_dev =
+        blockStdDev<kDistortionCoefficients>(covariance, blocks.distortion.data(), variance);
+    if (options.fix_aspect_ratio) {
+      uncertainty.intrinsics_std_dev(kFy) =
+          uncertainty.intrinsics_std_dev(kFx) / options.aspect_ratio;
+    }
+  }
+  for (const Pose& pose : blocks.poses) {
+    Eigen::Matrix<double, 6, 1> pose_std_dev;
+    pose_std_dev << blockStdDev<3>(covariance, pose.data(), variance),
+        blockStdDev<3>(covariance, pose.data() + 3, variance);
+    uncertainty.pose_std_dev.push_back(pose_std_dev);
+  }
+  return uncertainty;
+}
+
 }  // namespace
 
 const char* toString(RefinementStatus status) {
@@ -141,112 +272,27 @@ const char* toString(RefinementStatus status) {
 
 RefinementResult refineCalibration(const PlanarViews& views, const CalibrationState& initial,
                                    const CalibrationOptions& options, RefinementScope scope) {
-  std::array<double, kIntrinsicCount> intrinsics =
-      intrinsicsOf(initial.calibration.camera, options);
-  std::array<double, kDistortionCoefficients> distortion{};
-  std::copy_n(initial.calibration.distortion.begin(),
-              std::min<size_t>(kDistortionCoefficients, initial.calibration.distortion.size()),
-              distortion.begin());
-  std::vector<Pose> poses;
-  for (const Eigen::Isometry3d& T : initial.T_camera_model) {
-    poses.push_back(poseOf(T));
+  if (initial.T_camera_model.size() != views.image_points.size()) {
+    throw std::invalid_argument("calibration refinement: one initial pose per view is needed");
   }
-
+  ParameterBlocks blocks = parameterBlocksOf(initial, options);
   ceres::Problem problem;
-  const double fixed_aspect_ratio = options.fix_aspect_ratio ? options.aspect_ratio : 0.0;
-  for (size_t view = 0; view < views.image_points.size(); ++view) {
-    for (size_t i = 0; i < views.model_points.size(); ++i) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<ModelPointReprojection, 2, kIntrinsicCount,
-                                          kDistortionCoefficients, 3, 3>(new ModelPointReprojection(
-              views.model_points[i], views.image_points[view][i], fixed_aspect_ratio)),
-          nullptr, intrinsics.data(), distortion.data(), poses[view].data(),
-          poses[view].data() + 3);
-    }
-  }
-  int free_parameters = 6 * static_cast<int>(poses.size());
-  if (scope == RefinementScope::kPosesOnly) {
-    problem.SetParameterBlockConstant(intrinsics.data());
-    problem.SetParameterBlockConstant(distortion.data());
-  } else {
-    free_parameters +=
-        holdFixed(problem, intrinsics.data(), kIntrinsicCount, fixedIntrinsics(options));
-    free_parameters += holdFixed(problem, distortion.data(), kDistortionCoefficients,
-                                 fixedDistortion(options.distortion_model));
-  }
-
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_SCHUR;
-  solver_options.max_num_iterations = options.max_iterations;
-  solver_options.function_tolerance = 1e-14;
-  solver_options.gradient_tolerance = 1e-14;
-  solver_options.parameter_tolerance = 1e-12;
-  solver_options.num_threads = 1;
+  const int free_parameters = buildProblem(views, options, scope, &blocks, &problem);
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &problem, &summary);
+  ceres::Solve(solverOptions(options), &problem, &summary);
 
   RefinementResult result;
   result.iterations = static_cast<int>(summary.iterations.size());
-  const bool finite = std::isfinite(summary.final_cost);
-  if (summary.termination_type == ceres::CONVERGENCE && finite) {
-    result.status = RefinementStatus::kConverged;
-  } else if (summary.termination_type == ceres::NO_CONVERGENCE && finite) {
-    result.status = RefinementStatus::kNoConvergence;
-  } else {
+  result.status = statusOf(summary);
+  if (result.status == RefinementStatus::kDiverged) {
     return result;
   }
-  PinholeCamera& camera = result.state.calibration.camera;
-  camera = initial.calibration.camera;
-  camera.fx = intrinsics[kFx];
-  camera.fy = options.fix_aspect_ratio ? intrinsics[kFx] / options.aspect_ratio : intrinsics[kFy];
-  camera.cx = intrinsics[kCx];
-  camera.cy = intrinsics[kCy];
-  camera.skew = intrinsics[kSkew];
-  result.state.calibration.distortion.assign(distortion.begin(), distortion.end());
-  for (const Pose& pose : poses) {
-    result.state.T_camera_model.push_back(isometryOf(pose));
-  }
-
-  const int observations = 2 * static_cast<int>(views.model_points.size() * poses.size());
-  if (observations <= free_parameters) {
-    return result;
-  }
-  const double variance = 2.0 * summary.final_cost / (observations - free_parameters);
-  ceres::Covariance::Options covariance_options;
-  covariance_options.algorithm_type = ceres::DENSE_SVD;
-  covariance_options.null_space_rank = -1;
-  covariance_options.min_reciprocal_condition_number = 1e-14;
-  ceres::Covariance covariance(covariance_options);
-  std::vector<std::pair<const double*, const double*>> blocks;
-  if (scope == RefinementScope::kAllParameters) {
-    blocks.emplace_back(intrinsics.data(), intrinsics.data());
-    blocks.emplace_back(distortion.data(), distortion.data());
-  }
-  for (const Pose& pose : poses) {
-    blocks.emplace_back(pose.data(), pose.data());
-    blocks.emplace_back(pose.data() + 3, pose.data() + 3);
-  }
-  if (!covariance.Compute(blocks, &problem)) {
-    return result;
-  }
-  CalibrationUncertainty& uncertainty = result.uncertainty;
-  uncertainty.available = true;
-  uncertainty.noise_sigma_px = std::sqrt(variance);
-  if (scope == RefinementScope::kAllParameters) {
-    uncertainty.intrinsics_std_dev =
-        blockStdDev<kIntrinsicCount>(covariance, intrinsics.data(), variance);
-    uncertainty.distortion_std_dev =
-        blockStdDev<kDistortionCoefficients>(covariance, distortion.data(), variance);
-    if (options.fix_aspect_ratio) {
-      uncertainty.intrinsics_std_dev(kFy) =
-          uncertainty.intrinsics_std_dev(kFx) / options.aspect_ratio;
-    }
-  }
-  for (const Pose& pose : poses) {
-    Eigen::Matrix<double, 6, 1> pose_std_dev;
-    pose_std_dev << blockStdDev<3>(covariance, pose.data(), variance),
-        blockStdDev<3>(covariance, pose.data() + 3, variance);
-    uncertainty.pose_std_dev.push_back(pose_std_dev);
+  result.state = stateOf(blocks, initial.calibration.camera, options);
+  const int observations =
+      2 * static_cast<int>(views.model_points.size() * views.image_points.size());
+  if (observations > free_parameters) {
+    const double variance = 2.0 * summary.final_cost / (observations - free_parameters);
+    result.uncertainty = uncertaintyOf(blocks, variance, options, scope, &problem);
   }
   return result;
 }

@@ -49,7 +49,8 @@ struct RefinementResult {
   int iterations = 0;
 };
 
-// `initial` must hold five distortion coefficients and one pose per view.
+// `initial` holds one pose per view (std::invalid_argument otherwise); its
+// distortion is read as k1 k2 p1 p2 k3, missing terms zero.
 RefinementResult refineCalibration(const PlanarViews& views, const CalibrationState& initial,
                                    const CalibrationOptions& options, RefinementScope scope);
 

@@ -4,10 +4,12 @@
 #include <proj.h>
 
 #include <GeographicLib/UTMUPS.hpp>
+#include <charconv>
 #include <cmath>
 #include <limits>
-#include <regex>
+#include <optional>
 #include <stdexcept>
+#include <string_view>
 
 namespace lineloc {
 namespace {
@@ -19,6 +21,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kConvergenceStep_deg = 1e-5;
 constexpr int kEpsgUtmNorthBase = 32600;
 constexpr int kEpsgUtmSouthBase = 32700;
+constexpr std::string_view kUtmPrefix = "UTM:";
+constexpr std::string_view kEpsgPrefix = "EPSG:";
 
 struct EastingNorthing {
   double easting;
@@ -164,23 +168,39 @@ class ProjBackend final : public SiteProjectionBackend {
   ProjPtr transform_;
 };
 
-std::unique_ptr<SiteProjectionBackend> makeBackend(const std::string& crs) {
-  std::smatch match;
-  if (std::regex_match(crs, match, std::regex(R"(UTM:(\d{1,2})([NS]))"))) {
-    const int zone = std::stoi(match[1]);
-    if (zone < GeographicLib::UTMUPS::MINUTMZONE || zone > GeographicLib::UTMUPS::MAXUTMZONE) {
-      throw std::invalid_argument(fmt::format("CRS '{}': UTM zone must be 1-60", crs));
-    }
-    return std::make_unique<UtmBackend>(zone, match[2] == "N");
+// The decimal number that is the whole of `text`, if it is one of at most 6 digits.
+std::optional<int> parseCode(std::string_view text) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || text.size() > 6 || error != std::errc() || end != text.data() + text.size() ||
+      text.front() == '-') {
+    return std::nullopt;
   }
-  if (!std::regex_match(crs, match, std::regex(R"(EPSG:(\d{4,6}))"))) {
+  return value;
+}
+
+std::unique_ptr<SiteProjectionBackend> makeBackend(const std::string& crs) {
+  const std::string_view text(crs);
+  if (text.starts_with(kUtmPrefix) && text.size() > kUtmPrefix.size() + 1) {
+    const char hemisphere = text.back();
+    const auto zone =
+        parseCode(text.substr(kUtmPrefix.size(), text.size() - kUtmPrefix.size() - 1));
+    if (!zone || (hemisphere != 'N' && hemisphere != 'S') ||
+        *zone < GeographicLib::UTMUPS::MINUTMZONE || *zone > GeographicLib::UTMUPS::MAXUTMZONE) {
+      throw std::invalid_argument(
+          fmt::format("CRS '{}': expected UTM:<zone 1-60><N|S>, e.g. UTM:31N", crs));
+    }
+    return std::make_unique<UtmBackend>(*zone, hemisphere == 'N');
+  }
+  const auto code =
+      text.starts_with(kEpsgPrefix) ? parseCode(text.substr(kEpsgPrefix.size())) : std::nullopt;
+  if (!code) {
     throw std::invalid_argument(
         fmt::format("CRS '{}' is neither 'UTM:<zone><N|S>' nor 'EPSG:<code>'", crs));
   }
-  const int code = std::stoi(match[1]);
   for (const int base : {kEpsgUtmNorthBase, kEpsgUtmSouthBase}) {
-    if (code > base && code <= base + GeographicLib::UTMUPS::MAXUTMZONE) {
-      return std::make_unique<UtmBackend>(code - base, base == kEpsgUtmNorthBase);
+    if (*code > base && *code <= base + GeographicLib::UTMUPS::MAXUTMZONE) {
+      return std::make_unique<UtmBackend>(*code - base, base == kEpsgUtmNorthBase);
     }
   }
   return std::make_unique<ProjBackend>(crs);

@@ -1,29 +1,34 @@
 #include "robot/agent/robot_agent.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
 
 #include "common/camera/camera_calibration.h"
+#include "common/geodesy/site_projection.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
-#include "robot/input/image_sequence.h"
+#include "robot/agent/sensor_streams.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
 namespace {
 
 constexpr int kHistoryDepth = 32;
-constexpr int64_t kPollNs = 5'000'000;
+constexpr int64_t kPollNs = 2'000'000;
 
-PoseWithCovariance predictedPose(const RobotConfig& config) {
+PoseWithCovariance configuredPose(const RobotConfig& config) {
   const std::vector<double>& p = config.predicted_pose;
   if (p.size() != 7) {
     throw std::runtime_error("predicted_pose needs 7 numbers: tx ty tz qx qy qz qw");
@@ -39,18 +44,24 @@ PoseWithCovariance predictedPose(const RobotConfig& config) {
   return pose;
 }
 
-// Receives PoseFix answers for one robot and records them.
+// Receives the PoseFix answers for this robot, checks them and hands the good
+// ones on; records latency from each frame's exposure.
 class FixReceiver {
  public:
+  using Handler = std::function<void(const PoseFixData&)>;
+
   FixReceiver(const dds::Participant& participant, const RobotConfig& config,
-              RobotRunSummary& summary)
+              RobotRunSummary& summary, Handler handler)
       : reader_(participant, dds::Qos(kHistoryDepth)),
         robot_id_(config.robot_id),
         trajectory_(config.trajectory_out),
-        summary_(summary) {}
+        summary_(summary),
+        handler_(std::move(handler)) {}
 
-  void expect(uint32_t sequence_number) { sent_ns_[sequence_number] = steadyClockNs(); }
-  size_t outstanding() const { return sent_ns_.size(); }
+  void expect(uint32_t sequence_number, int64_t exposure_wall_ns) {
+    exposure_wall_ns_[sequence_number] = exposure_wall_ns;
+  }
+  size_t outstanding() const { return exposure_wall_ns_.size(); }
 
   void poll(int64_t timeout_ns) {
     if (reader_.waitForData(timeout_ns)) {
@@ -68,26 +79,86 @@ class FixReceiver {
       spdlog::warn("dropped a malformed PoseFix: {}", *error);
       return;
     }
-    const auto sent = sent_ns_.find(message.sequence_number);
-    if (sent == sent_ns_.end()) {
+    const auto exposure = exposure_wall_ns_.find(message.sequence_number);
+    if (exposure == exposure_wall_ns_.end()) {
       ++summary_.fixes_dropped;
       spdlog::warn("dropped a PoseFix for unknown or answered frame {}", message.sequence_number);
       return;
     }
-    summary_.round_trip_ns.push_back(steadyClockNs() - sent->second);
-    sent_ns_.erase(sent);
+    summary_.latency_ns.push_back(wallClockNs() - exposure->second);
+    exposure_wall_ns_.erase(exposure);
     const PoseFixData fix = fromMessage(message);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
-    trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});
+    if (fix.status == lineloc_msg_FIX_OK) {
+      trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});
+      handler_(fix);
+    }
   }
 
   dds::Reader<lineloc_msg_PoseFix> reader_;
   std::string robot_id_;
   TumWriter trajectory_;
   RobotRunSummary& summary_;
-  std::unordered_map<uint32_t, int64_t> sent_ns_;
+  Handler handler_;
+  std::unordered_map<uint32_t, int64_t> exposure_wall_ns_;
 };
+
+lineloc_msg_Health toHealth(NavigatorMode mode) {
+  switch (mode) {
+    case NavigatorMode::kInitialising:
+      return lineloc_msg_HEALTH_INITIALISING;
+    case NavigatorMode::kTracking:
+      return lineloc_msg_HEALTH_TRACKING;
+    case NavigatorMode::kDeadReckoning:
+      return lineloc_msg_HEALTH_DEAD_RECKONING;
+    case NavigatorMode::kLost:
+      return lineloc_msg_HEALTH_LOST;
+  }
+  return lineloc_msg_HEALTH_LOST;
+}
+
+// The fused state as a RobotState message; nullopt before the filter starts.
+std::optional<lineloc_msg_RobotState> robotState(const InertialNavigator& navigator,
+                                                 const std::string& robot_id) {
+  const std::optional<NavigatorEstimate> estimate = navigator.state();
+  if (!estimate) {
+    return std::nullopt;
+  }
+  const NavigatorHealth health = navigator.health();
+  PoseWithCovariance T_world_body;
+  T_world_body.pose = makePose(estimate->state.p_world_body, estimate->state.q_world_body);
+  const auto& P = estimate->covariance;
+  T_world_body.covariance << P.block<3, 3>(kPosition, kPosition),
+      P.block<3, 3>(kPosition, kAttitude), P.block<3, 3>(kAttitude, kPosition),
+      P.block<3, 3>(kAttitude, kAttitude);
+  lineloc_msg_RobotState message{};
+  copyRobotId(robot_id, message.robot_id);
+  message.stamp_ns = estimate->state.stamp_ns;
+  message.T_world_body = toMessage(T_world_body);
+  Eigen::Map<Eigen::Vector3d>(message.velocity_world) = estimate->state.v_world_body;
+  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(message.velocity_covariance) =
+      P.block<3, 3>(kVelocity, kVelocity);
+  message.health = toHealth(health.mode);
+  message.since_last_fix_ns = health.since_vision_fix_ns.value_or(-1);
+  message.rejected_fixes = static_cast<uint32_t>(health.vision.rejected());
+  message.dropped_inputs =
+      static_cast<uint32_t>(health.imu.non_finite + health.imu.saturated +
+                            health.imu.out_of_order + health.imu.duplicate);
+  return message;
+}
+
+std::string describe(const NavigatorHealth& health) {
+  return fmt::format(
+      "{}, position sigma {:.3f} m, yaw sigma {:.2f} deg, vision fixes {} accepted / {} "
+      "rejected, DGPS {} accepted / {} skipped / {} rejected, compass {} accepted / {} "
+      "rejected, IMU samples dropped {}",
+      toString(health.mode), health.position_sigma_m, health.yaw_sigma_rad * 180.0 / M_PI,
+      health.vision.accepted, health.vision.rejected(), health.gps.accepted, health.gps.skipped,
+      health.gps.rejected(), health.compass.accepted, health.compass.rejected(),
+      health.imu.non_finite + health.imu.saturated + health.imu.out_of_order +
+          health.imu.duplicate);
+}
 
 void waitForBackbone(const dds::Writer<lineloc_msg_LineSet>& writer, double timeout_s,
                      const std::atomic<bool>& stop) {
@@ -99,6 +170,62 @@ void waitForBackbone(const dds::Writer<lineloc_msg_LineSet>& writer, double time
     spdlog::warn("no backbone found after {:.1f} s; sending anyway", timeout_s);
   }
 }
+
+std::unique_ptr<NmeaGpsDecoder> gpsDecoder(const RobotConfig& config) {
+  if (config.site_crs.empty()) {
+    return nullptr;
+  }
+  if (config.site_origin.size() != 3) {
+    throw std::runtime_error("site_origin needs 3 numbers: x y z");
+  }
+  return std::make_unique<NmeaGpsDecoder>(SiteProjection(
+      config.site_crs,
+      Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2])));
+}
+
+InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGpsDecoder* gps,
+                                        const SensorStreams& streams) {
+  InertialNavigatorConfig navigator;
+  navigator.magnetic_declination_rad = config.magnetic_declination_deg * M_PI / 180.0;
+  if (gps != nullptr && !streams.gps.empty()) {
+    const GeodeticPosition where = gps->projection().toGeodetic(streams.gps.front().p_world_antenna);
+    navigator.grid_bearing_of_true_north_rad = gps->projection().gridBearingOfTrueNorth_rad(where);
+  }
+  return navigator;
+}
+
+// Replays the timeline: each event is due at its stamp's offset from the first,
+// scaled by the playback speed; frames without stamps come at rate_hz.
+class Playback {
+ public:
+  Playback(const RobotConfig& config, int64_t first_stamp_ns)
+      : first_stamp_ns_(first_stamp_ns),
+        start_steady_ns_(steadyClockNs()),
+        start_wall_ns_(wallClockNs()),
+        speed_(config.playback_speed),
+        frame_period_ns_(config.rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.rate_hz) : 0) {}
+
+  // Steady-clock time at which the event is due.
+  int64_t dueSteadyNs(const SensorEvent& event, bool stamped) const {
+    if (!stamped) {
+      return start_steady_ns_ + static_cast<int64_t>(event.index) * frame_period_ns_;
+    }
+    if (speed_ <= 0.0) {
+      return 0;
+    }
+    return start_steady_ns_ + static_cast<int64_t>((event.stamp_ns - first_stamp_ns_) / speed_);
+  }
+  int64_t wallAt(int64_t steady_ns) const {
+    return start_wall_ns_ + std::max<int64_t>(0, steady_ns - start_steady_ns_);
+  }
+
+ private:
+  int64_t first_stamp_ns_;
+  int64_t start_steady_ns_;
+  int64_t start_wall_ns_;
+  double speed_;
+  int64_t frame_period_ns_;
+};
 
 }  // namespace
 
@@ -122,49 +249,105 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     throw std::runtime_error("calibration: a camera calibration file is required");
   }
   const CameraCalibration calibration = readCameraCalibration(config.calibration);
-  const PoseWithCovariance predicted = predictedPose(config);
-  std::vector<FrameRef> frames = listImageSequence(config.images);
-  if (config.max_frames > 0 && static_cast<int>(frames.size()) > config.max_frames) {
-    frames.resize(config.max_frames);
+  const PoseWithCovariance configured = configuredPose(config);
+  const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
+  SensorStreams streams = loadSensorStreams(config.images, gps.get());
+  for (const std::string& reason : streams.drop_reasons) {
+    spdlog::warn("input dropped: {}", reason);
+  }
+  std::optional<InertialNavigator> navigator;
+  if (!streams.imu.empty()) {
+    navigator.emplace(navigatorConfig(config, gps.get(), streams));
   }
   FeatureExtractorOptions extractor_options;
   extractor_options.lines.min_length_px = config.min_segment_length_px;
   FeatureExtractor extractor(calibration, extractor_options);
 
+  RobotRunSummary summary;
+  summary.sensor_lines_dropped = streams.dropped_lines;
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
-  RobotRunSummary summary;
-  FixReceiver receiver(participant, config, summary);
+  FixReceiver receiver(participant, config, summary, [&](const PoseFixData& fix) {
+    if (!navigator) {
+      return;
+    }
+    const MeasurementOutcome outcome = navigator->applyVisionFix(fix.stamp_ns, fix.T_world_camera);
+    ++(outcome == MeasurementOutcome::kAccepted || outcome == MeasurementOutcome::kPending
+           ? summary.fixes_applied
+           : summary.fixes_rejected);
+  });
   dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(kHistoryDepth));
+  dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(kHistoryDepth));
+  TumWriter fused(config.fused_trajectory_out);
   waitForBackbone(writer, config.wait_for_backbone_s, stop);
 
-  const int64_t period_ns = config.rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.rate_hz) : 0;
-  int64_t next_frame_ns = steadyClockNs();
-  for (size_t index = 0; index < frames.size() && !stop; ++index) {
-    while (steadyClockNs() < next_frame_ns && !stop) {
-      receiver.poll(std::min(kPollNs, next_frame_ns - steadyClockNs()));
+  const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
+  const Playback playback(config, streams.timeline.empty() ? 0 : streams.timeline.front().stamp_ns);
+  const int64_t state_period_ns =
+      config.state_rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.state_rate_hz) : 0;
+  int64_t next_state_ns = 0;
+  int frames_done = 0;
+  for (const SensorEvent& event : streams.timeline) {
+    if (stop || (config.max_frames > 0 && frames_done >= config.max_frames)) {
+      break;
     }
-    next_frame_ns += period_ns;
-    const int64_t capture_ns = wallClockNs();
-    LineSetData line_set;
-    line_set.robot_id = config.robot_id;
-    line_set.sequence_number = static_cast<uint32_t>(index);
-    line_set.stamp_ns = frames[index].stamp_ns.value_or(capture_ns);
-    line_set.camera = calibration.camera;
-    const FrameFeatures& features = extractor.extract(readGreyImage(frames[index].path));
-    line_set.segments = features.segments;
-    line_set.corners = features.corners;
-    line_set.predicted_T_world_camera = predicted;
-    const LineSetMessage message(line_set);
-    receiver.expect(line_set.sequence_number);
-    writer.write(message.message());
-    ++summary.frames_sent;
-    receiver.poll(0);
+    const int64_t due_ns = playback.dueSteadyNs(event, stamped);
+    do {
+      receiver.poll(std::clamp<int64_t>(due_ns - steadyClockNs(), 0, kPollNs));
+    } while (steadyClockNs() < due_ns && !stop);
+    switch (event.kind) {
+      case SensorKind::kImu:
+        navigator->addImu(streams.imu[event.index]);
+        break;
+      case SensorKind::kGps:
+        if (navigator) navigator->addGps(streams.gps[event.index]);
+        break;
+      case SensorKind::kCompass:
+        if (navigator) navigator->addCompass(streams.compass[event.index]);
+        break;
+      case SensorKind::kFrame: {
+        ++frames_done;
+        const FrameRef& frame = streams.frames[event.index];
+        const int64_t exposure_wall_ns = playback.wallAt(due_ns);
+        LineSetData line_set;
+        line_set.robot_id = config.robot_id;
+        line_set.sequence_number = static_cast<uint32_t>(event.index);
+        line_set.stamp_ns = frame.stamp_ns.value_or(exposure_wall_ns);
+        line_set.camera = calibration.camera;
+        if (navigator) {
+          const PosePrediction prediction = navigator->predictAt(line_set.stamp_ns);
+          if (prediction.status != PredictionStatus::kOk) {
+            ++summary.frames_before_start;
+            break;
+          }
+          line_set.predicted_T_world_camera = prediction.T_world_camera;
+        } else {
+          line_set.predicted_T_world_camera = configured;
+        }
+        fused.write({line_set.stamp_ns, line_set.predicted_T_world_camera.pose});
+        const FrameFeatures& features = extractor.extract(readGreyImage(frame.path));
+        line_set.segments = features.segments;
+        line_set.corners = features.corners;
+        const LineSetMessage message(line_set);
+        receiver.expect(line_set.sequence_number, exposure_wall_ns);
+        writer.write(message.message());
+        ++summary.frames_sent;
+        break;
+      }
+    }
+    if (navigator && steadyClockNs() >= next_state_ns) {
+      if (const auto state = robotState(*navigator, config.robot_id)) {
+        state_writer.write(*state);
+        ++summary.states_published;
+      }
+      next_state_ns = steadyClockNs() + state_period_ns;
+    }
   }
   const int64_t deadline = steadyClockNs() + static_cast<int64_t>(config.fix_timeout_s * 1e9);
   while (receiver.outstanding() > 0 && steadyClockNs() < deadline && !stop) {
     receiver.poll(kPollNs);
   }
+  summary.health = navigator ? describe(navigator->health()) : "no IMU: fixed prediction";
   return summary;
 }
 

@@ -1,6 +1,12 @@
-// The robot's side of the loop: for each camera frame, extract segments and
-// publish a LineSet with the predicted pose; take the backbone's PoseFix
-// answers, check them, and write them as a TUM trajectory.
+// The robot's side of the loop (paper §1.2): replay the camera, IMU, DGPS and
+// compass as they were measured; keep the pose with the inertial navigator
+// (robot/inertial) started from DGPS and compass; for each camera frame send
+// the extracted segments and corners with the pose predicted at its exposure
+// time; apply each PoseFix that comes back (late) at its frame's time; publish
+// the fused state (RobotState) at a fixed rate.
+//
+// Without IMU data (a plain image folder) the prediction is the configured
+// pose, and the loop only exercises the link.
 #pragma once
 
 #include <atomic>
@@ -17,32 +23,47 @@ struct RobotConfig {
   std::string robot_id = "robot1";
   std::string images;
   std::string calibration;
-  // Predicted T_world_camera: tx ty tz qx qy qz qw (site frame, metres).
+  // Without IMU data: the predicted T_world_camera, tx ty tz qx qy qz qw (site frame).
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};
   double predicted_position_sigma_m = 5.0;
   double predicted_rotation_sigma_deg = 10.0;
+  // Site frame for DGPS: CRS ("EPSG:7415") and origin (x y z) subtracted from it.
+  std::string site_crs;
+  std::vector<double> site_origin = {0.0, 0.0, 0.0};
+  double magnetic_declination_deg = 0.0;
+  // Replay speed for timed datasets (1: real time; 0: as fast as possible).
+  double playback_speed = 1.0;
+  // Frame rate for image folders without time stamps (0: as fast as possible).
   double rate_hz = 10.0;
   int max_frames = 0;
   double min_segment_length_px = 20.0;
   int domain_id = 0;
   std::string dds_config;
   std::string trajectory_out = "poses.tum";
+  std::string fused_trajectory_out = "fused.tum";
+  double state_rate_hz = 20.0;
   double wait_for_backbone_s = 5.0;
   double fix_timeout_s = 2.0;
 };
 
 struct RobotRunSummary {
   int frames_sent = 0;
+  int frames_before_start = 0;
   int fixes_received = 0;
   int fixes_dropped = 0;
+  int fixes_applied = 0;
+  int fixes_rejected = 0;
+  int states_published = 0;
+  int sensor_lines_dropped = 0;
   std::map<std::string, int> fixes_by_status;
-  // Publish -> PoseFix received on this robot, per answered frame.
-  std::vector<int64_t> round_trip_ns;
+  // Frame exposure -> PoseFix received, per answered frame.
+  std::vector<int64_t> latency_ns;
+  std::string health;
 };
 
-// Runs the image sequence through the loop. Stops early when `stop` becomes
-// true. Throws std::runtime_error on bad configuration or unreadable input;
-// a missing or vanished backbone is not an error (frames go unanswered).
+// Runs the input through the loop. Stops early when `stop` becomes true.
+// Throws std::runtime_error on bad configuration or unreadable input; a
+// missing or vanished backbone is not an error (the robot dead-reckons).
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop);
 
 // Nearest-rank percentile (0..100) of `values`; 0 for an empty list.

@@ -18,22 +18,33 @@ int main(int argc, char** argv) {
   lineloc::RobotConfig config;
   lineloc::ProgramOptions options("lineloc-robot", "lineloc onboard agent");
   options.add("robot_id", config.robot_id, "this robot's id, [A-Za-z0-9][A-Za-z0-9_.-]*");
-  options.add("images", config.images, "image folder, EuRoC/ASL dataset or cam0/ folder");
+  options.add("images", config.images,
+              "EuRoC/ASL dataset (cam0/, imu0/, gps0/, compass0/), cam0/ folder or image folder");
   options.add("calibration", config.calibration, "camera calibration (OpenCV YAML layout)");
   options.add("predicted_pose", config.predicted_pose,
-              "predicted T_world_camera: tx ty tz qx qy qz qw");
+              "without IMU data: predicted T_world_camera, tx ty tz qx qy qz qw");
   options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,
               "standard deviation of the predicted position (m)");
   options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
               "standard deviation of the predicted rotation (degrees)");
-  options.add("rate_hz", config.rate_hz, "frames per second to send (0: as fast as possible)");
+  options.add("site_crs", config.site_crs, "CRS of the site frame, e.g. EPSG:7415 (for DGPS)");
+  options.add("site_origin", config.site_origin, "site origin x y z in that CRS");
+  options.add("magnetic_declination_deg", config.magnetic_declination_deg,
+              "magnetic declination at the site, east positive (degrees)");
+  options.add("playback_speed", config.playback_speed,
+              "replay speed of a timed dataset (1: real time, 0: as fast as possible)");
+  options.add("rate_hz", config.rate_hz,
+              "frame rate for image folders without stamps (0: as fast as possible)");
   options.add("max_frames", config.max_frames, "stop after this many frames (0: all)");
   options.add("min_segment_length_px", config.min_segment_length_px,
               "shortest segment sent (pixels)");
   options.add("domain_id", config.domain_id, "DDS domain id");
   options.add("dds_config", config.dds_config,
               "Cyclone DDS XML configuration file (empty: CYCLONEDDS_URI / defaults)");
-  options.add("trajectory_out", config.trajectory_out, "TUM file the received poses go to");
+  options.add("trajectory_out", config.trajectory_out, "TUM file the received fixes go to");
+  options.add("fused_trajectory_out", config.fused_trajectory_out,
+              "TUM file of the pose predicted at each frame (what the robot knew then)");
+  options.add("state_rate_hz", config.state_rate_hz, "RobotState publication rate");
   options.add("wait_for_backbone_s", config.wait_for_backbone_s,
               "how long to wait for a backbone before sending");
   options.add("fix_timeout_s", config.fix_timeout_s,
@@ -46,11 +57,14 @@ int main(int argc, char** argv) {
   try {
     const lineloc::RobotRunSummary summary = lineloc::runRobot(config, g_stop);
     std::cout << fmt::format(
-        "lineloc-robot: {} frames sent, {} fixes received, {} dropped; round trip median "
-        "{:.2f} ms, p99 {:.2f} ms\n",
-        summary.frames_sent, summary.fixes_received, summary.fixes_dropped,
-        lineloc::percentile(summary.round_trip_ns, 50) * 1e-6,
-        lineloc::percentile(summary.round_trip_ns, 99) * 1e-6);
+        "lineloc-robot: {} frames sent ({} before the filter started), {} fixes received, {} "
+        "dropped, {} applied, {} rejected; exposure -> fix median {:.2f} ms, p99 {:.2f} ms\n"
+        "lineloc-robot: {} states published; {} sensor lines dropped; {}\n",
+        summary.frames_sent, summary.frames_before_start, summary.fixes_received,
+        summary.fixes_dropped, summary.fixes_applied, summary.fixes_rejected,
+        lineloc::percentile(summary.latency_ns, 50) * 1e-6,
+        lineloc::percentile(summary.latency_ns, 99) * 1e-6, summary.states_published,
+        summary.sensor_lines_dropped, summary.health);
     for (const auto& [status, count] : summary.fixes_by_status) {
       std::cout << fmt::format("lineloc-robot:   {:>6} fixes {}\n", count, status);
     }

@@ -17,6 +17,10 @@ constexpr double kNsToS = 1e-9;
 // Velocity sigma when starting still: a standing robot, but the IMU window
 // cannot tell a creep of a few cm/s from standing.
 constexpr double kStillVelocitySigma_mps = 0.05;
+// Longest interval between two vision fixes whose difference starts the velocity.
+constexpr int64_t kMaxVelocityBaseline_ns = 500'000'000;
+// Bound on a ground robot's acceleration, for the error of that velocity.
+constexpr double kMaxGroundAcceleration_mps2 = 2.0;
 // Compass readings needed for a start-up heading (1 s at 10 Hz).
 constexpr size_t kMinStartupCompassReadings = 10;
 
@@ -151,12 +155,14 @@ void InertialNavigator::addImu(const ImuSample& sample_imu) {
   imu_.push_back({sample, zero_velocity_detector_.isStill()});
   if (snapshots_.empty()) {
     alignment_detector_.add(sample);
+    moved_since_start_ = moved_since_start_ || alignment_detector_.isMoving();
     if (auto alignment = alignment_detector_.alignment()) {
       alignment_ = alignment;
     }
     tryInitialiseFromSensors();
   } else {
     process(imu_.back());
+    restartIfVisionKeepsBeingGated();
   }
   prune();
 }
@@ -196,10 +202,17 @@ MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
     ++counters_.vision.invalid;
     return MeasurementOutcome::kInvalid;
   }
+  const VisionPayload vision{T_world_camera, T_body_camera};
   if (snapshots_.empty()) {
-    return initialiseFromVision(stamp_ns, T_world_camera, T_body_camera);
+    const BodyFix fix = bodyFixOf(stamp_ns, vision);
+    const MeasurementOutcome outcome = startFromVision(fix, startup_vision_);
+    startup_vision_ = fix;
+    ++counterOf(counters_.vision, outcome);
+    return outcome;
   }
-  return addMeasurement(stamp_ns, {VisionPayload{T_world_camera, T_body_camera}, std::nullopt});
+  const MeasurementOutcome outcome = addMeasurement(stamp_ns, {vision, std::nullopt});
+  restartIfVisionKeepsBeingGated();
+  return outcome;
 }
 
 MeasurementOutcome InertialNavigator::addMeasurement(int64_t stamp_ns, Measurement measurement) {
@@ -251,6 +264,7 @@ void InertialNavigator::process(const BufferedImu& imu) {
                     gate_by_dimension_[3], snapshot.state, snapshot.covariance);
     if (outcome.status == UpdateStatus::kAccepted) {
       snapshot.last_zero_velocity_ns = imu.sample.stamp_ns;
+      ++snapshot.zero_velocity_updates;
     }
   }
   snapshot.imu = imu.sample;
@@ -370,6 +384,7 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshots_.push_back(snapshot);
   startup_gps_.reset();
   startup_compass_.clear();
+  startup_vision_.reset();
   replayFrom(0);
 }
 
@@ -391,8 +406,11 @@ double InertialNavigator::yawFromCompass(double magnetic_heading_rad) const {
 }
 
 void InertialNavigator::tryInitialiseFromSensors() {
-  if (!alignment_ || !startup_gps_ || startup_compass_.size() < kMinStartupCompassReadings ||
-      imu_.empty()) {
+  // Only while standing still since power-on: the start covariance assumes it,
+  // and a robot cruising on a smooth road can be as quiet as a standing one.
+  const auto alignment = alignment_detector_.alignment();
+  if (moved_since_start_ || !alignment || !startup_gps_ ||
+      startup_compass_.size() < kMinStartupCompassReadings) {
     return;
   }
   // Circular mean of the recent compass readings.
@@ -405,7 +423,7 @@ void InertialNavigator::tryInitialiseFromSensors() {
   NavigationState state;
   state.stamp_ns = latest.stamp_ns;
   state.q_world_body = quaternionFromYawPitchRoll(std::atan2(sum.y(), sum.x()),
-                                                  alignment_->pitch_rad, alignment_->roll_rad);
+                                                  alignment->pitch_rad, alignment->roll_rad);
   state.p_world_body =
       startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
   double gyro_bias_sigma = 0.0;
@@ -420,33 +438,53 @@ void InertialNavigator::tryInitialiseFromSensors() {
   startAt(state, sigma.cwiseAbs2().asDiagonal(), latest);
 }
 
-MeasurementOutcome InertialNavigator::initialiseFromVision(int64_t stamp_ns,
-                                                           const PoseWithCovariance& T_world_camera,
-                                                           const Eigen::Isometry3d& T_body_camera) {
-  const auto imu = bufferedImuAt(stamp_ns);
+InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
+                                                        const VisionPayload& vision) {
+  BodyFix fix;
+  fix.stamp_ns = stamp_ns;
+  fix.T_world_body = vision.T_world_camera.pose * vision.T_body_camera.inverse();
+  // e_body = J^-1 e_camera with J^-1 = [I, [R t_bc]x; 0, I], the inverse of
+  // the lever-arm Jacobian of cameraPoseOf().
+  Matrix6d J_inverse = Matrix6d::Identity();
+  J_inverse.topRightCorner<3, 3>() =
+      skew(fix.T_world_body.linear() * vision.T_body_camera.translation());
+  fix.covariance = J_inverse * vision.T_world_camera.covariance * J_inverse.transpose();
+  return fix;
+}
+
+MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
+                                                      const std::optional<BodyFix>& previous) {
+  const auto imu = bufferedImuAt(fix.stamp_ns);
   if (!imu) {
-    ++counters_.vision.too_late;
     return MeasurementOutcome::kTooLate;
   }
-  const Eigen::Isometry3d T_world_body = T_world_camera.pose * T_body_camera.inverse();
   NavigationState state;
-  state.stamp_ns = stamp_ns;
-  state.p_world_body = T_world_body.translation();
-  state.q_world_body = Eigen::Quaterniond(T_world_body.linear()).normalized();
+  state.stamp_ns = fix.stamp_ns;
+  state.p_world_body = fix.T_world_body.translation();
+  state.q_world_body = Eigen::Quaterniond(fix.T_world_body.linear()).normalized();
+  double velocity_sigma = kStillVelocitySigma_mps;
+  if (moved_since_start_ || !alignment_detector_.isStill()) {
+    const int64_t baseline_ns = previous ? fix.stamp_ns - previous->stamp_ns : 0;
+    if (baseline_ns <= 0 || baseline_ns > kMaxVelocityBaseline_ns) {
+      return MeasurementOutcome::kSkipped;
+    }
+    // v = dp / dt; sigma from both positions, plus the speed change a dt / 2
+    // the mean velocity misses at a ground robot's acceleration.
+    const double dt = static_cast<double>(baseline_ns) * kNsToS;
+    state.v_world_body =
+        (fix.T_world_body.translation() - previous->T_world_body.translation()) / dt;
+    const double position_variance =
+        fix.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff() +
+        previous->covariance.topLeftCorner<3, 3>().diagonal().maxCoeff();
+    velocity_sigma = std::sqrt(position_variance) / dt + 0.5 * kMaxGroundAcceleration_mps2 * dt;
+  }
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
-  // The body pose error from the camera's: e_body = J^-1 e_camera with
-  // J^-1 = [I, [R t_bc]x; 0, I] (inverse of the lever-arm Jacobian).
-  Matrix6d J_inverse = Matrix6d::Identity();
-  J_inverse.topRightCorner<3, 3>() = skew(T_world_body.linear() * T_body_camera.translation());
   ErrorCovariance covariance = ErrorCovariance::Zero();
-  const Matrix6d pose_covariance = J_inverse * T_world_camera.covariance * J_inverse.transpose();
-  covariance.block<3, 3>(kPosition, kPosition) = pose_covariance.topLeftCorner<3, 3>();
-  covariance.block<3, 3>(kPosition, kAttitude) = pose_covariance.topRightCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kPosition) = pose_covariance.bottomLeftCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kAttitude) = pose_covariance.bottomRightCorner<3, 3>();
-  const double velocity_sigma =
-      alignment_detector_.isStill() ? kStillVelocitySigma_mps : config_.initial_velocity_sigma_mps;
+  covariance.block<3, 3>(kPosition, kPosition) = fix.covariance.topLeftCorner<3, 3>();
+  covariance.block<3, 3>(kPosition, kAttitude) = fix.covariance.topRightCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kPosition) = fix.covariance.bottomLeftCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kAttitude) = fix.covariance.bottomRightCorner<3, 3>();
   covariance.block<3, 3>(kVelocity, kVelocity)
       .diagonal()
       .setConstant(velocity_sigma * velocity_sigma);
@@ -457,8 +495,33 @@ MeasurementOutcome InertialNavigator::initialiseFromVision(int64_t stamp_ns,
       .diagonal()
       .setConstant(config_.accel_turn_on_bias_sigma_mps2 * config_.accel_turn_on_bias_sigma_mps2);
   startAt(state, covariance, *imu);
-  ++counters_.vision.accepted;
   return MeasurementOutcome::kAccepted;
+}
+
+void InertialNavigator::restartIfVisionKeepsBeingGated() {
+  if (snapshots_.empty() || config_.vision_gated_before_restart <= 0) {
+    return;
+  }
+  std::vector<BodyFix> gated;
+  for (auto it = measurements_.rbegin(); it != measurements_.rend(); ++it) {
+    const auto* vision = std::get_if<VisionPayload>(&it->second.payload);
+    if (vision == nullptr || !it->second.outcome) {
+      continue;
+    }
+    if (*it->second.outcome != MeasurementOutcome::kGated) {
+      return;
+    }
+    gated.push_back(bodyFixOf(it->first, *vision));
+    if (static_cast<int>(gated.size()) == config_.vision_gated_before_restart) {
+      break;
+    }
+  }
+  if (static_cast<int>(gated.size()) < config_.vision_gated_before_restart) {
+    return;
+  }
+  if (startFromVision(gated[0], gated[1]) == MeasurementOutcome::kAccepted) {
+    ++counters_.restarts;
+  }
 }
 
 PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {
@@ -503,6 +566,7 @@ NavigatorHealth InertialNavigator::health() const {
   }
   const Snapshot& latest = snapshots_.back();
   health.stamp_ns = latest.state.stamp_ns;
+  health.zero_velocity_updates = latest.zero_velocity_updates;
   if (latest.last_vision_ns) {
     health.since_vision_fix_ns = latest.state.stamp_ns - *latest.last_vision_ns;
   }

@@ -15,7 +15,11 @@
 // Start-up. Standing still for `alignment.window_ns` gives roll, pitch and gyro
 // bias (stillness_detector.h); the compass, corrected for magnetic declination
 // and meridian convergence, gives yaw; DGPS gives position; all with large
-// covariances. A vision fix before that starts the filter from its pose.
+// covariances; only if the robot has not moved since power-on. Vision fixes
+// before that start the filter from their pose: at once when it has stood
+// still since power-on, else from two fixes at most 0.5 s apart, whose
+// difference gives the velocity. The same restart follows
+// `vision_gated_before_restart` vision fixes gated in a row.
 //
 // Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
 // only while the filter's horizontal position sigma exceeds the DGPS sigma (its
@@ -78,9 +82,12 @@ struct InertialNavigatorConfig {
   double magnetic_declination_rad = 0.0;  // magnetic north's bearing from true north, east positive
   double grid_bearing_of_true_north_rad = 0.0;  // SiteProjection::gridBearingOfTrueNorth_rad
   double initial_yaw_sigma_rad = 0.175;
-  double initial_velocity_sigma_mps = 1.0;
   double gyro_turn_on_bias_sigma_radps = 0.0035;
   double accel_turn_on_bias_sigma_mps2 = 0.05;
+
+  // This many vision fixes gated in a row mean the filter, not the fixes, is
+  // wrong: it restarts from the last two fixes.
+  int vision_gated_before_restart = 5;
 
   int64_t tracking_timeout_ns = 1'000'000'000;
   double lost_position_sigma_m = 10.0;
@@ -142,6 +149,7 @@ struct NavigatorHealth {
   MeasurementCounters gps;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
+  int64_t restarts = 0;  // from vision, after vision_gated_before_restart gated fixes
   ImuCounters imu;
 };
 
@@ -205,11 +213,18 @@ class InertialNavigator {
     ErrorCovariance covariance;
     ImuSample imu;
     int64_t last_zero_velocity_ns = 0;
+    int64_t zero_velocity_updates = 0;
     std::optional<int64_t> last_vision_ns;
   };
   struct BufferedImu {
     ImuSample sample;
     bool still = false;
+  };
+  // A vision fix as the body's pose and its covariance.
+  struct BodyFix {
+    int64_t stamp_ns = 0;
+    Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+    Matrix6d covariance = Matrix6d::Identity();
   };
 
   bool acceptImu(const ImuSample& sample);
@@ -225,9 +240,9 @@ class InertialNavigator {
   void startAt(const NavigationState& state, const ErrorCovariance& covariance,
                const ImuSample& imu);
   void tryInitialiseFromSensors();
-  MeasurementOutcome initialiseFromVision(int64_t stamp_ns,
-                                          const PoseWithCovariance& T_world_camera,
-                                          const Eigen::Isometry3d& T_body_camera);
+  static BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision);
+  MeasurementOutcome startFromVision(const BodyFix& fix, const std::optional<BodyFix>& previous);
+  void restartIfVisionKeepsBeingGated();
   Eigen::Vector3d initialGyroBias(double& sigma_radps) const;
   double yawFromCompass(double magnetic_heading_rad) const;
 
@@ -243,6 +258,8 @@ class InertialNavigator {
   std::multimap<int64_t, Measurement> measurements_;
   std::optional<GpsFix> startup_gps_;
   std::deque<CompassReading> startup_compass_;
+  std::optional<BodyFix> startup_vision_;
+  bool moved_since_start_ = false;
 
   NavigatorHealth counters_;
   std::optional<int64_t> last_imu_stamp_ns_;

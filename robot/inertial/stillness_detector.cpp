@@ -35,12 +35,21 @@ void StillnessDetector::clear() {
   sum_squares_.setZero();
 }
 
-bool StillnessDetector::isStill() const {
+bool StillnessDetector::isFull() const {
   // A window is full when its span reaches 90 % of the length (sample jitter).
-  if (window_.size() < 2 ||
-      10 * (window_.back().stamp_ns - window_.front().stamp_ns) < 9 * thresholds_.window_ns) {
-    return false;
-  }
+  return window_.size() >= 2 &&
+         10 * (window_.back().stamp_ns - window_.front().stamp_ns) >= 9 * thresholds_.window_ns;
+}
+
+bool StillnessDetector::isMoving() const {
+  return isFull() && !isQuiet();
+}
+
+bool StillnessDetector::isStill() const {
+  return isFull() && isQuiet();
+}
+
+bool StillnessDetector::isQuiet() const {
   const double n = static_cast<double>(window_.size());
   const Eigen::Matrix<double, 6, 1> mean = sum_ / n;
   const Eigen::Matrix<double, 6, 1> variance =

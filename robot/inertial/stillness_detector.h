@@ -43,11 +43,16 @@ class StillnessDetector {
 
   // True when the window is full and quiet.
   bool isStill() const;
+  // True when the window is full and not quiet.
+  bool isMoving() const;
 
   // The alignment from the window's means, when it is still.
   std::optional<StaticAlignment> alignment() const;
 
  private:
+  bool isFull() const;
+  bool isQuiet() const;
+
   StillnessThresholds thresholds_;
   std::deque<ImuSample> window_;
   Eigen::Matrix<double, 6, 1> sum_ = Eigen::Matrix<double, 6, 1>::Zero();

@@ -83,6 +83,15 @@ RouteTrajectory::RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, 
     }
     arclength_.push_back(arclength_.back() + 0.5 * (b - a) * length);
   }
+  // Unsigned curvature |p' x p''| / |p'|^3 at the same parameters.
+  for (size_t i = 0; i < arclength_.size(); ++i) {
+    const SplinePoint p = spline(std::min(U_end, static_cast<double>(i) * kTableStep));
+    const double speed = p.first.norm();
+    curvature_.push_back(speed > 1e-9
+                             ? std::abs(p.first.x() * p.second.y() - p.first.y() * p.second.x()) /
+                                   (speed * speed * speed)
+                             : 0.0);
+  }
   planSpeed();
 }
 
@@ -139,21 +148,17 @@ double RouteTrajectory::parameterAt(double arclength_m) const {
   return U;
 }
 
-void RouteTrajectory::planSpeed() {
-  // The sharpest bend caps the cruise speed: k_max v^2 <= a_lat.
-  double max_curvature = 1e-9;
-  for (double U = 0.0; U < static_cast<double>(control_.size() - 3); U += kTableStep) {
-    const SplinePoint p = spline(U);
-    const double speed = p.first.norm();
-    if (speed > 1e-9) {
-      const double k = std::abs(p.first.x() * p.second.y() - p.first.y() * p.second.x()) /
-                       (speed * speed * speed);
-      max_curvature = std::max(max_curvature, k);
-    }
+double RouteTrajectory::maxCurvature(double from_m, double to_m) const {
+  const auto first = std::lower_bound(arclength_.begin(), arclength_.end(), from_m);
+  const auto last = std::upper_bound(first, arclength_.end(), to_m);
+  double max_curvature = 0.0;
+  for (auto at = first; at != last; ++at) {
+    max_curvature = std::max(max_curvature, curvature_[at - arclength_.begin()]);
   }
-  const double top_speed =
-      std::clamp(std::sqrt(options_.max_lateral_acceleration_m_s2 / max_curvature),
-                 options_.min_speed_m_s, options_.max_speed_m_s);
+  return max_curvature;
+}
+
+void RouteTrajectory::planSpeed() {
   std::mt19937_64 random(options_.seed);
   const auto uniform = [&](double low, double high) {
     return std::uniform_real_distribution<double>(low, high)(random);
@@ -165,9 +170,17 @@ void RouteTrajectory::planSpeed() {
   const double length = arclength_.back();
   while (t < options_.duration_s) {
     const bool stop = v > 0.0 && uniform(0.0, 1.0) < options_.stop_probability;
-    const double target = stop ? 0.0 : uniform(options_.min_speed_m_s, top_speed);
     const double cruise = stop ? uniform(options_.min_stop_s, options_.max_stop_s)
                                : uniform(options_.min_leg_s, options_.max_leg_s);
+    double target = stop ? 0.0 : uniform(options_.min_speed_m_s, options_.max_speed_m_s);
+    // The sharpest bend of the stretch this leg and the next ramp cover caps
+    // the speed: k v^2 <= a_lat (never below the minimum cruise speed).
+    const double stretch = 0.5 * (v + target) * ramp + target * (cruise + ramp);
+    const double curvature = maxCurvature(covered, covered + stretch);
+    if (!stop && curvature > 0.0) {
+      target = std::clamp(std::sqrt(options_.max_lateral_acceleration_m_s2 / curvature),
+                          options_.min_speed_m_s, target);
+    }
     // Distance of this ramp and cruise, and of a final stop from `target`.
     const double leg = 0.5 * (v + target) * ramp + target * cruise;
     if (covered + leg + 0.5 * target * ramp > length) {

@@ -2,7 +2,8 @@
 // a uniform cubic B-spline (curvature-continuous, so yaw rate and lateral
 // acceleration have no steps) through control points every few metres, driven
 // with a speed profile of quintic smoothstep ramps s(u) = 6u^5 - 15u^4 + 10u^3
-// between random cruise speeds, with stops. Distance along the path is the
+// between random cruise speeds (each capped by the bends it drives through),
+// with stops. Distance along the path is the
 // closed-form integral of the speed (S(u) = u^6 - 3u^5 + 5u^4/2); arclength
 // is inverted by Newton's method on the spline parameter. The robot stays
 // level: with unit tangent T, left normal N and signed curvature k,
@@ -25,7 +26,8 @@ struct RouteDriveOptions {
   double initial_still_s = 5.0;
   double min_speed_m_s = 0.5;
   double max_speed_m_s = 2.0;
-  // Cruise speeds are capped so that k_max v^2 stays below this (m/s^2).
+  // Each leg's cruise speed is capped so that k v^2 stays below this on the
+  // sharpest bend it drives (m/s^2).
   double max_lateral_acceleration_m_s2 = 1.0;
   double ramp_s = 2.0;
   double min_leg_s = 4.0;
@@ -73,12 +75,16 @@ class RouteTrajectory : public sim::TruthTrajectory {
   double distance(double t) const;
   SplinePoint spline(double U) const;
   double parameterAt(double arclength_m) const;
+  // Largest curvature between two arclengths (1/m).
+  double maxCurvature(double from_m, double to_m) const;
 
   RouteDriveOptions options_;
   double ground_z_m_;
   std::vector<Eigen::Vector2d> control_;
   // Arclength at U = 0, h, 2h, ... (h = kTableStep).
   std::vector<double> arclength_;
+  // Unsigned curvature at the same parameters (1/m).
+  std::vector<double> curvature_;
   std::vector<Ramp> ramps_;
 };
 

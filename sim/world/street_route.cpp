@@ -149,10 +149,14 @@ StreetRoute planStreetRoute(const OccupancyMap& map, const StreetRouteOptions& o
   const double min_leg_cells = options.min_leg_m / map.cellSize();
   for (int leg = 0; leg < options.max_legs && length_m < options.length_m; ++leg) {
     const cv::Point from = path.back();
+    // Direction of travel over the last few metres; the first half of the
+    // attempts only take goals ahead of it, so the robot rarely turns back.
+    const cv::Point heading = from - path[path.size() - std::min<size_t>(path.size(), 10)];
     std::vector<cv::Point> leg_path;
     for (int attempt = 0; attempt < kGoalAttempts && leg_path.empty(); ++attempt) {
       const cv::Point goal = cells.goals[pick(random)];
-      if (std::hypot(goal.x - from.x, goal.y - from.y) >= min_leg_cells) {
+      const bool ahead = (goal - from).dot(heading) >= 0 || attempt >= kGoalAttempts / 2;
+      if (ahead && std::hypot(goal.x - from.x, goal.y - from.y) >= min_leg_cells) {
         leg_path = searchPath(map, cells.drivable, from, goal, options.centre_weight_m);
       }
     }

@@ -75,7 +75,7 @@ float ForstnerDetector::computeWeights(const cv::Mat& gradient_x, const cv::Mat&
   const int r = options_.window_radius_px;
   const size_t plane = gradient_x.total();
   weight_.create(gradient_x.size(), CV_32F);
-  weight_.setTo(0.0f);
+  std::fill_n(weight_.ptr<float>(), weight_.total(), 0.0f);
   column_sums_.assign(3 * static_cast<size_t>(width), 0.0f);
   tensor_row_.resize(3 * static_cast<size_t>(width));
   for (int v = 0; v < std::min(2 * r, height); ++v) {

@@ -46,15 +46,16 @@ EdgeDetector::EdgeDetector(const EdgeDetectorOptions& options) : options_(option
     throw std::invalid_argument(
         "edge detector: smoothing_sigma_px must be >= 0 and min_gradient > 0");
   }
-  const int radius = static_cast<int>(std::ceil(2.0 * options.smoothing_sigma_px));
-  smoothing_kernel_ = cv::Size(2 * radius + 1, 2 * radius + 1);
+  if (options.smoothing_sigma_px > 0.0) {
+    smoother_.emplace(options.smoothing_sigma_px);
+  }
   const double min_sobel = options.min_gradient * kSobelGain;
   min_squared_sobel_ = static_cast<int64_t>(std::ceil(min_sobel * min_sobel));
 }
 
 void EdgeDetector::detect(const cv::Mat& grey) {
-  if (options_.smoothing_sigma_px > 0.0) {
-    cv::GaussianBlur(grey, smoothed_, smoothing_kernel_, options_.smoothing_sigma_px);
+  if (smoother_) {
+    smoother_->smooth(grey, smoothed_);
   } else {
     grey.copyTo(smoothed_);
   }
@@ -77,7 +78,7 @@ void EdgeDetector::computeSquaredMagnitude() {
 
 void EdgeDetector::suppressNonMaxima() {
   point_index_.create(gradient_x_.size(), CV_32S);
-  point_index_.setTo(-1);
+  std::fill_n(point_index_.ptr<int32_t>(), point_index_.total(), -1);
   points_.clear();
   const int stride = static_cast<int>(squared_magnitude_.step1());
   const int smoothed_stride = static_cast<int>(smoothed_.step1());

@@ -1,8 +1,8 @@
 // Sub-pixel edge points with gradient direction and grey-level step, on 8-bit
 // grey images (Persa & Jonker §3: the edges that become straight lines).
 //
-// Gaussian pre-smoothing and the 3x3 Sobel gradient g = (gx, gy) come from
-// OpenCV (SIMD). A pixel is an edge point when |g| >= min_gradient and |g| is
+// Gaussian pre-smoothing (gaussian_smoother.h) and OpenCV's 3x3 Sobel
+// gradient g = (gx, gy) (SIMD). A pixel is an edge point when |g| >= min_gradient and |g| is
 // a strict maximum along the gradient direction quantised to 0, 45, 90 or 135
 // degrees (non-maximum suppression). Its sub-pixel position is the peak of the
 // Gaussian through the three magnitudes along that direction d (a parabola
@@ -19,7 +19,10 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
+
+#include "robot/vision/edges/gaussian_smoother.h"
 
 namespace lineloc {
 
@@ -57,7 +60,7 @@ class EdgeDetector {
   void suppressNonMaxima();
 
   EdgeDetectorOptions options_;
-  cv::Size smoothing_kernel_;
+  std::optional<GaussianSmoother> smoother_;
   int64_t min_squared_sobel_;
   cv::Mat smoothed_, gradient_x_, gradient_y_, squared_magnitude_, point_index_;
   std::vector<EdgePoint> points_;

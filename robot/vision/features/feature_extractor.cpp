@@ -33,7 +33,11 @@ FeatureExtractor::FeatureExtractor(const CameraCalibration& calibration,
       edge_detector_(options.edges),
       linker_(options.linking),
       line_extractor_(options.lines),
-      corner_detector_(options.corners) {}
+      corner_detector_(options.corners) {
+  if (!(options.junction_radius_px >= 0.0)) {
+    throw std::invalid_argument("feature extractor: junction_radius_px must be >= 0");
+  }
+}
 
 const cv::Mat& FeatureExtractor::toGrey(const cv::Mat& image) {
   const PinholeCamera& camera = calibration_.camera;
@@ -111,10 +115,6 @@ void FeatureExtractor::exportCorners() {
     features_.corners.push_back(corner);
   }
 }
-
-}  // namespace lineloc
-
-namespace lineloc {
 
 const Junction* FeatureExtractor::nearestJunction(const Eigen::Vector2f& position) const {
   const Junction* nearest = nullptr;

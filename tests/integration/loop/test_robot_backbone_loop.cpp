@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <regex>
 #include <set>
 #include <thread>
 
@@ -108,6 +109,15 @@ class Observer {
   dds::Reader<lineloc_msg_PoseFix> fixes_;
   dds::Writer<lineloc_msg_LineSet> writer_;
 };
+
+// The count in the robot's summary line "... N fixes received ...".
+int fixesReceived(const std::string& robot_log) {
+  std::smatch match;
+  if (!std::regex_search(robot_log, match, std::regex(R"(([0-9]+) fixes received)"))) {
+    return -1;
+  }
+  return std::stoi(match[1]);
+}
 
 LineSetData probeLineSet(const std::string& robot_id, uint32_t sequence, int segments) {
   LineSetData data;
@@ -240,12 +250,10 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
       EXPECT_EQ(fix.model_lines, 12u);
     }
     EXPECT_EQ(answered.size(), static_cast<size_t>(kFrames)) << robot_id;
-    // The robot wrote one pose per answered frame.
-    EXPECT_EQ(readTumFile((work_ / (robot_id + ".tum")).string()).size(),
-              static_cast<size_t>(kFrames));
-    EXPECT_NE(log(robot_id + ".log").find(fmt::format("{} fixes received", kFrames)),
-              std::string::npos)
-        << log(robot_id + ".log");
+    // The robot took one answer per frame; none carried a pose (the façades
+    // are no building of the model), so its fix trajectory stays empty.
+    EXPECT_EQ(fixesReceived(log(robot_id + ".log")), kFrames) << log(robot_id + ".log");
+    EXPECT_TRUE(readTumFile((work_ / (robot_id + ".tum")).string()).empty());
   }
   backbone->signal(SIGTERM);
   EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
@@ -260,10 +268,10 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   backbone->signal(SIGKILL);
   EXPECT_EQ(backbone->wait(kTimeoutMs), 128 + SIGKILL);
   ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-c.log");
-  const size_t written = readTumFile((work_ / "robot-c.tum").string()).size();
   // Fixes in flight when the backbone died may or may not have reached the robot.
-  EXPECT_GE(written, 1u);
-  EXPECT_LT(written, static_cast<size_t>(kFrames));
+  const int received = fixesReceived(log("robot-c.log"));
+  EXPECT_GE(received, 1) << log("robot-c.log");
+  EXPECT_LT(received, kFrames);
   observer.poll();
   EXPECT_EQ(observer.sent_stamps["robot-c"].size(), static_cast<size_t>(kFrames))
       << "the robot must keep sending after the backbone is gone";

@@ -197,6 +197,7 @@ TEST(InertialNavigatorConsistency, FiveMinuteDriveWithOutage) {
   // more than 10 has probability 1e-4.
   EXPECT_LE(result.final_health.vision.rejected(), 10);
   EXPECT_GT(result.final_health.vision.accepted, 2800);
+  EXPECT_GT(result.final_health.zero_velocity_updates, 0);  // stops along the way
 }
 
 TEST(InertialNavigator, BadImuInputIsDroppedAndCounted) {
@@ -352,6 +353,39 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   EXPECT_GT(health.gps.accepted, 0);   // before the vision fixes
   EXPECT_GT(health.gps.skipped, 80);   // after them
   EXPECT_GT(health.compass.gated, 0);  // disturbances
+}
+
+// A filter confidently wrong (3 m off, 1 cm sigma) gates every fix; after
+// vision_gated_before_restart of them it restarts from the last two and tracks.
+TEST(InertialNavigator, RestartsFromVisionWhenFixesKeepBeingGated) {
+  const Drive drive(13, 20.0);
+  InertialNavigatorConfig config;
+  InertialNavigator navigator(config);
+  navigator.addImu(toImuSample(drive.imu.front()));
+  NavigationState wrong =
+      truthState(drive.trajectory, drive.imu.front().stamp_ns, &drive.imu.front());
+  wrong.p_world_body.x() += 3.0;
+  ErrorCovariance confident = initialCovariance();
+  confident.block<3, 3>(kPosition, kPosition) = Eigen::Matrix3d::Identity() * 1e-4;
+  ASSERT_TRUE(navigator.initialise(wrong, confident));
+  std::mt19937_64 random(2);
+  for (size_t i = 1; i < drive.imu.size(); ++i) {
+    if (i >= 2000 && i % 20 == 0) {  // from 10 s, 10 Hz, 100 ms late
+      const int64_t stamp = drive.imu[i - 20].stamp_ns;
+      navigator.applyVisionFix(
+          stamp, testing::noisyCameraFix(drive.trajectory, stamp, config.T_body_camera, 0.03, 0.002,
+                                         random));
+    }
+    navigator.addImu(toImuSample(drive.imu[i]));
+  }
+  const NavigatorHealth health = navigator.health();
+  EXPECT_EQ(health.restarts, 1);
+  EXPECT_EQ(health.vision.gated, config.vision_gated_before_restart);
+  EXPECT_EQ(health.mode, NavigatorMode::kTracking);
+  const ErrorVector error =
+      errorBetween(truthState(drive.trajectory, drive.imu.back().stamp_ns, &drive.imu.back()),
+                   navigator.state()->state);
+  EXPECT_LT(error.head<3>().norm(), 0.1);
 }
 
 TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {

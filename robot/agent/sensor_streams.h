@@ -1,0 +1,46 @@
+// The robot's timed inputs from a recorded or simulated EuRoC/ASL dataset —
+// camera frames (cam0/), IMU (imu0/data.csv), DGPS as NMEA 0183
+// (gps0/data.csv: "timestamp_ns,sentence"), compass (compass0/data.csv) —
+// merged into one time-ordered timeline, so the robot can replay them as they
+// were measured. Streams other than the camera are optional.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "robot/inertial/inertial_navigator.h"
+#include "robot/inertial/nmea_gps_decoder.h"
+#include "robot/input/image_sequence.h"
+
+namespace lineloc {
+
+enum class SensorKind { kImu, kGps, kCompass, kFrame };
+
+struct SensorEvent {
+  int64_t stamp_ns = 0;
+  SensorKind kind = SensorKind::kFrame;
+  size_t index = 0;  // into the stream of its kind
+};
+
+struct SensorStreams {
+  std::vector<FrameRef> frames;
+  std::vector<ImuSample> imu;
+  std::vector<GpsFix> gps;
+  std::vector<CompassReading> compass;
+  std::vector<SensorEvent> timeline;
+  // Lines of the CSV and NMEA inputs dropped as malformed (or, for NMEA,
+  // sentences without a fix), with the first few reasons.
+  int dropped_lines = 0;
+  std::vector<std::string> drop_reasons;
+};
+
+// Reads the streams of the dataset at `root` (or a plain image folder: frames
+// only). `gps` decodes the NMEA sentences into the site frame; without it
+// DGPS is not read. Throws std::runtime_error naming the file when the camera
+// stream is unreadable; frames without a time stamp are refused when other
+// streams are present (they cannot be placed on the timeline).
+SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps);
+
+}  // namespace lineloc

@@ -84,6 +84,12 @@ void Connection::prepare(const std::string& name, const std::string& sql) {
         fmt::format("prepare '{}'", name));
 }
 
+void Connection::prepareOnce(const std::string& name, const std::string& sql) {
+  if (execParams("SELECT 1 FROM pg_prepared_statements WHERE name = $1", {name}).rows() == 0) {
+    prepare(name, sql);
+  }
+}
+
 Result Connection::execPrepared(const std::string& name, const std::vector<std::string>& params,
                                 bool binary_results) {
   const std::vector<const char*> values = pointersTo(params);

@@ -47,6 +47,9 @@ class Connection {
   // Runs a statement with text parameters $1, $2, ...
   Result execParams(const std::string& sql, const std::vector<std::string>& params);
   void prepare(const std::string& name, const std::string& sql);
+  // Prepares `sql` as `name` unless this session has a statement of that name
+  // (so several query objects can share one connection).
+  void prepareOnce(const std::string& name, const std::string& sql);
   // Runs a prepared statement with text parameters; results binary when asked.
   Result execPrepared(const std::string& name, const std::vector<std::string>& params,
                       bool binary_results);

@@ -38,7 +38,7 @@ std::string number(double value) {
 
 ModelLineQuery::ModelLineQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site) {
-  connection_.prepare(kStatement, kSql);
+  connection_.prepareOnce(kStatement, kSql);
 }
 
 std::vector<ModelLine> ModelLineQuery::linesOfBuildingsMeeting(

@@ -38,7 +38,8 @@ struct ModelLine {
 
 class ModelLineQuery {
  public:
-  // Prepares the statement on `connection`, which must outlive this object.
+  // Prepares the statement on `connection` (once per session), which must
+  // outlive this object.
   ModelLineQuery(Connection& connection, const Site& site);
 
   // Lines with any point within `radius_m` (3D distance) of `center_world`.

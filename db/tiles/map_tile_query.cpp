@@ -26,7 +26,7 @@ std::string number(double value) {
 
 MapTileQuery::MapTileQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site), lines_(connection, site) {
-  connection_.prepare(kFacesStatement, kFacesSql);
+  connection_.prepareOnce(kFacesStatement, kFacesSql);
 }
 
 TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {

@@ -28,7 +28,8 @@ struct TileContents {
 
 class MapTileQuery {
  public:
-  // Prepares the statements on `connection`, which must outlive this object.
+  // Prepares the statements on `connection` (once per session), which must
+  // outlive this object.
   MapTileQuery(Connection& connection, const Site& site);
 
   // Lines and faces whose bounding box meets `bounds_world` (x, y; any height).

@@ -67,6 +67,9 @@ TEST(ModelLineQuery, ReturnsExactlyTheLinesWithinTheRadiusInSiteCoordinates) {
   EXPECT_EQ(query.linesWithin({5.0, 5.0, 5.0}, 7.08).size(), 12u);
   EXPECT_EQ(query.linesWithin({5.0, 5.0, 5.0}, 7.06).size(), 0u);
   EXPECT_EQ(query.linesWithin({250.0, 0.0, 0.0}, 1000.0).size(), 24u);
+  // Another query object on the same connection shares the prepared statement.
+  ModelLineQuery second(connection, site);
+  EXPECT_EQ(second.linesWithin({5.0, 5.0, 5.0}, 7.08).size(), 12u);
 }
 
 }  // namespace

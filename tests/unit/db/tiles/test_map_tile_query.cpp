@@ -25,6 +25,8 @@ TEST(MapTileQuery, ReturnsTheLinesOfTheCubesMeetingTheSquareInWorldCoordinates) 
   EXPECT_EQ(query.within({Eigen::Vector2d(250, 0), Eigen::Vector2d(300, 5)}).lines.size(), 12u);
   EXPECT_EQ(query.within({Eigen::Vector2d(100, 100), Eigen::Vector2d(200, 200)}).lines.size(), 0u);
   EXPECT_EQ(query.within({Eigen::Vector2d(-10, -10), Eigen::Vector2d(400, 20)}).lines.size(), 24u);
+  MapTileQuery second(connection, *findSite(connection, "test"));
+  EXPECT_EQ(second.within({Eigen::Vector2d(-50, -50), Eigen::Vector2d(50, 50)}).lines.size(), 12u);
 }
 
 TEST(MapTileQuery, DecodesFacesAsOpenRings) {

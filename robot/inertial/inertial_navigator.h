@@ -35,6 +35,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <deque>
 #include <map>
 #include <optional>
@@ -78,7 +79,7 @@ struct InertialNavigatorConfig {
 
   double gps_horizontal_sigma_m = 5.0;
   double gps_vertical_sigma_m = 10.0;
-  double compass_sigma_rad = 0.035;
+  double compass_sigma_rad = 2.0 * M_PI / 180.0;
   double magnetic_declination_rad = 0.0;  // magnetic north's bearing from true north, east positive
   double grid_bearing_of_true_north_rad = 0.0;  // SiteProjection::gridBearingOfTrueNorth_rad
   double initial_yaw_sigma_rad = 0.175;

@@ -17,6 +17,7 @@
 // cars, power lines) that add a fixed 10-40 deg offset for a few seconds.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -76,7 +77,7 @@ std::vector<std::string> formatNmeaEpoch(const SimGpsFix& fix, const SiteProject
 
 struct CompassModel {
   double rate_hz = 10.0;
-  double sigma_rad = 0.035;
+  double sigma_rad = 2.0 * M_PI / 180.0;
   double magnetic_declination_rad = 0.0;
   double disturbance_rate_hz = 1.0 / 60.0;
   double min_disturbance_rad = 0.17;

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
-#include <regex>
 #include <stdexcept>
 
+#include "common/config/size_pair.h"
 #include "robot/calibration/calibration_file.h"
 #include "robot/calibration/chessboard_detection.h"
 #include "robot/calibration/point_file.h"
@@ -22,15 +22,13 @@ struct LoadedViews {
 };
 
 void parseImageSize(const std::string& text, PlanarViews* views) {
-  static const std::regex pattern(R"(([0-9]{1,5})x([0-9]{1,5}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern) || std::stoi(match[1]) == 0 ||
-      std::stoi(match[2]) == 0) {
+  const std::optional<SizePair> size = parseSizePair(text, 5);
+  if (!size || size->first == 0 || size->second == 0) {
     throw std::runtime_error(
         fmt::format("--image-size '{}': expected WIDTHxHEIGHT in pixels, e.g. 640x480", text));
   }
-  views->image_width = std::stoi(match[1]);
-  views->image_height = std::stoi(match[2]);
+  views->image_width = size->first;
+  views->image_height = size->second;
 }
 
 LoadedViews loadPointFiles(const CalibrateToolConfig& config) {

@@ -8,8 +8,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <regex>
 #include <stdexcept>
+
+#include "common/config/size_pair.h"
 
 namespace lineloc {
 
@@ -23,13 +24,12 @@ const cv::TermCriteria kSubPixelCriteria(cv::TermCriteria::EPS + cv::TermCriteri
 }  // namespace
 
 ChessboardSize parseChessboardSize(const std::string& text) {
-  static const std::regex pattern(R"(([0-9]{1,4})x([0-9]{1,4}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) {
+  const std::optional<SizePair> parsed = parseSizePair(text, 4);
+  if (!parsed) {
     throw std::invalid_argument(
         fmt::format("board size '{}': expected COLUMNSxROWS of inner corners, e.g. 9x6", text));
   }
-  const ChessboardSize size{std::stoi(match[1]), std::stoi(match[2])};
+  const ChessboardSize size{parsed->first, parsed->second};
   if (size.columns < 2 || size.rows < 2) {
     throw std::invalid_argument(
         fmt::format("board size '{}': at least 2x2 inner corners are needed", text));

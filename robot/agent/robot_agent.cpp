@@ -142,9 +142,8 @@ std::optional<lineloc_msg_RobotState> robotState(const InertialNavigator& naviga
   message.health = toHealth(health.mode);
   message.since_last_fix_ns = health.since_vision_fix_ns.value_or(-1);
   message.rejected_fixes = static_cast<uint32_t>(health.vision.rejected());
-  message.dropped_inputs =
-      static_cast<uint32_t>(health.imu.non_finite + health.imu.saturated +
-                            health.imu.out_of_order + health.imu.duplicate);
+  message.dropped_inputs = static_cast<uint32_t>(health.imu.non_finite + health.imu.saturated +
+                                                 health.imu.out_of_order + health.imu.duplicate);
   return message;
 }
 
@@ -187,8 +186,13 @@ InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGps
                                         const SensorStreams& streams) {
   InertialNavigatorConfig navigator;
   navigator.magnetic_declination_rad = config.magnetic_declination_deg * M_PI / 180.0;
+  if (streams.T_body_camera)
+    navigator.T_body_camera = *streams.T_body_camera;
+  if (streams.T_body_imu)
+    navigator.R_body_imu = streams.T_body_imu->linear();
   if (gps != nullptr && !streams.gps.empty()) {
-    const GeodeticPosition where = gps->projection().toGeodetic(streams.gps.front().p_world_antenna);
+    const GeodeticPosition where =
+        gps->projection().toGeodetic(streams.gps.front().p_world_antenna);
     navigator.grid_bearing_of_true_north_rad = gps->projection().gridBearingOfTrueNorth_rad(where);
   }
   return navigator;
@@ -241,9 +245,9 @@ int64_t percentile(std::vector<int64_t> values, double percent) {
 
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop) {
   if (!isValidRobotId(config.robot_id)) {
-    throw std::runtime_error(fmt::format(
-        "robot_id '{}' must match [A-Za-z0-9][A-Za-z0-9_.-]* (at most 32 characters)",
-        config.robot_id));
+    throw std::runtime_error(
+        fmt::format("robot_id '{}' must match [A-Za-z0-9][A-Za-z0-9_.-]* (at most 32 characters)",
+                    config.robot_id));
   }
   if (config.calibration.empty()) {
     throw std::runtime_error("calibration: a camera calibration file is required");
@@ -300,10 +304,12 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         navigator->addImu(streams.imu[event.index]);
         break;
       case SensorKind::kGps:
-        if (navigator) navigator->addGps(streams.gps[event.index]);
+        if (navigator)
+          navigator->addGps(streams.gps[event.index]);
         break;
       case SensorKind::kCompass:
-        if (navigator) navigator->addCompass(streams.compass[event.index]);
+        if (navigator)
+          navigator->addCompass(streams.compass[event.index]);
         break;
       case SensorKind::kFrame: {
         ++frames_done;

@@ -2,7 +2,9 @@
 // camera frames (cam0/), IMU (imu0/data.csv), DGPS as NMEA 0183
 // (gps0/data.csv: "timestamp_ns,sentence"), compass (compass0/data.csv) —
 // merged into one time-ordered timeline, so the robot can replay them as they
-// were measured. Streams other than the camera are optional.
+// were measured, and the mounting of camera and IMU on the body (T_BS of
+// cam0/sensor.yaml and imu0/sensor.yaml). Streams other than the camera are
+// optional.
 #pragma once
 
 #include <cstdint>
@@ -30,8 +32,11 @@ struct SensorStreams {
   std::vector<GpsFix> gps;
   std::vector<CompassReading> compass;
   std::vector<SensorEvent> timeline;
-  // Lines of the CSV and NMEA inputs dropped as malformed (or, for NMEA,
-  // sentences without a fix), with the first few reasons.
+  // The sensors' poses in the body frame, when the dataset gives them.
+  std::optional<Eigen::Isometry3d> T_body_camera;
+  std::optional<Eigen::Isometry3d> T_body_imu;
+  // Lines of the CSV and NMEA inputs dropped as malformed, with the first few
+  // reasons.
   int dropped_lines = 0;
   std::vector<std::string> drop_reasons;
 };

@@ -11,7 +11,6 @@
 namespace lineloc {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr size_t kImuFieldCount = 7;
 constexpr size_t kCompassFieldCount = 2;
 constexpr size_t kMaxFields = 8;
@@ -124,12 +123,12 @@ CsvLine<CompassReading> parseCompassLine(std::string_view line) {
           splitRecord<CompassReading>(line, kCompassFieldCount, fields, result.record.stamp_ns)) {
     return *early;
   }
-  double heading_deg = 0.0;
-  if (!parseNumber(fields[1], heading_deg) || !std::isfinite(heading_deg)) {
-    return malformed<CompassReading>("heading is not a finite number of degrees");
+  double heading_rad = 0.0;
+  if (!parseNumber(fields[1], heading_rad) || !std::isfinite(heading_rad)) {
+    return malformed<CompassReading>("heading is not a finite number of radians");
   }
   result.kind = CsvLineKind::kRecord;
-  result.record.magnetic_heading_rad = heading_deg * kDegToRad;
+  result.record.magnetic_heading_rad = heading_rad;
   return result;
 }
 

@@ -1,7 +1,8 @@
 // Readers of the sensor logs a robot (or the simulator) writes:
 //  - EuRoC/ASL imu0/data.csv: "timestamp [ns], w_x, w_y, w_z [rad/s], a_x, a_y, a_z [m/s^2]"
 //    in the IMU's own frame (see InertialNavigatorConfig::R_body_imu);
-//  - compass CSV: "timestamp [ns], magnetic heading [deg]" clockwise from magnetic north.
+//  - compass0/data.csv: "timestamp [ns], magnetic heading [rad]" clockwise from
+//    magnetic north (SI units, like the rest of the EuRoC layout).
 // Lines starting with '#' and blank lines are skipped; CR LF endings accepted.
 // Numbers that parse but are not finite ("nan") are passed on: the navigator
 // drops and counts them with the other bad samples.

@@ -45,9 +45,9 @@ TEST(SensorCsv, RejectsMalformedLinesSayingWhy) {
 }
 
 TEST(SensorCsv, ParsesCompassLines) {
-  const auto line = parseCompassLine("1700000000000000000, 90.5");
+  const auto line = parseCompassLine("1700000000000000000, 4.2856546");
   ASSERT_EQ(line.kind, CsvLineKind::kRecord) << line.error;
-  EXPECT_DOUBLE_EQ(line.record.magnetic_heading_rad, 90.5 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(line.record.magnetic_heading_rad, 4.2856546);
   EXPECT_EQ(parseCompassLine("1,inf").kind, CsvLineKind::kMalformed);
   EXPECT_EQ(parseCompassLine("1,90,3").kind, CsvLineKind::kMalformed);
   EXPECT_EQ(parseCompassLine("# t, heading").kind, CsvLineKind::kSkipped);
@@ -58,7 +58,7 @@ TEST(SensorCsv, FileReaderCountsAndLocatesBadLines) {
                                      ("lineloc_compass_" + std::to_string(::getpid()) + ".csv");
   {
     std::ofstream file(path);
-    file << "#timestamp [ns],magnetic_heading [deg]\n1,10\n2,ten\n3,30\n";
+    file << "#timestamp [ns],heading [rad]\n1,0.1\n2,ten\n3,0.3\n";
   }
   const auto file = readCompassCsv(path.string());
   ASSERT_EQ(file.records.size(), 2u);

@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "robot/agent/sensor_streams.h"
+
+namespace lineloc {
+namespace {
+
+namespace fs = std::filesystem;
+
+void writeFile(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+// A two-frame dataset as lineloc-sim writes it: quoted NMEA sentences in
+// gps0/data.csv, headings in radians, the camera's mounting in cam0/sensor.yaml.
+class SensorStreamsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("lineloc_streams_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    writeFile(root_ / "cam0" / "data.csv",
+              "#timestamp [ns],filename\n1700000000000000000,a.png\n1700000000050000000,b.png\n");
+    writeFile(root_ / "cam0" / "data" / "a.png", "");
+    writeFile(root_ / "cam0" / "data" / "b.png", "");
+    writeFile(root_ / "cam0" / "sensor.yaml",
+              "T_BS:\n  cols: 4\n  rows: 4\n  data: [0, 0, 1, 0, -1, 0, 0, 0, 0, -1, 0, 1.2, 0, "
+              "0, 0, 1]\n");
+    writeFile(root_ / "imu0" / "data.csv",
+              "#timestamp [ns],wx,wy,wz,ax,ay,az\n1700000000000000000,0,0,0,0,0,9.81\n");
+    writeFile(root_ / "compass0" / "data.csv",
+              "#timestamp [ns],heading [rad]\n1700000000000000000,4.285654603\n");
+    writeFile(
+        root_ / "gps0" / "data.csv",
+        "#timestamp [ns],sentence\n"
+        "1700000000000000000,\"$GPGGA,221320.000,5200.7022564,N,00421.9874028,E,2,10,0.9,-2.784,"
+        "M,0.000,M,,*4B\"\n"
+        "1700000000000000001,\"$GPRMC,221320.000,A,5200.7022564,N,00421.9874028,E,0.000,0.00,"
+        "141123,,,D*57\"\n"
+        "1700000001000000000,\"$GPGGA,221321.000,5200.7029852,N,00421.9856604,E,2,10,0.9,-4.166,"
+        "M,0.000,M,,*4C\"\n"
+        "garbage\n");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  fs::path root_;
+};
+
+TEST_F(SensorStreamsTest, ReadsEveryStreamOfASimulatedDataset) {
+  NmeaGpsDecoder gps(SiteProjection("EPSG:7415", Eigen::Vector3d(84900.0, 447600.0, 0.0)));
+  const SensorStreams streams = loadSensorStreams(root_.string(), &gps);
+  EXPECT_EQ(streams.frames.size(), 2u);
+  EXPECT_EQ(streams.imu.size(), 1u);
+  ASSERT_EQ(streams.compass.size(), 1u);
+  EXPECT_DOUBLE_EQ(streams.compass[0].magnetic_heading_rad, 4.285654603);
+  // The first GGA is a fix; the RMC only dates it; the second GGA has a bad
+  // checksum (4C, not 4D) and the last row is not a row at all: both dropped.
+  ASSERT_EQ(streams.gps.size(), 1u);
+  EXPECT_EQ(streams.gps[0].stamp_ns, 1700000000000000000);
+  EXPECT_LT(streams.gps[0].p_world_antenna.head<2>().norm(), 1000.0);
+  EXPECT_EQ(streams.dropped_lines, 2);
+  ASSERT_EQ(streams.drop_reasons.size(), 2u);
+  EXPECT_NE(streams.drop_reasons[0].find("gps0/data.csv:4"), std::string::npos)
+      << streams.drop_reasons[0];
+  ASSERT_TRUE(streams.T_body_camera.has_value());
+  EXPECT_DOUBLE_EQ(streams.T_body_camera->translation().z(), 1.2);
+  EXPECT_FALSE(streams.T_body_imu.has_value());
+  EXPECT_EQ(streams.timeline.size(), 5u);
+}
+
+TEST_F(SensorStreamsTest, MalformedMountingIsAnErrorNamingTheFile) {
+  writeFile(root_ / "imu0" / "sensor.yaml", "T_BS: {rows: 4}\n");
+  try {
+    loadSensorStreams(root_.string(), nullptr);
+    FAIL() << "accepted a malformed imu0/sensor.yaml";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("imu0/sensor.yaml"), std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -15,23 +15,36 @@ struct MatchedProblem {
   std::vector<LineMatch> matches;
 };
 
+// Isotropic pixel variance of edge bias and model error for a model point
+// seen from the pose: floor^2 + (f sigma_model / z)^2.
+Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world,
+                                const Eigen::Isometry3d& T_world_camera,
+                                const PinholeCamera& camera, const AlignmentOptions& options) {
+  const double depth_m = std::max((T_world_camera.inverse() * point_world).z(), 1e-3);
+  const double model_px = 0.5 * (camera.fx + camera.fy) * options.model_sigma_m / depth_m;
+  const double variance =
+      options.edge_sigma_floor_px * options.edge_sigma_floor_px + model_px * model_px;
+  return variance * Eigen::Matrix2d::Identity();
+}
+
 MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
                             const std::vector<VisibleSegment>& model,
                             const std::vector<std::vector<LineMatch>>& candidates,
-                            const PinholeCamera& camera, double ambiguity_margin_chi2) {
+                            const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                            const AlignmentOptions& options) {
   MatchedProblem matched;
   matched.problem.camera = camera;
-  for (const std::vector<LineMatch>& options : candidates) {
-    if (options.empty()) {
+  for (const std::vector<LineMatch>& gated : candidates) {
+    if (gated.empty()) {
       continue;
     }
-    const bool ambiguous = options.size() > 1 &&
-                           options[1].chi2 - options[0].chi2 < ambiguity_margin_chi2 &&
-                           options[1].model_index != options[0].model_index;
+    const bool ambiguous = gated.size() > 1 &&
+                           gated[1].chi2 - gated[0].chi2 < options.ambiguity_margin_chi2 &&
+                           gated[1].model_index != gated[0].model_index;
     if (ambiguous) {
       continue;
     }
-    const LineMatch& best = options.front();
+    const LineMatch& best = gated.front();
     const ImageSegment& seen = image[best.image_index];
     const VisibleSegment& line = model[best.model_index];
     LineCorrespondence correspondence;
@@ -41,8 +54,14 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
     correspondence.end_pixel = seen.end.cast<double>();
     // A model line seen through uncertain visibility counts for less: its
     // measurement variance is inflated by 1 / weight.
-    correspondence.start_covariance = seen.start_covariance.cast<double>() / line.weight;
-    correspondence.end_covariance = seen.end_covariance.cast<double>() / line.weight;
+    correspondence.start_covariance =
+        (seen.start_covariance.cast<double>() +
+         floorCovariance(line.start_world, T_world_camera, camera, options)) /
+        line.weight;
+    correspondence.end_covariance =
+        (seen.end_covariance.cast<double>() +
+         floorCovariance(line.end_world, T_world_camera, camera, options)) /
+        line.weight;
     matched.problem.lines.push_back(correspondence);
     matched.matches.push_back(best);
   }
@@ -93,7 +112,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
     const int64_t matching_start_ns = steadyClockNs();
     const auto candidates = gateCandidates(image, model, current, camera, options.matching);
     const MatchedProblem matched =
-        buildProblem(image, model, candidates, camera, options.ambiguity_margin_chi2);
+        buildProblem(image, model, candidates, current.pose, camera, options);
     alignment.matching_ns += steadyClockNs() - matching_start_ns;
     alignment.matches = static_cast<int>(matched.matches.size());
     if (alignment.matches < options.min_inliers) {

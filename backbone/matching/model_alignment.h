@@ -10,6 +10,9 @@
 // inlier set stops changing. A model line may take several collinear image
 // pieces; an image segment takes at most one model line.
 //
+// Each correspondence's endpoint covariance is the image fit's plus the edge
+// and model error floors below, divided by the model line's visibility weight.
+//
 // The answer is only OK when enough matches carry it and the result is well
 // conditioned: too few inliers, or a position standard deviation beyond
 // max_position_sigma_m (a long façade seen alone constrains nothing along
@@ -48,6 +51,12 @@ struct AlignmentOptions {
   // Pose change (m, rad) below which the rounds have converged.
   double converged_translation_m = 1e-4;
   double converged_rotation_rad = 1e-5;
+  // Beyond the fit's own noise, a segment endpoint is uncertain by the edge
+  // localisation bias (blur, sampling: edge_sigma_floor_px) and the model
+  // line by its survey error (model_sigma_m, seen at depth z as f sigma / z
+  // pixels): sigma^2 = floor^2 + (f sigma_model / z)^2 is added isotropically.
+  double edge_sigma_floor_px = 0.3;
+  double model_sigma_m = 0.03;
   // Image segments whose best candidate is not this much better (chi^2) than
   // the second, within the first round, are left out: ambiguous under the prior.
   double ambiguity_margin_chi2 = 2.0;

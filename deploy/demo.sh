@@ -1,38 +1,56 @@
 #!/usr/bin/env bash
-# The main job: builds lineloc when needed, starts the private PostGIS cluster,
-# brings the database to the newest schema, loads a building, starts the
-# backbone, and runs a robot on a real image sequence over DDS on loopback.
-# The robot's received poses go to out/demo/poses.tum.
+# The main job, a localisation run on a simulated drive through Delft:
+# builds lineloc when needed, starts the private PostGIS cluster, brings the
+# database to the newest schema, loads the bundled Delft city model, simulates
+# a drive through its streets (camera, IMU, DGPS, compass, ground truth), runs
+# lineloc-backbone and lineloc-robot as separate processes over DDS on loopback
+# in real time, and prints lineloc-eval's report against the ground truth.
+#
+# Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
+# LINELOC_DEMO_DOMAIN (DDS domain, 42). Everything goes to out/demo/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
-OUT="$ROOT/out/demo"
 BIN="$BUILD_DIR/bin"
+OUT="$ROOT/out/demo"
 DOMAIN_ID="${LINELOC_DEMO_DOMAIN:-42}"
-IMAGES_DIR=/usr/share/doc/opencv-doc/examples/data
+DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
+SEED="${LINELOC_DEMO_SEED:-1}"
+CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
+# Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
+SITE_CRS=EPSG:7415
+SITE_ORIGIN=(84900 447600 0)
+DDS=(--domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml")
 
+[ -f "$CITY_MODEL" ] || { echo "demo: city model $CITY_MODEL missing" >&2; exit 1; }
 "$ROOT/deploy/build.sh"
-mkdir -p "$OUT"
+rm -rf "$OUT" && mkdir -p "$OUT"
+
 "$ROOT/deploy/pg.sh" start
 CONNINFO="$("$ROOT/deploy/pg.sh" conninfo)"
 "$BIN/lineloc-migrate" --db "$CONNINFO"
-psql -X -q -v ON_ERROR_STOP=1 "$CONNINFO" -f "$ROOT/deploy/demo/box_building.sql"
+"$BIN/lineloc-load" --db "$CONNINFO" --site delft --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
-# The camera sequence: OpenCV's own calibrated camera (opencv-doc), its views in order.
-[ -f "$IMAGES_DIR/left_intrinsics.yml" ] || { echo "demo: opencv-doc images missing" >&2; exit 1; }
-rm -rf "$OUT/images" && mkdir -p "$OUT/images"
-cp "$IMAGES_DIR"/left[0-9][0-9].jpg "$OUT/images/"
+echo "demo: simulating a ${DURATION_S} s drive (seed $SEED)"
+"$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
+  --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S"
 
-"$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml" \
-  --db "$CONNINFO" --site demo --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
+"$BIN/lineloc-backbone" "${DDS[@]}" --db "$CONNINFO" --site delft \
+  --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 
-"$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml" \
-  --robot-id demo-robot --images "$OUT/images" --calibration "$IMAGES_DIR/left_intrinsics.yml" \
-  --predicted-pose 5 -20 1.5 0 0 0 1 --rate-hz 10 --trajectory-out "$OUT/poses.tum"
+echo "demo: robot and backbone running in real time over DDS"
+"$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
+  --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
+  --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
+  --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 
 kill -TERM "$BACKBONE_PID" && wait "$BACKBONE_PID" || true
 trap - EXIT
-cat "$OUT/backbone.log" | grep -v "^\[" || true
-echo "demo: poses in $OUT/poses.tum, backbone counters in $OUT/backbone-stats.json"
+grep -v "^\[" "$OUT/backbone.log" || true
+
+echo "demo: the robot's pose at each frame (what it knew then) against the ground truth"
+"$BIN/lineloc-eval" --ground-truth "$OUT/dataset/groundtruth_cam0.tum" --estimate "$OUT/fused.tum" \
+  --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" --plot "$OUT/evaluation.png"
+echo "demo: plot in $OUT/evaluation.png; fixes in $OUT/fixes.tum, backbone counters in $OUT/backbone-stats.json"

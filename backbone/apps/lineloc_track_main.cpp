@@ -98,13 +98,15 @@ int main(int argc, char** argv) {
   options.add("model", config.model, "city model file (CityJSON, CityJSON Lines, OBJ, GeoJSON)");
   options.add("images", config.images, "image folder or EuRoC/ASL camera folder");
   options.add("calib", config.calib, "camera calibration (OpenCV YAML layout)");
-  options.add("init", config.init, "first frame's T_world_camera: tx ty tz qx qy qz qw");
+  options.addFixedSize("init", config.init, 7,
+                       "first frame's T_world_camera: tx ty tz qx qy qz qw");
   options.add("init_position_sigma_m", config.init_position_sigma_m,
               "standard deviation of the initial position (m)");
   options.add("init_rotation_sigma_deg", config.init_rotation_sigma_deg,
               "standard deviation of the initial rotation (degrees)");
-  options.add("origin", config.origin,
-              "x y z subtracted from model coordinates (default: the model's lowest corner)");
+  options.addFixedSize(
+      "origin", config.origin, 3,
+      "x y z subtracted from model coordinates (default: the model's lowest corner)");
   options.add("crs", config.crs, "EPSG code for a model file that names no CRS");
   options.add("out", config.out, "TUM trajectory file written");
   options.add("overlay_dir", config.overlay_dir, "folder for overlay PNGs (empty: none)");

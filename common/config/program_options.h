@@ -27,6 +27,16 @@ class ProgramOptions {
     bind(key, app_.add_option(flagFor(key), value, help)->capture_default_str(), value);
   }
 
+  // Declares a vector option that takes exactly `count` values on the command
+  // line (`--origin 84900 447600 0`), so it does not swallow the positional
+  // arguments after it; the YAML key, or leaving it out, may still leave it empty.
+  template <typename T>
+  void addFixedSize(const std::string& key, std::vector<T>& value, int count,
+                    const std::string& help) {
+    CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
+    bind(key, option->expected(count)->allow_extra_args(false), value);
+  }
+
   // Declares a boolean that is a bare flag on the command line (`--dry-run`)
   // and a true/false key in the YAML file.
   void addFlag(const std::string& key, bool& value, const std::string& help) {

@@ -1,9 +1,10 @@
 #include "common/messages/message_validator.h"
 
-#include <cmath>
-#include <cctype>
-#include <cstring>
 #include <fmt/format.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstring>
 
 namespace lineloc {
 namespace {
@@ -86,10 +87,14 @@ Error checkPoint(const float (&p)[2], const PixelBounds& bounds, const std::stri
 
 Error checkSegment(const lineloc_msg_LineSegment& s, const PixelBounds& bounds, uint32_t index) {
   const std::string where = fmt::format("segments[{}]", index);
-  if (Error e = checkPoint(s.start, bounds, where + ".start")) return e;
-  if (Error e = checkPoint(s.end, bounds, where + ".end")) return e;
-  if (Error e = checkCovariance2(s.start_covariance, where + ".start")) return e;
-  if (Error e = checkCovariance2(s.end_covariance, where + ".end")) return e;
+  if (Error e = checkPoint(s.start, bounds, where + ".start"))
+    return e;
+  if (Error e = checkPoint(s.end, bounds, where + ".end"))
+    return e;
+  if (Error e = checkCovariance2(s.start_covariance, where + ".start"))
+    return e;
+  if (Error e = checkCovariance2(s.end_covariance, where + ".end"))
+    return e;
   if (!std::isfinite(s.contrast) || s.contrast < 0.0f) {
     return where + ": contrast must be finite and non-negative";
   }
@@ -101,8 +106,10 @@ Error checkSegment(const lineloc_msg_LineSegment& s, const PixelBounds& bounds, 
 
 Error checkCorner(const lineloc_msg_Corner& c, const PixelBounds& bounds, uint32_t index) {
   const std::string where = fmt::format("corners[{}]", index);
-  if (Error e = checkPoint(c.position, bounds, where + ".position")) return e;
-  if (Error e = checkCovariance2(c.covariance, where)) return e;
+  if (Error e = checkPoint(c.position, bounds, where + ".position"))
+    return e;
+  if (Error e = checkCovariance2(c.covariance, where))
+    return e;
   if (!std::isfinite(c.strength)) {
     return where + ": strength is not finite";
   }
@@ -118,6 +125,16 @@ Error checkCamera(const lineloc_msg_CameraIntrinsics& camera) {
     return std::string("camera: image size is zero");
   }
   return std::nullopt;
+}
+
+// The integer a received enum field holds: a peer may send any 32-bit value,
+// and loading one outside the enumerators through the enum type is undefined.
+template <typename Enum>
+int32_t rawEnumValue(const Enum& field) {
+  static_assert(sizeof(Enum) == sizeof(int32_t), "IDL enums are 32-bit");
+  int32_t raw = 0;
+  std::memcpy(&raw, &field, sizeof raw);
+  return raw;
 }
 
 }  // namespace
@@ -137,11 +154,13 @@ bool isValidRobotId(std::string_view robot_id) {
 
 std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
                                             const MessageLimits& limits) {
-  if (Error e = checkRobotId(message.robot_id)) return e;
+  if (Error e = checkRobotId(message.robot_id))
+    return e;
   if (message.stamp_ns <= 0) {
     return fmt::format("stamp_ns {} is not positive", message.stamp_ns);
   }
-  if (Error e = checkCamera(message.camera)) return e;
+  if (Error e = checkCamera(message.camera))
+    return e;
   if (message.segments._length > limits.max_segments) {
     return fmt::format("{} segments exceed the limit of {}", message.segments._length,
                        limits.max_segments);
@@ -155,18 +174,22 @@ std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
   const PixelBounds bounds{-margin_x, message.camera.width + margin_x, -margin_y,
                            message.camera.height + margin_y};
   for (uint32_t i = 0; i < message.segments._length; ++i) {
-    if (Error e = checkSegment(message.segments._buffer[i], bounds, i)) return e;
+    if (Error e = checkSegment(message.segments._buffer[i], bounds, i))
+      return e;
   }
   for (uint32_t i = 0; i < message.corners._length; ++i) {
-    if (Error e = checkCorner(message.corners._buffer[i], bounds, i)) return e;
+    if (Error e = checkCorner(message.corners._buffer[i], bounds, i))
+      return e;
   }
   return checkPose(message.predicted_T_world_camera, "predicted_T_world_camera");
 }
 
 std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message) {
-  if (Error e = checkRobotId(message.robot_id)) return e;
-  if (message.status < lineloc_msg_FIX_OK || message.status > lineloc_msg_FIX_INTERNAL_ERROR) {
-    return fmt::format("status {} is unknown", static_cast<int>(message.status));
+  if (Error e = checkRobotId(message.robot_id))
+    return e;
+  const int32_t status = rawEnumValue(message.status);
+  if (status < lineloc_msg_FIX_OK || status > lineloc_msg_FIX_INTERNAL_ERROR) {
+    return fmt::format("status {} is unknown", status);
   }
   if (!std::isfinite(message.residual_rms_px) || message.residual_rms_px < 0.0f) {
     return std::string("residual_rms_px must be finite and non-negative");
@@ -175,12 +198,14 @@ std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message) 
 }
 
 std::optional<std::string> findRobotStateError(const lineloc_msg_RobotState& message) {
-  if (Error e = checkRobotId(message.robot_id)) return e;
+  if (Error e = checkRobotId(message.robot_id))
+    return e;
   if (!allFinite(message.velocity_world) || !allFinite(message.velocity_covariance)) {
     return std::string("velocity: not finite");
   }
-  if (message.health < lineloc_msg_HEALTH_INITIALISING || message.health > lineloc_msg_HEALTH_LOST) {
-    return fmt::format("health {} is unknown", static_cast<int>(message.health));
+  const int32_t health = rawEnumValue(message.health);
+  if (health < lineloc_msg_HEALTH_INITIALISING || health > lineloc_msg_HEALTH_LOST) {
+    return fmt::format("health {} is unknown", health);
   }
   return checkPose(message.T_world_body, "T_world_body");
 }

@@ -1,8 +1,10 @@
 #include "common/trajectory/tum_trajectory.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,18 +17,22 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // Seconds with 9 decimals -> nanoseconds, without the rounding of a double.
 int64_t parseSecondsToNs(const std::string& text, const std::string& where) {
   const auto dot = text.find('.');
-  const std::string whole = text.substr(0, dot);
+  const bool negative = !text.empty() && text[0] == '-';
+  const std::string whole = text.substr(negative ? 1 : 0, dot - (negative ? 1 : 0));
   std::string fraction = dot == std::string::npos ? "" : text.substr(dot + 1);
   if (whole.empty() || fraction.size() > 9 ||
-      whole.find_first_not_of("-0123456789") != std::string::npos ||
+      whole.find_first_not_of("0123456789") != std::string::npos ||
       fraction.find_first_not_of("0123456789") != std::string::npos) {
     throw std::runtime_error(fmt::format("{}: time '{}' is not a decimal number", where, text));
   }
+  // |seconds| <= 9.2e9 keeps seconds * 1e9 + nanos inside int64 (year 2262).
+  constexpr int64_t kMaxSeconds = std::numeric_limits<int64_t>::max() / 1'000'000'000 - 1;
+  if (whole.size() > 10 || std::stoll(whole) > kMaxSeconds) {
+    throw std::runtime_error(fmt::format("{}: time '{}' is out of range", where, text));
+  }
   fraction.resize(9, '0');
-  const bool negative = whole[0] == '-';
-  const int64_t seconds = std::stoll(whole);
-  const int64_t nanos = std::stoll(fraction);
-  return seconds * 1'000'000'000 + (negative ? -nanos : nanos);
+  const int64_t ns = std::stoll(whole) * 1'000'000'000 + std::stoll(fraction);
+  return negative ? -ns : ns;
 }
 
 }  // namespace
@@ -59,8 +65,8 @@ StampedPose parseTumLine(const std::string& line, const std::string& where) {
   std::array<double, kFieldCount - 1> values{};
   for (double& value : values) {
     if (!(fields >> value)) {
-      throw std::runtime_error(fmt::format("{}: expected {} numbers 't tx ty tz qx qy qz qw'",
-                                           where, kFieldCount));
+      throw std::runtime_error(
+          fmt::format("{}: expected {} numbers 't tx ty tz qx qy qz qw'", where, kFieldCount));
     }
     if (!std::isfinite(value)) {
       throw std::runtime_error(fmt::format("{}: non-finite value", where));

@@ -81,14 +81,16 @@ int main(int argc, char** argv) {
   program.add("site", site, "site to load into; created when new");
   program.add("crs", crs, "CRS of files that name none (EPSG:N); refused when neither gives one");
   program.add("site_crs", site_crs, "CRS of a new site (EPSG:N); default: the first file's");
-  program.add("origin", origin, "origin x y z of a new site; default: centre of the data");
+  program.addFixedSize("origin", origin, 3,
+                       "origin x y z of a new site; default: centre of the data");
   program.add("lod", lod, "level of detail to load (2.2, 1.2, 2...); default: highest present");
   program.addFlag("skip_invalid", skip_invalid,
                   "skip invalid objects (counted in the summary) instead of aborting the load");
   program.addFlag("dry_run", dry_run, "validate and report without writing");
   program.add("export_lines", export_lines,
               "after loading, write the site's lines to this .obj or .geojson file");
-  program.add("offset", offset, "x y z added to OBJ vertices (OBJ files carry no georeference)");
+  program.addFixedSize("offset", offset, 3,
+                       "x y z added to OBJ vertices (OBJ files carry no georeference)");
   program.add("height_attribute", options.footprints.height_attribute,
               "GeoJSON property with the building height in metres");
   program.add("base_attribute", options.footprints.base_attribute,

@@ -11,7 +11,9 @@
 
 namespace {
 std::atomic<bool> g_stop{false};
-void requestStop(int) { g_stop = true; }
+void requestStop(int) {
+  g_stop = true;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -21,14 +23,14 @@ int main(int argc, char** argv) {
   options.add("images", config.images,
               "EuRoC/ASL dataset (cam0/, imu0/, gps0/, compass0/), cam0/ folder or image folder");
   options.add("calibration", config.calibration, "camera calibration (OpenCV YAML layout)");
-  options.add("predicted_pose", config.predicted_pose,
-              "without IMU data: predicted T_world_camera, tx ty tz qx qy qz qw");
+  options.addFixedSize("predicted_pose", config.predicted_pose, 7,
+                       "without IMU data: predicted T_world_camera, tx ty tz qx qy qz qw");
   options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,
               "standard deviation of the predicted position (m)");
   options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
               "standard deviation of the predicted rotation (degrees)");
   options.add("site_crs", config.site_crs, "CRS of the site frame, e.g. EPSG:7415 (for DGPS)");
-  options.add("site_origin", config.site_origin, "site origin x y z in that CRS");
+  options.addFixedSize("site_origin", config.site_origin, 3, "site origin x y z in that CRS");
   options.add("magnetic_declination_deg", config.magnetic_declination_deg,
               "magnetic declination at the site, east positive (degrees)");
   options.add("playback_speed", config.playback_speed,

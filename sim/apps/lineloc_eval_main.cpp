@@ -53,9 +53,9 @@ int main(int argc, char** argv) {
   options.add("plot", config.plot, "PNG written with the top view and errors over time");
   options.add("city_model", config.city_model,
               "city model whose footprints the plot shows (CityJSON / .jsonl; empty: none)");
-  options.add("site_origin", config.site_origin,
-              "model coordinates of the trajectories' origin, x y z (empty: the model's "
-              "default, as lineloc-sim uses)");
+  options.addFixedSize("site_origin", config.site_origin, 3,
+                       "model coordinates of the trajectories' origin, x y z (empty: the model's "
+                       "default, as lineloc-sim uses)");
   options.add("rpe_delta_s", config.rpe_delta_s, "time step of the relative pose error (s)");
   options.add("position_threshold_m", config.position_threshold_m,
               "a frame is within target when its position error is at most this (m)");

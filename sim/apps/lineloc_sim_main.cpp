@@ -15,8 +15,9 @@ int main(int argc, char** argv) {
                                   "simulated drive through a city model -> EuRoC/ASL dataset");
   options.add("city_model", config.city_model, "CityJSON (.json) or CityJSON Lines (.jsonl) file");
   options.add("crs", config.crs, "CRS of the model, e.g. EPSG:7415 (empty: the one it names)");
-  options.add("site_origin", config.site_origin,
-              "model coordinates x y z of the site origin (empty: centre of the buildings)");
+  options.addFixedSize(
+      "site_origin", config.site_origin, 3,
+      "model coordinates x y z of the site origin (empty: centre of the buildings)");
   options.add("output", config.output, "dataset folder to create (must be empty or absent)");
   options.add("seed", config.seed, "seed of every random choice: same seed, same bytes");
   options.add("duration_s", config.duration_s, "length of the drive (s)");

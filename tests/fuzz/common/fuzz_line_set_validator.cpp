@@ -15,6 +15,8 @@ namespace {
 template <typename T>
 void take(T& value, const uint8_t*& data, size_t& size) {
   const size_t n = std::min(sizeof(T), size);
+  if (n == 0)
+    return;
   std::memcpy(&value, data, n);
   data += n;
   size -= n;

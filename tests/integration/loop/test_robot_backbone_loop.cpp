@@ -186,9 +186,11 @@ class RobotBackboneLoop : public ::testing::Test {
         (work_ / (robot_id + ".log")).string());
   }
 
+  // The backbone's counters; an empty object until its first stats file exists.
   nlohmann::json stats() const {
     std::ifstream stream(work_ / "stats.json");
-    return stream ? nlohmann::json::parse(stream, nullptr, false) : nlohmann::json();
+    nlohmann::json parsed = stream ? nlohmann::json::parse(stream, nullptr, false) : nullptr;
+    return parsed.is_object() ? parsed : nlohmann::json::object();
   }
 
   std::string log(const std::string& name) const {

@@ -13,6 +13,8 @@ struct Options {
   double rate_hz = 10.0;
   int domain_id = 0;
   std::vector<double> pose = {0, 0, 0};
+  std::vector<double> origin;
+  std::vector<std::string> files;
 };
 
 class ProgramOptionsTest : public ::testing::Test {
@@ -22,6 +24,8 @@ class ProgramOptionsTest : public ::testing::Test {
     options_.add("rate_hz", values_.rate_hz, "rate");
     options_.add("domain_id", values_.domain_id, "domain");
     options_.add("pose", values_.pose, "pose");
+    options_.addFixedSize("origin", values_.origin, 3, "origin x y z");
+    options_.app().add_option("files", values_.files, "input files");
   }
 
   std::string writeConfig(const std::string& text) {
@@ -92,10 +96,22 @@ TEST_F(ProgramOptionsTest, PrintedConfigReadsBackToTheSameValues) {
   options.add("rate_hz", reread.rate_hz, "rate");
   options.add("domain_id", reread.domain_id, "domain");
   options.add("pose", reread.pose, "pose");
+  options.addFixedSize("origin", reread.origin, 3, "origin x y z");
   options.applyConfig(YAML::Load(printed), "printed.yml");
   EXPECT_EQ(reread.robot_id, "rover-9");
   EXPECT_EQ(reread.pose, (std::vector<double>{4, 5, 6}));
   EXPECT_DOUBLE_EQ(reread.rate_hz, 10.0);
+}
+
+TEST_F(ProgramOptionsTest, FixedSizeVectorLeavesThePositionalsAfterIt) {
+  EXPECT_EQ(parse({"--origin", "84900", "447600", "0", "city.json"}), std::nullopt);
+  EXPECT_EQ(values_.origin, (std::vector<double>{84900.0, 447600.0, 0.0}));
+  EXPECT_EQ(values_.files, (std::vector<std::string>{"city.json"}));
+}
+
+TEST_F(ProgramOptionsTest, FixedSizeVectorRefusesTooFewValues) {
+  EXPECT_NE(parse({"--origin", "84900", "447600"}).value_or(0), 0);
+  EXPECT_TRUE(values_.origin.empty());
 }
 
 TEST_F(ProgramOptionsTest, UnknownFlagExitsNonZero) {

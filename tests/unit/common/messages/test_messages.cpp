@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "common/messages/message_validator.h"
@@ -163,7 +164,9 @@ TEST(Validator, PoseFixAndRobotState) {
   raw.residual_rms_px = -1.0f;
   EXPECT_TRUE(findPoseFixError(raw).has_value());
   raw = toMessage(fix);
-  raw.status = static_cast<lineloc_msg_FixStatus>(99);
+  // A peer may send any 32-bit value in an enum field.
+  const int32_t unknown_status = 99;
+  std::memcpy(&raw.status, &unknown_status, sizeof unknown_status);
   EXPECT_TRUE(findPoseFixError(raw).has_value());
 
   lineloc_msg_RobotState state{};

@@ -43,12 +43,15 @@ TEST(TumTrajectory, FormatsSecondsWithNineDecimals) {
 
 TEST(TumTrajectory, MalformedLinesNameTheLine) {
   const char* bad_lines[] = {
-      "1.0 1 2 3 0 0 0",             // seven fields
-      "1.0 1 2 3 0 0 0 1 9",         // nine fields
-      "abc 1 2 3 0 0 0 1",           // time not a number
-      "1.0 1 nan 3 0 0 0 1",         // non-finite
-      "1.0 1 2 3 0 0 0 5",           // quaternion not unit
-      "1.0000000001 1 2 3 0 0 0 1",  // sub-nanosecond digits
+      "1.0 1 2 3 0 0 0",                    // seven fields
+      "1.0 1 2 3 0 0 0 1 9",                // nine fields
+      "abc 1 2 3 0 0 0 1",                  // time not a number
+      "1.0 1 nan 3 0 0 0 1",                // non-finite
+      "1.0 1 2 3 0 0 0 5",                  // quaternion not unit
+      "1.0000000001 1 2 3 0 0 0 1",         // sub-nanosecond digits
+      "1403636579763555584 1 2 3 0 0 0 1",  // nanoseconds given as seconds: beyond int64
+      "--5 1 2 3 0 0 0 1",                  // two signs
+      "1-2 1 2 3 0 0 0 1",                  // sign inside
   };
   for (const char* line : bad_lines) {
     try {

@@ -28,6 +28,8 @@ rm -rf "$OUT" && mkdir -p "$OUT"
 
 "$ROOT/deploy/pg.sh" start
 CONNINFO="$("$ROOT/deploy/pg.sh" conninfo)"
+# The backbone only reads: it connects with the read-only role the migrations create.
+READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-migrate" --db "$CONNINFO"
 "$BIN/lineloc-load" --db "$CONNINFO" --site delft --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
@@ -35,7 +37,7 @@ echo "demo: simulating a ${DURATION_S} s drive (seed $SEED)"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S"
 
-"$BIN/lineloc-backbone" "${DDS[@]}" --db "$CONNINFO" --site delft \
+"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft \
   --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT

@@ -93,7 +93,8 @@ case "${1:-}" in
   start) start ;;
   stop) stop ;;
   status) if is_running; then echo "pg.sh: running on port $PORT"; else echo "pg.sh: not running"; exit 1; fi ;;
-  conninfo) echo "host=127.0.0.1 port=$PORT user=$DB_ROLE dbname=$DB_NAME" ;;
+  # conninfo [ROLE]: the owner (writes: loader, migrations) or, e.g., lineloc_reader (backbone).
+  conninfo) echo "host=127.0.0.1 port=$PORT user=${2:-$DB_ROLE} dbname=$DB_NAME" ;;
   destroy) stop; rm -rf "$DATA_DIR" "$DATA_DIR.initdb.log"; echo "pg.sh: removed $DATA_DIR" ;;
-  *) echo "usage: $0 start|stop|status|conninfo|destroy" >&2; exit 2 ;;
+  *) echo "usage: $0 start|stop|status|conninfo [ROLE]|destroy" >&2; exit 2 ;;
 esac

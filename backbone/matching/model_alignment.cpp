@@ -18,9 +18,9 @@ struct MatchedProblem {
 // Isotropic pixel variance of edge bias and model error for a model point
 // seen from the pose: floor^2 + (f sigma_model / z)^2.
 Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world,
-                                const Eigen::Isometry3d& T_world_camera,
+                                const Eigen::Isometry3d& T_camera_world,
                                 const PinholeCamera& camera, const AlignmentOptions& options) {
-  const double depth_m = std::max((T_world_camera.inverse() * point_world).z(), 1e-3);
+  const double depth_m = std::max((T_camera_world * point_world).z(), 1e-3);
   const double model_px = 0.5 * (camera.fx + camera.fy) * options.model_sigma_m / depth_m;
   const double variance =
       options.edge_sigma_floor_px * options.edge_sigma_floor_px + model_px * model_px;
@@ -34,6 +34,7 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
                             const AlignmentOptions& options) {
   MatchedProblem matched;
   matched.problem.camera = camera;
+  const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
   for (const std::vector<LineMatch>& gated : candidates) {
     if (gated.empty()) {
       continue;
@@ -56,11 +57,11 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
     // measurement variance is inflated by 1 / weight.
     correspondence.start_covariance =
         (seen.start_covariance.cast<double>() +
-         floorCovariance(line.start_world, T_world_camera, camera, options)) /
+         floorCovariance(line.start_world, T_camera_world, camera, options)) /
         line.weight;
     correspondence.end_covariance =
         (seen.end_covariance.cast<double>() +
-         floorCovariance(line.end_world, T_world_camera, camera, options)) /
+         floorCovariance(line.end_world, T_camera_world, camera, options)) /
         line.weight;
     matched.problem.lines.push_back(correspondence);
     matched.matches.push_back(best);

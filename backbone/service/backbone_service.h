@@ -12,7 +12,8 @@ namespace lineloc {
 struct BackboneConfig {
   int domain_id = 0;
   std::string dds_config;
-  std::string db = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
+  std::string db =
+      "host=127.0.0.1 port=55432 user=lineloc_reader dbname=lineloc";  // read-only role
   std::string site = "delft";
   double query_radius_m = 150.0;
   double tile_size_m = 100.0;

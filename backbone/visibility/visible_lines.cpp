@@ -5,27 +5,13 @@
 #include <array>
 #include <cmath>
 
+#include "common/camera/camera_frustum.h"
+
 namespace lineloc {
 namespace {
 
 constexpr int kStateDimension = 3;
 constexpr int kViewpoints = 2 * kStateDimension + 1;
-
-// Plane n . p + d >= 0 in the camera frame.
-struct HalfSpace {
-  Eigen::Vector3d normal;
-  double offset;
-};
-
-std::array<HalfSpace, 6> frustum(const PinholeCamera& camera, const VisibilityOptions& options) {
-  const double m = options.image_margin_px;
-  return {{{{0, 0, 1}, -options.near_m},
-           {{0, 0, -1}, options.far_m},
-           {{camera.fx, 0, camera.cx + m}, 0},
-           {{-camera.fx, 0, camera.width + m - camera.cx}, 0},
-           {{0, camera.fy, camera.cy + m}, 0},
-           {{0, -camera.fy, camera.height + m - camera.cy}, 0}}};
-}
 
 // The camera centre and the six sigma points of its position uncertainty.
 std::array<Eigen::Vector3d, kViewpoints> viewpoints(const PoseWithCovariance& T_world_camera) {
@@ -53,31 +39,26 @@ double visibleFraction(const OcclusionScene& scene,
   return static_cast<double>(seen) / kViewpoints;
 }
 
+HalfSpaces visibilityFrustum(const PinholeCamera& camera, const VisibilityOptions& options) {
+  return cameraFrustum(camera, options.near_m, options.far_m, options.image_margin_px);
+}
+
+bool clipTo(const HalfSpaces& frustum, Eigen::Vector3d& start_camera, Eigen::Vector3d& end_camera) {
+  const auto interval = clipSegment(frustum, start_camera, end_camera);
+  if (!interval) {
+    return false;
+  }
+  const Eigen::Vector3d direction = end_camera - start_camera;
+  end_camera = start_camera + (*interval)[1] * direction;
+  start_camera = start_camera + (*interval)[0] * direction;
+  return true;
+}
+
 }  // namespace
 
 bool clipToFrustum(Eigen::Vector3d& start_camera, Eigen::Vector3d& end_camera,
                    const PinholeCamera& camera, const VisibilityOptions& options) {
-  double t0 = 0.0;
-  double t1 = 1.0;
-  for (const HalfSpace& plane : frustum(camera, options)) {
-    const double d0 = plane.normal.dot(start_camera) + plane.offset;
-    const double d1 = plane.normal.dot(end_camera) + plane.offset;
-    if (d0 < 0.0 && d1 < 0.0) {
-      return false;
-    }
-    if (d0 < 0.0) {
-      t0 = std::max(t0, d0 / (d0 - d1));
-    } else if (d1 < 0.0) {
-      t1 = std::min(t1, d0 / (d0 - d1));
-    }
-  }
-  if (t0 >= t1) {
-    return false;
-  }
-  const Eigen::Vector3d direction = end_camera - start_camera;
-  end_camera = start_camera + t1 * direction;
-  start_camera = start_camera + t0 * direction;
-  return true;
+  return clipTo(visibilityFrustum(camera, options), start_camera, end_camera);
 }
 
 std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lines,
@@ -87,11 +68,12 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
                                             const VisibilityOptions& options) {
   const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
   const auto from = viewpoints(T_world_camera);
+  const HalfSpaces frustum = visibilityFrustum(camera, options);
   std::vector<VisibleSegment> visible;
   for (const ModelSegment& line : lines) {
     Eigen::Vector3d a = T_camera_world * line.start_world;
     Eigen::Vector3d b = T_camera_world * line.end_world;
-    if (!clipToFrustum(a, b, camera, options)) {
+    if (!clipTo(frustum, a, b)) {
       continue;
     }
     const double length_px = (camera.project(a) - camera.project(b)).norm();

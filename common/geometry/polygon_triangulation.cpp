@@ -59,8 +59,13 @@ bool isEar(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& r
 
 Eigen::Vector3d newellNormal(const std::vector<Eigen::Vector3d>& ring) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  if (ring.empty()) {
+    return normal;
+  }
+  // Relative to the first vertex, so large projected coordinates lose no precision.
+  const Eigen::Vector3d& reference = ring.front();
   for (size_t i = 0; i < ring.size(); ++i) {
-    normal += ring[i].cross(ring[(i + 1) % ring.size()]);
+    normal += (ring[i] - reference).cross(ring[(i + 1) % ring.size()] - reference);
   }
   return normal;
 }

@@ -16,7 +16,8 @@ namespace lineloc {
 // has fewer than 3 vertices or no area.
 std::vector<std::array<int, 3>> triangulatePolygon(const std::vector<Eigen::Vector3d>& ring);
 
-// Newell's normal of a ring: twice its area times its unit normal.
+// Newell's normal of a ring: twice its area times its unit normal (right-hand
+// rule over the vertex order); zero for an empty ring.
 Eigen::Vector3d newellNormal(const std::vector<Eigen::Vector3d>& ring);
 
 }  // namespace lineloc

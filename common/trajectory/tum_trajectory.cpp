@@ -27,11 +27,12 @@ int64_t parseSecondsToNs(const std::string& text, const std::string& where) {
   }
   // |seconds| <= 9.2e9 keeps seconds * 1e9 + nanos inside int64 (year 2262).
   constexpr int64_t kMaxSeconds = std::numeric_limits<int64_t>::max() / 1'000'000'000 - 1;
-  if (whole.size() > 10 || std::stoll(whole) > kMaxSeconds) {
+  const int64_t seconds = whole.size() > 10 ? kMaxSeconds + 1 : std::stoll(whole);
+  if (seconds > kMaxSeconds) {
     throw std::runtime_error(fmt::format("{}: time '{}' is out of range", where, text));
   }
   fraction.resize(9, '0');
-  const int64_t ns = std::stoll(whole) * 1'000'000'000 + std::stoll(fraction);
+  const int64_t ns = seconds * 1'000'000'000 + std::stoll(fraction);
   return negative ? -ns : ns;
 }
 

@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "common/geometry/polygon_triangulation.h"
+
 namespace lineloc::citymodel {
 namespace {
 
@@ -41,7 +43,7 @@ void validateFace(const Face& face, const FaceValidation& validation) {
       throw FaceDefect{"degenerate polygon", "fewer than 3 distinct vertices"};
     }
   }
-  const Eigen::Vector3d area_vector = newellVector(face.rings.front());
+  const Eigen::Vector3d area_vector = newellNormal(face.rings.front());
   const double area_m2 = 0.5 * area_vector.norm();
   if (!(area_m2 >= validation.min_area_m2)) {
     throw FaceDefect{"degenerate polygon", fmt::format("area {:.3g} m²", area_m2)};
@@ -66,26 +68,11 @@ void validateFace(const Face& face, const FaceValidation& validation) {
 
 }  // namespace
 
-Eigen::Vector3d newellVector(const std::vector<Eigen::Vector3d>& ring) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  if (ring.empty()) {
-    return sum;
-  }
-  // Relative to the first vertex, so large projected coordinates lose no precision.
-  const Eigen::Vector3d reference = ring.front();
-  for (size_t i = 0; i < ring.size(); ++i) {
-    const Eigen::Vector3d a = ring[i] - reference;
-    const Eigen::Vector3d b = ring[(i + 1) % ring.size()] - reference;
-    sum += a.cross(b);
-  }
-  return sum;
-}
-
 Eigen::Vector3d faceNormal(const Face& face) {
   if (face.rings.empty()) {
     return Eigen::Vector3d::Zero();
   }
-  const Eigen::Vector3d area_vector = newellVector(face.rings.front());
+  const Eigen::Vector3d area_vector = newellNormal(face.rings.front());
   const double norm = area_vector.norm();
   return norm > 0.0 ? Eigen::Vector3d(area_vector / norm) : Eigen::Vector3d::Zero();
 }
@@ -109,7 +96,7 @@ bool isDegenerate(const Face& face, const FaceValidation& validation) {
       return true;
     }
   }
-  return !(0.5 * newellVector(face.rings.front()).norm() >= validation.min_area_m2);
+  return !(0.5 * newellNormal(face.rings.front()).norm() >= validation.min_area_m2);
 }
 
 void dropDegenerateFaces(Building& building, const FaceValidation& validation,

@@ -12,10 +12,6 @@
 
 namespace lineloc::citymodel {
 
-// Newell's vector of a ring: twice its area times its unit normal (right-hand
-// rule over the vertex order).
-Eigen::Vector3d newellVector(const std::vector<Eigen::Vector3d>& ring);
-
 // The face's unit normal from its exterior ring; zero when the ring has no area.
 Eigen::Vector3d faceNormal(const Face& face);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "common/geometry/polygon_triangulation.h"
 #include "db/citymodel/footprint_reader.h"
 #include "db/citymodel/polygon_geometry.h"
 
@@ -28,7 +29,7 @@ Face outward(SurfaceKind kind, std::vector<Eigen::Vector3d> ring, const Eigen::V
     centroid += point;
   }
   centroid /= static_cast<double>(ring.size());
-  if (newellVector(ring).dot(centroid - inside) < 0.0) {
+  if (newellNormal(ring).dot(centroid - inside) < 0.0) {
     std::reverse(ring.begin(), ring.end());
   }
   return Face{kind, {std::move(ring)}};

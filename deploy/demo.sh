@@ -21,6 +21,9 @@ CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
 SITE_CRS=EPSG:7415
 SITE_ORIGIN=(84900 447600 0)
 DDS=(--domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml")
+# The simulated robot's camera rides this high above the road; the robot knows
+# it as a constant of its build and tells the backbone.
+CAMERA_HEIGHT_M=1.5
 
 [ -f "$CITY_MODEL" ] || { echo "demo: city model $CITY_MODEL missing" >&2; exit 1; }
 "$ROOT/deploy/build.sh"
@@ -35,7 +38,8 @@ READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 
 echo "demo: simulating a ${DURATION_S} s drive (seed $SEED)"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
-  --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S"
+  --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
+  --camera-height-m "$CAMERA_HEIGHT_M"
 
 "$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft \
   --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
@@ -45,6 +49,7 @@ trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 echo "demo: robot and backbone running in real time over DDS"
 "$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
   --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
+  --camera-height-m "$CAMERA_HEIGHT_M" \
   --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
   --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 

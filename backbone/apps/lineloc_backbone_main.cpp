@@ -42,10 +42,10 @@ int main(int argc, char** argv) {
   try {
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(
-        "lineloc-backbone: {} received, {} answered ({} with a pose), {} dropped as invalid, {} "
-        "map errors\n",
-        counters.received, counters.answered, counters.fixes_ok, counters.dropped_invalid,
-        counters.map_errors);
+        "lineloc-backbone: {} received, {} answered ({} with a pose, {} searched from a poor "
+        "prediction), {} dropped as invalid, {} map errors\n",
+        counters.received, counters.answered, counters.fixes_ok, counters.searches,
+        counters.dropped_invalid, counters.map_errors);
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

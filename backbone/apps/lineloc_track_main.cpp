@@ -77,11 +77,14 @@ int run(const TrackConfig& config) {
     const FrameFeatures& features = extractor.extract(image);
     const TrackedFrame frame = tracker.track(features.segments);
     aligned += frame.alignment.status == AlignmentStatus::kOk ? 1 : 0;
+    spdlog::info("frame {}: {}{} ({} inliers){}", index, toString(frame.alignment.status),
+                 frame.acquired ? " after a search" : "", frame.alignment.inliers,
+                 frame.alignment.message.empty() ? "" : ": " + frame.alignment.message);
     trajectory.write(
         {frames[index].stamp_ns.value_or(static_cast<int64_t>(index)), frame.T_world_camera.pose});
     if (!config.overlay_dir.empty()) {
       cv::imwrite(fmt::format("{}/frame_{:06d}.png", config.overlay_dir, index),
-                  drawTrackingOverlay(image, features.segments, frame, calibration.camera));
+                  drawTrackingOverlay(image, features.segments, frame, calibration));
     }
   }
   std::cout << fmt::format("lineloc-track: {} frames, {} aligned; poses in {}\n", frames.size(),

@@ -48,6 +48,11 @@ struct AlignmentOptions {
   // Position standard deviation (largest principal axis) beyond which the
   // alignment is ill-conditioned.
   double max_position_sigma_m = 0.5;
+  // Each round's refinement stops when a step lowers the cost by less than
+  // this fraction, or moves the pose by less than this relative amount: far
+  // below the pose's standard deviation, far above rounding.
+  double function_tolerance = 1e-10;
+  double parameter_tolerance = 1e-9;
   // Pose change (m, rad) below which the rounds have converged.
   double converged_translation_m = 1e-4;
   double converged_rotation_rad = 1e-5;

@@ -21,10 +21,13 @@ constexpr int64_t kWaitNs = 100'000'000;
 }  // namespace
 
 void writeCountersJson(const BackboneCounters& counters, const std::string& path) {
-  const nlohmann::json json = {
-      {"received", counters.received},     {"answered", counters.answered},
-      {"fixes_ok", counters.fixes_ok},     {"dropped_invalid", counters.dropped_invalid},
-      {"map_errors", counters.map_errors}, {"last_drop_reason", counters.last_drop_reason}};
+  const nlohmann::json json = {{"received", counters.received},
+                               {"answered", counters.answered},
+                               {"fixes_ok", counters.fixes_ok},
+                               {"dropped_invalid", counters.dropped_invalid},
+                               {"map_errors", counters.map_errors},
+                               {"searches", counters.searches},
+                               {"last_drop_reason", counters.last_drop_reason}};
   const std::string temporary = path + ".tmp";
   {
     std::ofstream stream(temporary);

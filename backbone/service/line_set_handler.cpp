@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "backbone/map/ground_level.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -58,16 +59,34 @@ void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
   last_position_[line_set.robot_id] = {line_set.stamp_ns, position};
 }
 
+PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
+                                                 const MapView& view) const {
+  PoseWithCovariance prior = line_set.predicted_T_world_camera;
+  const double ground_variance = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
+  if (line_set.camera_height_m <= 0.0 || !(prior.covariance(2, 2) > ground_variance)) {
+    return prior;
+  }
+  const std::optional<double> ground = groundLevel(view);
+  if (!ground) {
+    return prior;
+  }
+  prior.pose.translation().z() = *ground + line_set.camera_height_m;
+  prior.covariance.row(2).setZero();
+  prior.covariance.col(2).setZero();
+  prior.covariance(2, 2) = ground_variance;
+  return prior;
+}
+
 void LineSetHandler::align(const LineSetData& line_set, const MapView& view, PoseFixData& fix) {
-  const int64_t visibility_start_ns = steadyClockNs();
+  const int64_t scene_start_ns = steadyClockNs();
   const OcclusionScene scene(toRings(view.faces));
-  const std::vector<VisibleSegment> visible =
-      visibleSegments(toSegments(view.lines), scene, line_set.predicted_T_world_camera,
-                      line_set.camera, options_.visibility);
-  fix.timings.visibility = steadyClockNs() - visibility_start_ns;
-  const Alignment alignment =
-      alignModel(line_set.segments, visible, line_set.predicted_T_world_camera, line_set.camera,
-                 options_.alignment);
+  const int64_t scene_ns = steadyClockNs() - scene_start_ns;
+  const Localization localization =
+      localize(line_set.segments, toSegments(view.lines), scene, groundedPrior(line_set, view),
+               line_set.camera, options_.localizer);
+  const Alignment& alignment = localization.alignment;
+  counters_.searches += localization.acquired ? 1 : 0;
+  fix.timings.visibility = scene_ns + localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
   fix.timings.pose = alignment.pose_ns;
   fix.status = toFixStatus(alignment.status);

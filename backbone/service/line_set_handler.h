@@ -1,9 +1,15 @@
 // Turns one received LineSet into its PoseFix (paper §3.2): validate it, take
-// the model lines and faces near the predicted pose from the tile cache, keep
-// the visible parts (hidden-line removal), align them with the image segments,
+// the model lines and faces near the predicted pose from the tile cache, and
+// localize the camera in them (backbone/matching/localizer.h: hidden-line
+// removal and alignment from a good prediction, a search from a poor one),
 // and answer with the aligned pose and its covariance — or with a status that
 // says why no pose can be trusted. Malformed input is dropped and counted; a
 // map failure is answered with FIX_INTERNAL_ERROR and counted; serving goes on.
+//
+// A robot that states its camera height above the ground has its predicted
+// height replaced by the model's ground level there plus that height (sigma
+// ground_level_sigma_m) whenever its own is poorer: DGPS altitude is metres
+// off, the street is not.
 //
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
@@ -16,7 +22,7 @@
 #include <string>
 
 #include "backbone/map/map_tile_cache.h"
-#include "backbone/matching/model_alignment.h"
+#include "backbone/matching/localizer.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 
@@ -28,14 +34,15 @@ struct BackboneCounters {
   uint64_t dropped_invalid = 0;
   uint64_t map_errors = 0;
   uint64_t fixes_ok = 0;
+  uint64_t searches = 0;
   std::string last_drop_reason;
 };
 
 struct PipelineOptions {
   double query_radius_m = 150.0;
   double prefetch_lookahead_s = 3.0;
-  VisibilityOptions visibility;
-  AlignmentOptions alignment;
+  double ground_level_sigma_m = 0.1;
+  LocalizerOptions localizer;
 };
 
 class LineSetHandler {
@@ -50,6 +57,7 @@ class LineSetHandler {
  private:
   void prefetchAlongMotion(const LineSetData& line_set);
   void align(const LineSetData& line_set, const MapView& view, PoseFixData& fix);
+  PoseWithCovariance groundedPrior(const LineSetData& line_set, const MapView& view) const;
 
   struct StampedPosition {
     int64_t stamp_ns;

@@ -17,8 +17,11 @@ TrackedFrame ModelTracker::track(const std::vector<ImageSegment>& segments) {
   predicted.covariance += diagonalPoseCovariance(options_.process_position_sigma_m,
                                                  options_.process_rotation_sigma_rad);
   TrackedFrame frame;
-  frame.visible = visibleSegments(model_.lines, scene_, predicted, camera_, options_.visibility);
-  frame.alignment = alignModel(segments, frame.visible, predicted, camera_, options_.alignment);
+  Localization localization =
+      localize(segments, model_.lines, scene_, predicted, camera_, options_.localizer);
+  frame.alignment = std::move(localization.alignment);
+  frame.acquired = localization.acquired;
+  frame.visible = std::move(localization.visible);
   frame.T_world_camera =
       frame.alignment.status == AlignmentStatus::kOk ? frame.alignment.T_world_camera : predicted;
   current_ = frame.T_world_camera;

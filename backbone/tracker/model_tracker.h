@@ -1,15 +1,15 @@
-// Model-based tracking without DDS or a database: the backbone's hidden-line
-// removal and model alignment run frame after frame on a city model held in
-// memory, each frame predicted from the last with a constant-position motion
-// model whose covariance grows by the process noise Q per frame
-// (P_predicted = P + Q). A frame whose alignment fails keeps the prediction,
-// so the covariance keeps growing until the model is found again.
+// Model-based tracking without DDS or a database: the backbone's localizer
+// (hidden-line removal and alignment, or acquisition when the prior is poor)
+// runs frame after frame on a city model held in memory, each frame predicted
+// from the last with a constant-position motion model whose covariance grows
+// by the process noise Q per frame (P_predicted = P + Q). A frame whose
+// alignment fails keeps the prediction, so the covariance keeps growing until
+// the localizer searches for the model and finds it again.
 #pragma once
 
 #include <vector>
 
-#include "backbone/matching/model_alignment.h"
-#include "backbone/visibility/visible_lines.h"
+#include "backbone/matching/localizer.h"
 
 namespace lineloc {
 
@@ -19,15 +19,15 @@ struct TrackedModel {
 };
 
 struct TrackerOptions {
-  AlignmentOptions alignment;
-  VisibilityOptions visibility;
+  LocalizerOptions localizer;
   // Process noise per frame (standard deviations).
-  double process_position_sigma_m = 0.1;
-  double process_rotation_sigma_rad = 0.02;
+  double process_position_sigma_m = 0.08;
+  double process_rotation_sigma_rad = 0.3 * M_PI / 180.0;
 };
 
 struct TrackedFrame {
   Alignment alignment;
+  bool acquired = false;
   // The aligned pose when alignment.status is kOk, else the prediction.
   PoseWithCovariance T_world_camera;
   std::vector<VisibleSegment> visible;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace lineloc {
@@ -15,16 +17,29 @@ cv::Point2f toPoint(const Eigen::Vector2d& p) {
   return {static_cast<float>(p.x()), static_cast<float>(p.y())};
 }
 
+cv::Mat undistortedColour(const cv::Mat& image, const CameraCalibration& calibration) {
+  cv::Mat colour;
+  if (image.channels() == 1) {
+    cv::cvtColor(image, colour, cv::COLOR_GRAY2BGR);
+  } else {
+    colour = image;
+  }
+  if (calibration.distortion.empty()) {
+    return colour.clone();
+  }
+  cv::Mat K;
+  cv::eigen2cv(calibration.camera.K(), K);
+  cv::Mat undistorted;
+  cv::undistort(colour, undistorted, K, calibration.distortion);
+  return undistorted;
+}
+
 }  // namespace
 
 cv::Mat drawTrackingOverlay(const cv::Mat& image, const std::vector<ImageSegment>& segments,
-                            const TrackedFrame& frame, const PinholeCamera& camera) {
-  cv::Mat overlay;
-  if (image.channels() == 1) {
-    cv::cvtColor(image, overlay, cv::COLOR_GRAY2BGR);
-  } else {
-    overlay = image.clone();
-  }
+                            const TrackedFrame& frame, const CameraCalibration& calibration) {
+  const PinholeCamera& camera = calibration.camera;
+  cv::Mat overlay = undistortedColour(image, calibration);
   for (const ImageSegment& segment : segments) {
     cv::line(overlay, toPoint(segment.start.cast<double>()), toPoint(segment.end.cast<double>()),
              kImageSegmentColour, 1, cv::LINE_AA);

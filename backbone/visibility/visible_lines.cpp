@@ -13,30 +13,40 @@ namespace {
 constexpr int kStateDimension = 3;
 constexpr int kViewpoints = 2 * kStateDimension + 1;
 
-// The camera centre and the six sigma points of its position uncertainty.
-std::array<Eigen::Vector3d, kViewpoints> viewpoints(const PoseWithCovariance& T_world_camera) {
-  const Eigen::Vector3d centre = T_world_camera.pose.translation();
+// The camera centre and the sigma points of its position uncertainty; the
+// centre alone for a position known exactly.
+struct Viewpoints {
   std::array<Eigen::Vector3d, kViewpoints> points;
-  points.fill(centre);
+  int count = 1;
+};
+
+Viewpoints viewpoints(const PoseWithCovariance& T_world_camera) {
+  Viewpoints viewpoints;
+  const Eigen::Vector3d centre = T_world_camera.pose.translation();
+  viewpoints.points.fill(centre);
   const Eigen::Matrix3d position_covariance = T_world_camera.covariance.topLeftCorner<3, 3>();
+  if (position_covariance.isZero()) {
+    return viewpoints;
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(position_covariance);
   for (int i = 0; i < kStateDimension; ++i) {
     const double spread = std::sqrt(kStateDimension * std::max(0.0, eigen.eigenvalues()[i]));
     const Eigen::Vector3d offset = spread * eigen.eigenvectors().col(i);
-    points[1 + 2 * i] = centre + offset;
-    points[2 + 2 * i] = centre - offset;
+    viewpoints.points[1 + 2 * i] = centre + offset;
+    viewpoints.points[2 + 2 * i] = centre - offset;
   }
-  return points;
+  viewpoints.count = kViewpoints;
+  return viewpoints;
 }
 
-double visibleFraction(const OcclusionScene& scene,
-                       const std::array<Eigen::Vector3d, kViewpoints>& from,
+// Fraction of the viewpoints that see `point`, which the centre sees.
+double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
                        const Eigen::Vector3d& point, double clearance_m) {
-  int seen = 0;
-  for (const Eigen::Vector3d& viewpoint : from) {
-    seen += scene.blocked(viewpoint, point, clearance_m) ? 0 : 1;
+  int seen = 1;
+  for (int i = 1; i < from.count; ++i) {
+    seen += scene.blocked(from.points[i], point, clearance_m) ? 0 : 1;
   }
-  return static_cast<double>(seen) / kViewpoints;
+  return static_cast<double>(seen) / from.count;
 }
 
 HalfSpaces visibilityFrustum(const PinholeCamera& camera, const VisibilityOptions& options) {
@@ -90,7 +100,7 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
       if (i < samples) {
         const Eigen::Vector3d p =
             a_world + (b_world - a_world) * (static_cast<double>(i) / (samples - 1));
-        const bool seen_now = !scene.blocked(from[0], p, options.surface_clearance_m);
+        const bool seen_now = !scene.blocked(from.points[0], p, options.surface_clearance_m);
         fraction = seen_now ? visibleFraction(scene, from, p, options.surface_clearance_m) : 0.0;
       }
       if (fraction > 0.0) {

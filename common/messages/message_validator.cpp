@@ -11,6 +11,8 @@ namespace {
 
 constexpr double kQuaternionNormTolerance = 1e-3;
 constexpr double kCovarianceSymmetryTolerance = 1e-6;
+// No ground robot carries its camera higher (m).
+constexpr double kMaxCameraHeightM = 100.0;
 
 using Error = std::optional<std::string>;
 
@@ -180,6 +182,10 @@ std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
   for (uint32_t i = 0; i < message.corners._length; ++i) {
     if (Error e = checkCorner(message.corners._buffer[i], bounds, i))
       return e;
+  }
+  if (!(message.camera_height_m >= 0.0 && message.camera_height_m <= kMaxCameraHeightM)) {
+    return fmt::format("camera_height_m {} is outside [0, {}]", message.camera_height_m,
+                       kMaxCameraHeightM);
   }
   return checkPose(message.predicted_T_world_camera, "predicted_T_world_camera");
 }

@@ -1,8 +1,9 @@
 #include "common/messages/messages.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
-#include <fmt/format.h>
 #include <stdexcept>
 
 namespace lineloc {
@@ -119,8 +120,8 @@ const char* toString(lineloc_msg_FixStatus status) {
 void copyRobotId(const std::string& robot_id,
                  char (&destination)[lineloc_msg_ROBOT_ID_MAX_LENGTH + 1]) {
   if (robot_id.size() > lineloc_msg_ROBOT_ID_MAX_LENGTH) {
-    throw std::invalid_argument(fmt::format("robot id '{}' is longer than {} characters",
-                                            robot_id, lineloc_msg_ROBOT_ID_MAX_LENGTH));
+    throw std::invalid_argument(fmt::format("robot id '{}' is longer than {} characters", robot_id,
+                                            lineloc_msg_ROBOT_ID_MAX_LENGTH));
   }
   std::memset(destination, 0, sizeof(destination));
   std::memcpy(destination, robot_id.data(), robot_id.size());
@@ -141,7 +142,8 @@ PoseWithCovariance fromMessage(const lineloc_msg_PoseWithCovariance& message) {
   const Eigen::Map<const Eigen::Quaterniond> q(message.pose.rotation_xyzw);
   PoseWithCovariance pose;
   pose.pose = makePose(t, q);
-  pose.covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(message.covariance);
+  pose.covariance =
+      Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(message.covariance);
   return pose;
 }
 
@@ -163,6 +165,7 @@ LineSetMessage::LineSetMessage(const LineSetData& data) {
   message_.corners = {static_cast<uint32_t>(corners_.size()),
                       static_cast<uint32_t>(corners_.size()), corners_.data(), false};
   message_.predicted_T_world_camera = toMessage(data.predicted_T_world_camera);
+  message_.camera_height_m = data.camera_height_m;
 }
 
 LineSetData fromMessage(const lineloc_msg_LineSet& message) {
@@ -180,6 +183,7 @@ LineSetData fromMessage(const lineloc_msg_LineSet& message) {
     data.corners.push_back(fromMessage(message.corners._buffer[i]));
   }
   data.predicted_T_world_camera = fromMessage(message.predicted_T_world_camera);
+  data.camera_height_m = message.camera_height_m;
   return data;
 }
 

@@ -38,6 +38,8 @@ struct LineSetData {
   std::vector<ImageSegment> segments;
   std::vector<ImageCorner> corners;
   PoseWithCovariance predicted_T_world_camera;
+  // Camera height above the ground (m); 0: unknown (see lineloc.idl).
+  double camera_height_m = 0.0;
 };
 
 struct StageTimingsNs {
@@ -84,6 +86,7 @@ lineloc_msg_PoseWithCovariance toMessage(const PoseWithCovariance& pose);
 PoseWithCovariance fromMessage(const lineloc_msg_PoseWithCovariance& message);
 
 // Copies a robot id into a bounded IDL string; throws when it does not fit.
-void copyRobotId(const std::string& robot_id, char (&destination)[lineloc_msg_ROBOT_ID_MAX_LENGTH + 1]);
+void copyRobotId(const std::string& robot_id,
+                 char (&destination)[lineloc_msg_ROBOT_ID_MAX_LENGTH + 1]);
 
 }  // namespace lineloc

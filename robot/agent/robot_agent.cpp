@@ -320,6 +320,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         line_set.sequence_number = static_cast<uint32_t>(event.index);
         line_set.stamp_ns = frame.stamp_ns.value_or(exposure_wall_ns);
         line_set.camera = calibration.camera;
+        line_set.camera_height_m = config.camera_height_m;
         if (navigator) {
           const PosePrediction prediction = navigator->predictAt(line_set.stamp_ns);
           if (prediction.status != PredictionStatus::kOk) {

@@ -27,6 +27,8 @@ struct RobotConfig {
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};
   double predicted_position_sigma_m = 5.0;
   double predicted_rotation_sigma_deg = 10.0;
+  // Height of the camera above the ground under the robot (m); 0: unknown.
+  double camera_height_m = 0.0;
   // Site frame for DGPS: CRS ("EPSG:7415") and origin (x y z) subtracted from it.
   std::string site_crs;
   std::vector<double> site_origin = {0.0, 0.0, 0.0};

@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
               "standard deviation of the predicted position (m)");
   options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
               "standard deviation of the predicted rotation (degrees)");
+  options.add("camera_height_m", config.camera_height_m,
+              "height of the camera above the ground the robot stands on (m); 0: unknown. The "
+              "backbone then finds the camera from DGPS and compass however poor the DGPS "
+              "altitude");
   options.add("site_crs", config.site_crs, "CRS of the site frame, e.g. EPSG:7415 (for DGPS)");
   options.addFixedSize("site_origin", config.site_origin, 3, "site origin x y z in that CRS");
   options.add("magnetic_declination_deg", config.magnetic_declination_deg,

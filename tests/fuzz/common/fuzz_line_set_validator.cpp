@@ -32,6 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   take(message.stamp_ns, data, size);
   take(message.camera, data, size);
   take(message.predicted_T_world_camera, data, size);
+  take(message.camera_height_m, data, size);
   uint8_t segment_count = 0;
   uint8_t corner_count = 0;
   take(segment_count, data, size);

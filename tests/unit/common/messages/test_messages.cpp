@@ -30,6 +30,7 @@ LineSetData makeLineSet(int segment_count) {
   data.predicted_T_world_camera.pose = makePose(
       {1.0, 2.0, 3.0}, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())));
   data.predicted_T_world_camera.covariance = diagonalPoseCovariance(2.0, 0.1);
+  data.camera_height_m = 1.5;
   return data;
 }
 
@@ -41,6 +42,7 @@ TEST(Messages, LineSetRoundTripKeepsEveryField) {
   EXPECT_EQ(back.sequence_number, data.sequence_number);
   EXPECT_EQ(back.stamp_ns, data.stamp_ns);
   EXPECT_EQ(back.camera.width, 640);
+  EXPECT_EQ(back.camera_height_m, 1.5);
   EXPECT_DOUBLE_EQ(back.camera.fy, 501.0);
   ASSERT_EQ(back.segments.size(), 3u);
   EXPECT_EQ(back.segments[1].start, data.segments[1].start);
@@ -123,6 +125,8 @@ const Corruption kCorruptions[] = {
      [](LineSetData& d) { d.predicted_T_world_camera.covariance(0, 5) = 1.0; }, "not symmetric"},
     {"negative_covariance",
      [](LineSetData& d) { d.predicted_T_world_camera.covariance(4, 4) = -1.0; }, "negative"},
+    {"nan_camera_height", [](LineSetData& d) { d.camera_height_m = kNaN; }, "camera_height_m"},
+    {"negative_camera_height", [](LineSetData& d) { d.camera_height_m = -1.5; }, "camera_height_m"},
 };
 
 TEST(Validator, NamesEachMalformedField) {

@@ -1,0 +1,106 @@
+#include "backbone/matching/pose_acquisition.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "common/time/clock.h"
+
+namespace lineloc {
+namespace {
+
+bool distinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+              const PoseSearchOptions& options) {
+  const Eigen::AngleAxisd rotation(a.linear().transpose() * b.linear());
+  return (a.translation() - b.translation()).head<2>().norm() >= options.distinct_position_m ||
+         std::abs(rotation.angle()) >= options.distinct_yaw_rad;
+}
+
+struct Verified {
+  Alignment alignment;
+  std::vector<VisibleSegment> visible;
+  // Of the aligned pose against the verification distance map.
+  Coverage coverage;
+};
+
+bool byScore(const Verified& a, const Verified& b) {
+  return a.coverage.score < b.coverage.score;
+}
+
+// The best-scoring aligned alternative that is distinct from `best`.
+const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& best,
+                          const PoseSearchOptions& options) {
+  const Verified* rival = nullptr;
+  for (const Verified& other : aligned) {
+    if (&other == &best || !distinct(other.alignment.T_world_camera.pose,
+                                     best.alignment.T_world_camera.pose, options)) {
+      continue;
+    }
+    if (rival == nullptr || byScore(*rival, other)) {
+      rival = &other;
+    }
+  }
+  return rival;
+}
+
+}  // namespace
+
+Acquisition acquirePose(const std::vector<ImageSegment>& image,
+                        const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                        const PoseWithCovariance& prior, const PinholeCamera& camera,
+                        const AcquisitionOptions& options) {
+  Acquisition acquisition;
+  acquisition.alignment.T_world_camera = prior;
+  const int64_t search_start_ns = steadyClockNs();
+  const PoseSearch search(lines, scene, camera, options.search);
+  const std::vector<PoseHypothesis> hypotheses = search.search(image, prior);
+  acquisition.search_ns = steadyClockNs() - search_start_ns;
+  acquisition.hypotheses = static_cast<int>(hypotheses.size());
+
+  const OrientedDistanceMap verification_map(image, camera.width, camera.height,
+                                             options.verification_distances);
+  std::vector<Verified> aligned;
+  for (const PoseHypothesis& hypothesis : hypotheses) {
+    const PoseWithCovariance start{hypothesis.T_world_camera,
+                                   diagonalPoseCovariance(options.hypothesis_position_sigma_m,
+                                                          options.hypothesis_rotation_sigma_rad)};
+    std::vector<VisibleSegment> visible =
+        visibleSegments(lines, scene, start, camera, options.visibility);
+    Verified verified{alignModel(image, visible, start, camera, options.alignment), {}, {}};
+    acquisition.alignment.matching_ns += verified.alignment.matching_ns;
+    acquisition.alignment.pose_ns += verified.alignment.pose_ns;
+    if (verified.alignment.status == AlignmentStatus::kOk &&
+        verified.alignment.inliers >= options.min_inliers) {
+      verified.coverage =
+          search.coverage(visible, verified.alignment.T_world_camera.pose, verification_map);
+      verified.visible = std::move(visible);
+      aligned.push_back(std::move(verified));
+    }
+  }
+  acquisition.aligned = static_cast<int>(aligned.size());
+  if (aligned.empty()) {
+    acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
+    acquisition.alignment.message =
+        fmt::format("none of {} search hypotheses aligned", hypotheses.size());
+    return acquisition;
+  }
+  const auto best = std::max_element(aligned.begin(), aligned.end(), byScore);
+  const Verified* rival = bestRival(aligned, *best, options.search);
+  const int64_t matching_ns = acquisition.alignment.matching_ns;
+  const int64_t pose_ns = acquisition.alignment.pose_ns;
+  acquisition.alignment = best->alignment;
+  acquisition.visible = best->visible;
+  acquisition.alignment.matching_ns = matching_ns;
+  acquisition.alignment.pose_ns = pose_ns;
+  acquisition.best_score = best->coverage.score;
+  acquisition.rival_score = rival != nullptr ? rival->coverage.score : 0.0;
+  if (acquisition.rival_score >= options.ambiguous_score_fraction * acquisition.best_score) {
+    acquisition.alignment.status = AlignmentStatus::kAmbiguous;
+    acquisition.alignment.message =
+        fmt::format("two distinct poses align: coverage scores {:.1f} and {:.1f}",
+                    acquisition.best_score, acquisition.rival_score);
+  }
+  return acquisition;
+}
+
+}  // namespace lineloc

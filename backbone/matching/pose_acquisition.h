@@ -1,0 +1,60 @@
+// Finds the camera from a poor prior (paper §3.2: "a false match gives a
+// precise but wrong pose"): the pose search (pose_search.h) proposes the best
+// distinct poses over the prior's region; each one is aligned (gated matching
+// and robust refinement, model_alignment.h) from its grid cell, with the lines
+// visible from it. Each aligned pose is scored again by its coverage C / sqrt(L)
+// against a sharp distance map (a few pixels: aligned lines lie on their
+// edges), and the best one wins — unless another one, distinct from it, scores
+// nearly as well: then the view does not tell them apart (a repetitive
+// street, a single façade) and the answer is kAmbiguous, never the likelier
+// of two precise poses. Inlier counts do not separate them: a wrong pose near
+// a façade full of windows finds as many lines to agree with.
+#pragma once
+
+#include <vector>
+
+#include "backbone/matching/model_alignment.h"
+#include "backbone/matching/pose_search.h"
+
+namespace lineloc {
+
+struct AcquisitionOptions {
+  PoseSearchOptions search;
+  AlignmentOptions alignment;
+  // Covariance an alignment starts from at a hypothesis: the fine grid's reach.
+  double hypothesis_position_sigma_m = 0.15;
+  double hypothesis_rotation_sigma_rad = 0.2 * M_PI / 180.0;
+  // Hidden-line removal for the alignment at each hypothesis.
+  VisibilityOptions visibility;
+  DistanceMapOptions verification_distances{15.0, 3.0, 1};
+  // An acquired pose needs this many inliers: a wrong pose near a façade
+  // finds a handful of window lines to agree with, the right one most of the
+  // building outlines in view.
+  int min_inliers = 12;
+  // A second aligned hypothesis scoring at least this fraction of the best
+  // one, farther than distinct_position_m or distinct_yaw_rad from it, makes
+  // the answer ambiguous.
+  double ambiguous_score_fraction = 0.8;
+};
+
+struct Acquisition {
+  Alignment alignment;
+  // The model pieces visible from the best aligned hypothesis.
+  std::vector<VisibleSegment> visible;
+  // Hypotheses the search proposed and how many of them aligned.
+  int hypotheses = 0;
+  int aligned = 0;
+  // Verification scores of the best aligned pose and its best distinct rival (0: none).
+  double best_score = 0.0;
+  double rival_score = 0.0;
+  int64_t search_ns = 0;
+};
+
+// `lines` and `scene` are the model near the prior; `prior.pose` carries the
+// height the search keeps (see pose_search.h).
+Acquisition acquirePose(const std::vector<ImageSegment>& image,
+                        const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                        const PoseWithCovariance& prior, const PinholeCamera& camera,
+                        const AcquisitionOptions& options);
+
+}  // namespace lineloc

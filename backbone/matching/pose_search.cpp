@@ -1,0 +1,251 @@
+#include "backbone/matching/pose_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace lineloc {
+namespace {
+
+// Camera depth below which a projected piece is cut (metres).
+constexpr double kNearDepthM = 0.3;
+// Height of the ray that tests whether a position is under a roof (metres).
+constexpr double kRoofProbeHeightM = 1000.0;
+
+Eigen::Matrix3d yawed(const Eigen::Matrix3d& R_world_camera, double yaw_offset_rad) {
+  return Eigen::AngleAxisd(yaw_offset_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+         R_world_camera;
+}
+
+// Cuts the part of a camera-frame segment nearer than kNearDepthM; false when
+// nothing is left.
+bool clipNear(Eigen::Vector3d& a, Eigen::Vector3d& b) {
+  if (a.z() < kNearDepthM && b.z() < kNearDepthM) {
+    return false;
+  }
+  if (a.z() < kNearDepthM) {
+    a += (b - a) * ((kNearDepthM - a.z()) / (b.z() - a.z()));
+  } else if (b.z() < kNearDepthM) {
+    b += (a - b) * ((kNearDepthM - b.z()) / (a.z() - b.z()));
+  }
+  return true;
+}
+
+// Liang-Barsky clipping of the 2D segment a-b to [0, w] x [0, h].
+bool clipToImage(Eigen::Vector2d& a, Eigen::Vector2d& b, double width, double height) {
+  const Eigen::Vector2d d = b - a;
+  double t0 = 0.0;
+  double t1 = 1.0;
+  const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+  const double q[4] = {a.x(), width - a.x(), a.y(), height - a.y()};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] < 0.0) {
+        return false;
+      }
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0.0) {
+      t0 = std::max(t0, t);
+    } else {
+      t1 = std::min(t1, t);
+    }
+  }
+  if (t0 >= t1) {
+    return false;
+  }
+  const Eigen::Vector2d start = a + t0 * d;
+  b = a + t1 * d;
+  a = start;
+  return true;
+}
+
+// Offsets -n step .. n step with n = floor(half_range / step), at least {0}.
+std::vector<double> gridOffsets(double half_range, double step) {
+  const int n = step > 0.0 ? static_cast<int>(std::floor(half_range / step + 1e-9)) : 0;
+  std::vector<double> offsets;
+  for (int i = -n; i <= n; ++i) {
+    offsets.push_back(i * step);
+  }
+  return offsets;
+}
+
+}  // namespace
+
+PoseSearch::PoseSearch(const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                       const PinholeCamera& camera, const PoseSearchOptions& options)
+    : lines_(lines), scene_(scene), camera_(camera), options_(options) {}
+
+Eigen::Isometry3d PoseSearch::poseOf(const GridPose& grid, const Eigen::Matrix3d& R_prior) const {
+  Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
+  T_world_camera.linear() = yawed(R_prior, grid.yaw_offset_rad);
+  T_world_camera.translation() = grid.position_world;
+  return T_world_camera;
+}
+
+// Greedy non-maximum suppression: the best poses, each farther than the
+// distinct thresholds from every pose kept before it.
+std::vector<PoseSearch::GridPose> PoseSearch::distinctBest(std::vector<GridPose> poses) const {
+  std::sort(poses.begin(), poses.end(), [](const GridPose& a, const GridPose& b) {
+    return a.coverage.score > b.coverage.score;
+  });
+  std::vector<GridPose> kept;
+  for (const GridPose& pose : poses) {
+    if (static_cast<int>(kept.size()) >= options_.max_hypotheses || pose.coverage.score <= 0.0) {
+      break;
+    }
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const GridPose& other) {
+      return (other.position_world - pose.position_world).head<2>().norm() <
+                 options_.distinct_position_m &&
+             std::abs(other.yaw_offset_rad - pose.yaw_offset_rad) < options_.distinct_yaw_rad;
+    });
+    if (!duplicate) {
+      kept.push_back(pose);
+    }
+  }
+  return kept;
+}
+
+bool PoseSearch::underRoof(const Eigen::Vector3d& position_world) const {
+  return scene_.blocked(position_world,
+                        position_world + Eigen::Vector3d(0.0, 0.0, kRoofProbeHeightM), 0.0);
+}
+
+std::vector<VisibleSegment> PoseSearch::visibleFrom(const Eigen::Vector3d& position_world,
+                                                    const Eigen::Matrix3d& R_world_camera,
+                                                    double yaw_range_rad) const {
+  PoseWithCovariance viewpoint;
+  viewpoint.pose.linear() = R_world_camera;
+  viewpoint.pose.translation() = position_world;
+  viewpoint.covariance.setZero();
+  // The image edge at angle alpha = atan(cx / fx) moves by fx (tan(alpha + r) - tan(alpha)).
+  const double edge_rad = std::atan2(std::max(camera_.cx, camera_.width - camera_.cx), camera_.fx);
+  const double widened_rad = std::min(edge_rad + yaw_range_rad, 0.49 * M_PI);
+  VisibilityOptions options = options_.visibility;
+  options.image_margin_px += camera_.fx * (std::tan(widened_rad) - std::tan(edge_rad));
+  return visibleSegments(lines_, scene_, viewpoint, camera_, options);
+}
+
+Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
+                              const Eigen::Isometry3d& T_world_camera,
+                              const OrientedDistanceMap& map) const {
+  const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
+  const double truncation = map.truncationPx();
+  const double spacing = options_.sample_spacing_px;
+  Coverage coverage;
+  for (const VisibleSegment& segment : visible) {
+    Eigen::Vector3d a = T_camera_world * segment.start_world;
+    Eigen::Vector3d b = T_camera_world * segment.end_world;
+    if (!clipNear(a, b)) {
+      continue;
+    }
+    Eigen::Vector2d pa = camera_.project(a);
+    Eigen::Vector2d pb = camera_.project(b);
+    if (!clipToImage(pa, pb, camera_.width, camera_.height)) {
+      continue;
+    }
+    const Eigen::Vector2d along = pb - pa;
+    const double length = along.norm();
+    const int samples = static_cast<int>(length / spacing);
+    if (samples == 0) {
+      continue;
+    }
+    const double direction = std::atan2(along.y(), along.x());
+    const Eigen::Vector2d step = along / samples;
+    double covered = 0.0;
+    for (int k = 0; k < samples; ++k) {
+      covered += 1.0 - map.distance(pa + (k + 0.5) * step, direction) / truncation;
+    }
+    coverage.covered_px += covered * (length / samples);
+    coverage.model_px += length;
+  }
+  if (coverage.model_px >= options_.min_model_length_px) {
+    coverage.score = coverage.covered_px / std::sqrt(coverage.model_px);
+  }
+  return coverage;
+}
+
+PoseSearch::GridPose PoseSearch::refine(const GridPose& start, const Eigen::Matrix3d& R_prior,
+                                        const std::vector<ImageSegment>& image) const {
+  const SearchLevel& fine = options_.fine;
+  const OrientedDistanceMap map(image, camera_.width, camera_.height, fine.distances);
+  const std::vector<VisibleSegment> visible =
+      visibleFrom(start.position_world, yawed(R_prior, start.yaw_offset_rad), fine.yaw_range_rad);
+  GridPose best = start;
+  best.coverage = {};
+  for (const double dx : gridOffsets(fine.position_range_m, fine.position_step_m)) {
+    for (const double dy : gridOffsets(fine.position_range_m, fine.position_step_m)) {
+      for (const double dz : gridOffsets(fine.height_range_m, fine.height_step_m)) {
+        for (const double yaw : gridOffsets(fine.yaw_range_rad, fine.yaw_step_rad)) {
+          GridPose pose{
+              start.position_world + Eigen::Vector3d(dx, dy, dz), start.yaw_offset_rad + yaw, {}};
+          pose.coverage = coverage(visible, poseOf(pose, R_prior), map);
+          if (pose.coverage.score > best.coverage.score) {
+            best = pose;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+std::vector<PoseHypothesis> PoseSearch::search(const std::vector<ImageSegment>& image,
+                                               const PoseWithCovariance& prior) const {
+  const Eigen::Matrix3d R_prior = prior.pose.linear();
+  const Eigen::Vector3d centre = prior.pose.translation();
+  const Eigen::Matrix2d position_covariance = prior.covariance.block<2, 2>(0, 0);
+  const Eigen::Matrix2d information = position_covariance.inverse();
+  const double range = options_.range_sigma;
+  const double half_x =
+      std::min(range * std::sqrt(position_covariance(0, 0)), options_.max_position_range_m);
+  const double half_y =
+      std::min(range * std::sqrt(position_covariance(1, 1)), options_.max_position_range_m);
+  const double yaw_range = std::clamp(range * std::sqrt(prior.covariance(5, 5)),
+                                      options_.min_yaw_range_rad, options_.max_yaw_range_rad);
+  const SearchLevel& coarse = options_.coarse;
+  const OrientedDistanceMap coarse_map(image, camera_.width, camera_.height, coarse.distances);
+  const std::vector<double> yaws = gridOffsets(yaw_range, coarse.yaw_step_rad);
+
+  std::map<std::pair<int, int>, std::vector<VisibleSegment>> visible_by_cell;
+  std::vector<GridPose> scored;
+  for (const double dx : gridOffsets(half_x, coarse.position_step_m)) {
+    for (const double dy : gridOffsets(half_y, coarse.position_step_m)) {
+      const Eigen::Vector2d offset(dx, dy);
+      const bool inside_region = offset.dot(information * offset) <= range * range ||
+                                 offset.norm() <= coarse.position_step_m;
+      const Eigen::Vector3d position = centre + Eigen::Vector3d(dx, dy, 0.0);
+      if (!inside_region || underRoof(position)) {
+        continue;
+      }
+      const std::pair<int, int> cell{
+          static_cast<int>(std::lround(dx / options_.visibility_cell_m)),
+          static_cast<int>(std::lround(dy / options_.visibility_cell_m))};
+      auto found = visible_by_cell.find(cell);
+      if (found == visible_by_cell.end()) {
+        const Eigen::Vector3d cell_centre =
+            centre + options_.visibility_cell_m * Eigen::Vector3d(cell.first, cell.second, 0.0);
+        found = visible_by_cell.emplace(cell, visibleFrom(cell_centre, R_prior, yaw_range)).first;
+      }
+      for (const double yaw : yaws) {
+        GridPose pose{position, yaw, {}};
+        pose.coverage = coverage(found->second, poseOf(pose, R_prior), coarse_map);
+        scored.push_back(pose);
+      }
+    }
+  }
+
+  std::vector<GridPose> refined;
+  for (const GridPose& start : distinctBest(std::move(scored))) {
+    refined.push_back(refine(start, R_prior, image));
+  }
+  std::vector<PoseHypothesis> hypotheses;
+  for (const GridPose& pose : distinctBest(std::move(refined))) {
+    hypotheses.push_back({poseOf(pose, R_prior), pose.coverage});
+  }
+  return hypotheses;
+}
+
+}  // namespace lineloc

@@ -55,12 +55,12 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   PipelineOptions pipeline;
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
-  LineSetHandler handler(map, limits, pipeline);
-
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
   dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::Qos(kHistoryDepth));
+  const auto publish = [&writer](const PoseFixData& fix) { writer.write(toMessage(fix)); };
+  LineSetHandler handler(map, limits, pipeline, publish);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 
   const int64_t stats_period_ns = static_cast<int64_t>(config.stats_period_s * 1e9);
@@ -69,7 +69,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     if (reader.waitForData(kWaitNs)) {
       reader.takeEach([&](const lineloc_msg_LineSet& message) {
         if (const auto fix = handler.handle(message)) {
-          writer.write(toMessage(*fix));
+          publish(*fix);
         }
       });
     }

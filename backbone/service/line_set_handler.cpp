@@ -45,8 +45,18 @@ lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
 }
 
 LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
-                               const PipelineOptions& options)
-    : map_(map), limits_(limits), options_(options) {}
+                               const PipelineOptions& options,
+                               SearchWorker::Publish publish_searches)
+    : map_(map),
+      limits_(limits),
+      options_(options),
+      search_worker_(publish_searches ? std::make_unique<SearchWorker>(std::move(publish_searches))
+                                      : nullptr) {}
+
+BackboneCounters LineSetHandler::counters() const {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  return counters_;
+}
 
 void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
   const Eigen::Vector3d position = line_set.predicted_T_world_camera.pose.translation();
@@ -77,15 +87,14 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
   return prior;
 }
 
-void LineSetHandler::align(const LineSetData& line_set, const MapView& view, PoseFixData& fix) {
+void LineSetHandler::localizeInto(const LineSetData& line_set, const MapView& view,
+                                  const PoseWithCovariance& prior, PoseFixData& fix) {
   const int64_t scene_start_ns = steadyClockNs();
   const OcclusionScene scene(toRings(view.faces));
   const int64_t scene_ns = steadyClockNs() - scene_start_ns;
-  const Localization localization =
-      localize(line_set.segments, toSegments(view.lines), scene, groundedPrior(line_set, view),
-               line_set.camera, options_.localizer);
+  const Localization localization = localize(line_set.segments, toSegments(view.lines), scene,
+                                             prior, line_set.camera, options_.localizer);
   const Alignment& alignment = localization.alignment;
-  counters_.searches += localization.acquired ? 1 : 0;
   fix.timings.visibility = scene_ns + localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
   fix.timings.pose = alignment.pose_ns;
@@ -94,17 +103,32 @@ void LineSetHandler::align(const LineSetData& line_set, const MapView& view, Pos
   fix.residual_rms_px = static_cast<float>(alignment.rms_residual_px);
   if (alignment.status == AlignmentStatus::kOk) {
     fix.T_world_camera = alignment.T_world_camera;
-    ++counters_.fixes_ok;
   }
+  if (localization.acquired) {
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.searches;
+  }
+}
+
+PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
+  fix.timings.total = steadyClockNs() - start_ns;
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.answered;
+  counters_.fixes_ok += fix.status == lineloc_msg_FIX_OK ? 1 : 0;
+  return fix;
 }
 
 std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& message) {
   const int64_t start_ns = steadyClockNs();
-  ++counters_.received;
+  {
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.received;
+  }
   if (const std::optional<std::string> error = findLineSetError(message, limits_)) {
+    spdlog::warn("dropped LineSet #{}: {}", message.sequence_number, *error);
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.dropped_invalid;
     counters_.last_drop_reason = *error;
-    spdlog::warn("dropped LineSet #{}: {}", message.sequence_number, *error);
     return std::nullopt;
   }
   const LineSetData line_set = fromMessage(message);
@@ -121,17 +145,35 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     prefetchAlongMotion(line_set);
     if (view.lines.empty()) {
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
-    } else {
-      align(line_set, view, fix);
+      return finish(fix, start_ns);
     }
+    const PoseWithCovariance prior = groundedPrior(line_set, view);
+    if (search_worker_ == nullptr || !needsAcquisition(prior, options_.localizer)) {
+      localizeInto(line_set, view, prior, fix);
+      return finish(fix, start_ns);
+    }
+    auto search = [this, line_set, view, prior, fix, start_ns]() mutable {
+      try {
+        localizeInto(line_set, view, prior, fix);
+      } catch (const std::exception& error) {
+        spdlog::error("search for {} #{} failed: {}", fix.robot_id, fix.sequence_number,
+                      error.what());
+        fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
+      }
+      return finish(fix, start_ns);
+    };
+    if (search_worker_->submit(line_set.robot_id, std::move(search))) {
+      return std::nullopt;
+    }
+    // The robot's search runs on an earlier frame.
+    fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
-    ++counters_.map_errors;
     spdlog::error("map for {} #{} failed: {}", fix.robot_id, fix.sequence_number, error.what());
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.map_errors;
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
   }
-  fix.timings.total = steadyClockNs() - start_ns;
-  ++counters_.answered;
-  return fix;
+  return finish(fix, start_ns);
 }
 
 }  // namespace lineloc

@@ -11,6 +11,10 @@
 // ground_level_sigma_m) whenever its own is poorer: DGPS altitude is metres
 // off, the street is not.
 //
+// Given a way to publish late answers, a LineSet whose prediction needs a
+// search is handed to a SearchWorker thread and answered from there
+// (search_worker.h); without one, everything is answered inline.
+//
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
 // frames find their map in memory.
@@ -18,11 +22,14 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
+#include "backbone/service/search_worker.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 
@@ -47,17 +54,22 @@ struct PipelineOptions {
 
 class LineSetHandler {
  public:
-  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
+  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options,
+                 SearchWorker::Publish publish_searches = {});
 
-  // The fix to publish, or nullopt when the message was dropped.
+  // The fix to publish now, or nullopt when the message was dropped or handed
+  // to the search worker, which publishes its fix through publish_searches.
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);
 
-  const BackboneCounters& counters() const { return counters_; }
+  BackboneCounters counters() const;
 
  private:
   void prefetchAlongMotion(const LineSetData& line_set);
-  void align(const LineSetData& line_set, const MapView& view, PoseFixData& fix);
+  void localizeInto(const LineSetData& line_set, const MapView& view,
+                    const PoseWithCovariance& prior, PoseFixData& fix);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const MapView& view) const;
+  // Stamps the total time and counts the answer.
+  PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
   struct StampedPosition {
     int64_t stamp_ns;
@@ -67,8 +79,11 @@ class LineSetHandler {
   MapTileCache& map_;
   MessageLimits limits_;
   PipelineOptions options_;
+  mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
+  // Last, so that it is destroyed first: its searches use the members above.
+  std::unique_ptr<SearchWorker> search_worker_;
 };
 
 lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);

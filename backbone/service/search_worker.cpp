@@ -1,0 +1,47 @@
+#include "backbone/service/search_worker.h"
+
+#include <utility>
+
+namespace lineloc {
+
+SearchWorker::SearchWorker(Publish publish)
+    : publish_(std::move(publish)), worker_([this] { work(); }) {}
+
+SearchWorker::~SearchWorker() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  job_ready_.notify_all();
+  worker_.join();
+}
+
+bool SearchWorker::submit(const std::string& robot_id, Search search) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!busy_robots_.insert(robot_id).second) {
+      return false;
+    }
+    jobs_.push_back({robot_id, std::move(search)});
+  }
+  job_ready_.notify_one();
+  return true;
+}
+
+void SearchWorker::work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    job_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+    if (jobs_.empty()) {
+      return;
+    }
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    lock.unlock();
+    publish_(job.search());
+    lock.lock();
+    busy_robots_.erase(job.robot_id);
+  }
+}
+
+}  // namespace lineloc

@@ -16,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "robot/vision/block_matching/candidate_rank.h"
+
 namespace lineloc {
 
 enum class SimdPath { kScalar, kSse2, kAvx2, kAvx512Bw };
@@ -24,6 +26,43 @@ std::string_view simdPathName(SimdPath path);
 
 // Vector width in bytes of the path's `psadbw` (1 for the scalar reference).
 int simdPathWidthBytes(SimdPath path);
+
+// The full search over the grid of blocks (x, y) = (i w, j h) of a grey frame:
+// for every block and every displacement (dx, dy) with |dx|, |dy| <= radius
+// that keeps the displaced block inside the frame, the SAD of the reference
+// block with the current frame's block at (x + dx, y + dy). The winner of each
+// block has the least SAD; ties go to the least dx^2 + dy^2, then the least
+// dy, then the least dx.
+//
+// Both frames' rows must be readable from byte -gridSearchMarginBytes(radius)
+// to width + gridSearchMarginBytes(radius): the vector paths load whole
+// registers around the window and discard what falls outside the frame.
+struct GridSearch {
+  const uint8_t* reference;
+  const uint8_t* current;
+  ptrdiff_t stride;  // of both frames, bytes
+  int width_px;
+  int height_px;
+  int block_width_px;
+  int block_height_px;
+  int radius_px;
+};
+
+// Winner of one block; gridFullSearch writes them row by row, block (i, j) at
+// j * (width / w) + i.
+struct BlockBest {
+  uint32_t sad;
+  int dx;
+  int dy;
+};
+
+// Block sizes the grid search takes: 8 or 16 pixels wide and high, so that a
+// SAD fits 16 bits (the vector paths rank candidates in 32 bits). The radius
+// is at most kMaxSearchRadiusPx.
+bool gridSearchSupports(int block_width_px, int block_height_px);
+inline constexpr int gridSearchMarginBytes(int radius_px) {
+  return radius_px + 64;
+}
 
 // The kernels of one path. All take the block `a` and the block `b` as a
 // top-left pointer and a row stride in bytes.
@@ -34,11 +73,8 @@ struct SadKernels {
   // Any width >= 1 (bytes) and height >= 1.
   uint32_t (*sad)(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride,
                   int width, int height);
-  // A vertical run of candidates for one 16x16 block, the inner loop of a
-  // full search: sads[k] = SAD16x16(block, candidates + k * stride) for
-  // k < count. The candidates share `stride`.
-  void (*sadColumn16x16)(const uint8_t* block, ptrdiff_t block_stride, const uint8_t* candidates,
-                         ptrdiff_t stride, int count, uint32_t* sads);
+  // The full search of every block of a grid, one call per frame.
+  void (*gridFullSearch)(const GridSearch& search, BlockBest* best);
   // out[i] = |a[i] - b[i]| for i < width.
   void (*absDiffRow)(const uint8_t* a, const uint8_t* b, int width, uint8_t* out);
   // Throughput probe for benchmarks: runs kPsadbwProbeChains independent

@@ -8,7 +8,7 @@ namespace {
 
 struct Avx2 {
   static constexpr int kBytes = 32;
-  static constexpr int kGridBatch = 8;
+  static constexpr int kGridBatch = 4;
   using Reg = __m256i;
 
   static Reg zero() { return _mm256_setzero_si256(); }
@@ -23,9 +23,6 @@ struct Avx2 {
   }
   static Reg add64(Reg x, Reg y) { return _mm256_add_epi64(x, y); }
   static Reg sad(Reg x, Reg y) { return _mm256_sad_epu8(x, y); }
-  static Reg absDiff(Reg x, Reg y) {
-    return _mm256_or_si256(_mm256_subs_epu8(x, y), _mm256_subs_epu8(y, x));
-  }
   static Reg unpackLow64(Reg x, Reg y) { return _mm256_unpacklo_epi64(x, y); }
   static Reg unpackHigh64(Reg x, Reg y) { return _mm256_unpackhi_epi64(x, y); }
   static Reg bitOr(Reg x, Reg y) { return _mm256_or_si256(x, y); }

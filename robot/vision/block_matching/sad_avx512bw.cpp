@@ -9,7 +9,7 @@ namespace {
 
 struct Avx512Bw {
   static constexpr int kBytes = 64;
-  static constexpr int kGridBatch = 8;
+  static constexpr int kGridBatch = 12;
   using Reg = __m512i;
 
   static Reg zero() { return _mm512_setzero_si512(); }
@@ -21,9 +21,6 @@ struct Avx512Bw {
   }
   static Reg add64(Reg x, Reg y) { return _mm512_add_epi64(x, y); }
   static Reg sad(Reg x, Reg y) { return _mm512_sad_epu8(x, y); }
-  static Reg absDiff(Reg x, Reg y) {
-    return _mm512_sub_epi8(_mm512_max_epu8(x, y), _mm512_min_epu8(x, y));
-  }
   static Reg unpackLow64(Reg x, Reg y) { return _mm512_unpacklo_epi64(x, y); }
   static Reg unpackHigh64(Reg x, Reg y) { return _mm512_unpackhi_epi64(x, y); }
   static Reg bitOr(Reg x, Reg y) { return _mm512_or_si512(x, y); }

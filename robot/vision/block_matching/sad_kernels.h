@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "robot/vision/block_matching/candidate_rank.h"
+#include "robot/vision/block_matching/disparity_kernels.h"
 
 namespace lineloc {
 
@@ -75,8 +76,9 @@ struct SadKernels {
                   int width, int height);
   // The full search of every block of a grid, one call per frame.
   void (*gridFullSearch)(const GridSearch& search, BlockBest* best);
-  // out[i] = |a[i] - b[i]| for i < width.
-  void (*absDiffRow)(const uint8_t* a, const uint8_t* b, int width, uint8_t* out);
+  // The stereo matcher's cost-volume passes, 16- and 32-bit costs.
+  DisparityKernels<uint16_t> disparity16;
+  DisparityKernels<uint32_t> disparity32;
   // Throughput probe for benchmarks: runs kPsadbwProbeChains independent
   // chains of `loops` psadbw each on registers (no memory operands), so that
   // instructions / cycles is the instruction's peak throughput. Null for the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "robot/vision/block_matching/disparity_kernel_loops.h"
 #include "robot/vision/block_matching/sad_paths.h"
 
 namespace lineloc::sad_paths {
@@ -65,12 +66,6 @@ void gridFullSearch(const GridSearch& search, BlockBest* best) {
   }
 }
 
-void absDiffRow(const uint8_t* a, const uint8_t* b, int width, uint8_t* out) {
-  for (int i = 0; i < width; ++i) {
-    out[i] = static_cast<uint8_t>(std::abs(a[i] - b[i]));
-  }
-}
-
 }  // namespace
 
 const SadKernels& scalarKernels() {
@@ -79,7 +74,8 @@ const SadKernels& scalarKernels() {
                                   fixedSizeSad<8, 8>,
                                   sad,
                                   gridFullSearch,
-                                  absDiffRow,
+                                  DisparityLoops<uint16_t>::table(),
+                                  DisparityLoops<uint32_t>::table(),
                                   nullptr};
   return kernels;
 }

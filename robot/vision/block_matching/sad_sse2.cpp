@@ -8,7 +8,7 @@ namespace {
 
 struct Sse2 {
   static constexpr int kBytes = 16;
-  static constexpr int kGridBatch = 8;
+  static constexpr int kGridBatch = 4;
   using Reg = __m128i;
 
   static Reg zero() { return _mm_setzero_si128(); }
@@ -18,9 +18,6 @@ struct Sse2 {
   static Reg load8(const uint8_t* p) { return _mm_loadl_epi64(reinterpret_cast<const Reg*>(p)); }
   static Reg add64(Reg x, Reg y) { return _mm_add_epi64(x, y); }
   static Reg sad(Reg x, Reg y) { return _mm_sad_epu8(x, y); }
-  static Reg absDiff(Reg x, Reg y) {
-    return _mm_or_si128(_mm_subs_epu8(x, y), _mm_subs_epu8(y, x));
-  }
   static Reg unpackLow64(Reg x, Reg y) { return _mm_unpacklo_epi64(x, y); }
   static Reg unpackHigh64(Reg x, Reg y) { return _mm_unpackhi_epi64(x, y); }
   static Reg bitOr(Reg x, Reg y) { return _mm_or_si128(x, y); }

@@ -9,7 +9,7 @@
 //
 // Traits V provide: kBytes (register width), Reg, zero(), load(p), store(p, x),
 // add64(x, y), sad(x, y) (`psadbw`: per 8-byte group, the u64 sum of
-// |x - y|), absDiff(x, y) (per byte |x - y|), loadRows16(p, stride)
+// |x - y|), loadRows16(p, stride)
 // (kBytes / 16 rows of 16 bytes), loadRows8(p, stride) (min(8, kBytes / 8)
 // rows of 8 bytes), broadcast16(p) (16 bytes into every 128-bit lane), sum(x)
 // (of all u64 groups) and sadPartial(a, b, n) (SAD of n < kBytes bytes); for the grid search
@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "robot/vision/block_matching/disparity_kernel_loops.h"
 #include "robot/vision/block_matching/vector_grid_search.h"
 
 namespace lineloc::sad_paths {
@@ -68,16 +69,6 @@ struct VectorKernels {
     return V::sum(acc) + partial;
   }
 
-  static void absDiffRow(const uint8_t* a, const uint8_t* b, int width, uint8_t* out) {
-    int i = 0;
-    for (; i + V::kBytes <= width; i += V::kBytes) {
-      V::store(out + i, V::absDiff(V::load(a + i), V::load(b + i)));
-    }
-    for (; i < width; ++i) {
-      out[i] = static_cast<uint8_t>(a[i] > b[i] ? a[i] - b[i] : b[i] - a[i]);
-    }
-  }
-
   static uint64_t psadbwProbe(int64_t loops) {
     alignas(64) uint8_t seed_bytes[V::kBytes] = {3, 1, 4, 1, 5, 9, 2, 6};
     const auto seed = V::load(seed_bytes);
@@ -97,8 +88,14 @@ struct VectorKernels {
   }
 
   static const SadKernels& table(SimdPath path) {
-    static const SadKernels kernels{path,       sad16x16,   sad8x8, sad, VectorGridSearch<V>::run,
-                                    absDiffRow, psadbwProbe};
+    static const SadKernels kernels{path,
+                                    sad16x16,
+                                    sad8x8,
+                                    sad,
+                                    VectorGridSearch<V>::run,
+                                    DisparityLoops<uint16_t>::table(),
+                                    DisparityLoops<uint32_t>::table(),
+                                    psadbwProbe};
     return kernels;
   }
 };

@@ -157,15 +157,84 @@ TEST_P(SadKernelsTest, GridFullSearchBreaksTiesTowardsTheShortestVector) {
   }
 }
 
-TEST_P(SadKernelsTest, AbsDiffRowMatchesScalar) {
-  const Buffer a(300, 1, 300, random_);
-  const Buffer b(300, 1, 300, random_);
-  for (int width = 0; width <= 300; ++width) {
-    std::vector<uint8_t> expected(width), actual(width);
-    scalar_.absDiffRow(a.lastBlock(width, 1), b.at(0, 0), width, expected.data());
-    vector_.absDiffRow(a.lastBlock(width, 1), b.at(0, 0), width, actual.data());
-    ASSERT_EQ(actual, expected) << "width " << width;
+template <typename Cost>
+std::vector<Cost> randomCosts(int count, Cost largest, std::mt19937& random) {
+  std::vector<Cost> costs(count);
+  for (Cost& cost : costs) {
+    cost = static_cast<Cost>(random() % (static_cast<uint64_t>(largest) + 1));
   }
+  return costs;
+}
+
+// Every disparity kernel on every count up to a few registers (the tails),
+// with equal costs frequent enough that ties are exercised.
+template <typename Cost>
+void expectDisparityKernelsMatch(const DisparityKernels<Cost>& vector,
+                                 const DisparityKernels<Cost>& scalar, std::mt19937& random) {
+  const Buffer rows(300, 4, 300, random);
+  for (int count = 1; count <= 150; ++count) {
+    const auto row = [&](int r) { return rows.at(300 - count, r); };  // ends at the buffer's end
+    std::vector<Cost> expected = randomCosts<Cost>(count, 20000, random), actual = expected;
+    scalar.addRow(row(0), row(1), count, expected.data());
+    vector.addRow(row(0), row(1), count, actual.data());
+    ASSERT_EQ(actual, expected) << "addRow " << count;
+    scalar.slideRow(row(2), row(3), row(0), row(1), count, expected.data());
+    vector.slideRow(row(2), row(3), row(0), row(1), count, actual.data());
+    ASSERT_EQ(actual, expected) << "slideRow " << count;
+    std::vector<Cost> scratch(2 * count);
+    for (int window : {1, 2, 3, 7, 16, 17, 31}) {
+      if (window <= count) {
+        std::vector<Cost> sums_expected(count - window + 1), sums_actual(count - window + 1);
+        scalar.windowSums(expected.data(), count, window, sums_expected.data(), scratch.data());
+        vector.windowSums(expected.data(), count, window, sums_actual.data(), scratch.data());
+        ASSERT_EQ(sums_actual, sums_expected) << "windowSums " << count << " " << window;
+      }
+    }
+    const std::vector<Cost> limit = randomCosts<Cost>(count, 12, random);
+    struct Winners {
+      std::vector<Cost> best, index, minus, plus, right_best, right_index;
+      std::vector<uint8_t> ambiguous;
+    };
+    const auto winners = [&](const DisparityKernels<Cost>& kernels, uint64_t seed) {
+      std::mt19937 costs_random(static_cast<uint32_t>(seed));
+      Winners w{std::vector<Cost>(count, kNoCost<Cost>),
+                std::vector<Cost>(count, 0),
+                std::vector<Cost>(count),
+                std::vector<Cost>(count),
+                std::vector<Cost>(count, kNoCost<Cost>),
+                std::vector<Cost>(count, 0),
+                std::vector<uint8_t>(count, 0)};
+      std::vector<Cost> previous(count, kNoCost<Cost>);
+      for (Cost k = 0; k < 9; ++k) {
+        const std::vector<Cost> costs = randomCosts<Cost>(count, 10, costs_random);
+        kernels.considerDisparity(costs.data(), previous.data(), k, count, w.best.data(),
+                                  w.index.data(), w.minus.data(), w.plus.data());
+        kernels.considerRight(costs.data(), k, count, w.right_best.data(), w.right_index.data());
+        previous = costs;
+      }
+      std::mt19937 again(static_cast<uint32_t>(seed));
+      for (Cost k = 0; k < 9; ++k) {
+        const std::vector<Cost> costs = randomCosts<Cost>(count, 10, again);
+        kernels.markAmbiguous(costs.data(), limit.data(), w.index.data(), k, count,
+                              w.ambiguous.data());
+      }
+      return w;
+    };
+    const uint64_t seed = random();
+    const Winners w_expected = winners(scalar, seed), w_actual = winners(vector, seed);
+    ASSERT_EQ(w_actual.best, w_expected.best) << count;
+    ASSERT_EQ(w_actual.index, w_expected.index) << count;
+    ASSERT_EQ(w_actual.minus, w_expected.minus) << count;
+    ASSERT_EQ(w_actual.plus, w_expected.plus) << count;
+    ASSERT_EQ(w_actual.ambiguous, w_expected.ambiguous) << count;
+    ASSERT_EQ(w_actual.right_best, w_expected.right_best) << count;
+    ASSERT_EQ(w_actual.right_index, w_expected.right_index) << count;
+  }
+}
+
+TEST_P(SadKernelsTest, DisparityKernelsMatchScalar) {
+  expectDisparityKernelsMatch(vector_.disparity16, scalar_.disparity16, random_);
+  expectDisparityKernelsMatch(vector_.disparity32, scalar_.disparity32, random_);
 }
 
 std::string pathName(const testing::TestParamInfo<SimdPath>& info) {

@@ -107,7 +107,8 @@ TEST(SadStereoMatcher, EveryPathGivesTheScalarResult) {
   const cv::Mat left = randomTexture(97, 61, 1);
   const cv::Mat right = randomTexture(97, 61, 2);
   for (const StereoOptions& options :
-       {StereoOptions{5, 0, 20, 0, 0, -1}, StereoOptions{9, 3, 33, 10, 31, 1}}) {
+       {StereoOptions{5, 0, 20, 0, 0, -1}, StereoOptions{9, 3, 33, 10, 31, 1},
+        StereoOptions{17, 2, 24, 5, 0, 0}}) {  // the last one's costs need 32 bits
     const DisparityMap expected = SadStereoMatcher(options, SimdPath::kScalar).compute(left, right);
     for (SimdPath path : supportedSimdPaths()) {
       EXPECT_TRUE(sameMaps(SadStereoMatcher(options, path).compute(left, right), expected))

@@ -287,7 +287,9 @@ BlockMatch BlockMatcher::matchBlock(const cv::Mat& reference, const cv::Mat& cur
 }
 
 bool BlockMatcher::usesGridSearch(const cv::Mat& frame) const {
-  return options_.strategy == SearchStrategy::kFull && frame.channels() == 1 &&
+  const bool exhaustive = options_.strategy == SearchStrategy::kFull ||
+                          options_.strategy == SearchStrategy::kFullEarlyTermination;
+  return exhaustive && frame.channels() == 1 &&
          gridSearchSupports(options_.block_width_px, options_.block_height_px);
 }
 

@@ -157,6 +157,11 @@ double psadbwRate(SimdPath path) {
   return best;
 }
 
+// Percent of a bound; 0 where there is none (no vector path).
+double fractionOf(double bytes_per_cycle, double bound_bytes_per_cycle) {
+  return bound_bytes_per_cycle > 0 ? 100.0 * bytes_per_cycle / bound_bytes_per_cycle : 0.0;
+}
+
 double cpuPerWall(const RunStatistics& stats) {
   return stats.median_cpu_ns / stats.median_ns;
 }
@@ -199,9 +204,8 @@ void printSummary() {
         "{:>8.1f}\n",
         name, stats.kept, stats.runs, stats.median_ns * 1e-6, stats.median_cycles * 1e-6,
         cpuPerWall(stats), differences / stats.median_ns, bytes_per_cycle,
-        100.0 * bytes_per_cycle / machine_bytes_per_cycle,
-        path_bound > 0 ? 100.0 * bytes_per_cycle / path_bound : 0.0,
-        scalar.median_ns / stats.median_ns);
+        fractionOf(bytes_per_cycle, machine_bytes_per_cycle),
+        fractionOf(bytes_per_cycle, path_bound), scalar.median_ns / stats.median_ns);
   }
   fmt::print(
       "(of bound: of the machine's widest psadbw bound; of path: of that path's own; cycles are "

@@ -9,6 +9,15 @@
 //
 // Blocks are addressed by their top-left pixel and the row stride in bytes, so
 // a colour block of w pixels is a grey block of 3w bytes.
+//
+// The vector paths are hand-written intrinsics behind a small traits layer
+// (sad_vector_kernels.h), one translation unit per instruction set, rather
+// than Highway: the throughput target is that of x86 `psadbw` itself, the
+// grid search's speed depends on which rows stay in registers and in what
+// order its partial sums are added (vector_grid_search.h), and x86 is the
+// only vector target (elsewhere the scalar reference runs). The stereo
+// kernels are plain loops the compiler vectorises in each of those units
+// (disparity_kernel_loops.h).
 #pragma once
 
 #include <cstddef>

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include "robot/vision/block_matching/disparity_kernels.h"
 
@@ -110,8 +111,38 @@ struct DisparityLoops {
     }
   }
 
+  // floor(b f / 100) in double is exact: b f < 2^32 * 1100 < 2^53.
+  static void uniquenessLimits(const Cost* __restrict best, int factor, int count,
+                               Cost* __restrict limit) {
+    const double largest = static_cast<double>(kNoCost<Cost> - 1);
+    for (int x = 0; x < count; ++x) {
+      const double within = std::floor(static_cast<double>(best[x]) * factor / 100.0);
+      limit[x] = static_cast<Cost>(std::min(within, largest));
+    }
+  }
+
+  static void subpixelWinners(const Cost* __restrict best, const Cost* __restrict index,
+                              const Cost* __restrict minus, const Cost* __restrict plus,
+                              const uint8_t* __restrict ambiguous, int first_disparity,
+                              int last_index, int count, float* __restrict disparity,
+                              uint8_t* __restrict valid) {
+    const Cost last = static_cast<Cost>(last_index);
+    for (int x = 0; x < count; ++x) {
+      const double rise = static_cast<double>(std::max(minus[x], plus[x])) - best[x];
+      const bool chosen = best[x] != kNoCost<Cost> && index[x] != 0 && index[x] != last &&
+                          plus[x] != kNoCost<Cost> && !ambiguous[x] && rise > 0.0;
+      const double slope =
+          (static_cast<double>(minus[x]) - plus[x]) / (2.0 * (chosen ? rise : 1.0));
+      const float offset = static_cast<float>(std::clamp(slope, -0.5, 0.5));
+      disparity[x] =
+          chosen ? static_cast<float>(first_disparity + static_cast<int>(index[x])) + offset : 0.0f;
+      valid[x] = chosen ? 255 : 0;
+    }
+  }
+
   static DisparityKernels<Cost> table() {
-    return {addRow, slideRow, windowSums, considerDisparity, markAmbiguous, considerRight};
+    return {addRow,        slideRow,      windowSums,       considerDisparity,
+            markAmbiguous, considerRight, uniquenessLimits, subpixelWinners};
   }
 };
 

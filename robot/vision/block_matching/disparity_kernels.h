@@ -49,6 +49,21 @@ struct DisparityKernels {
   // Running minimum for the right image: where costs[x] < best[x],
   // best = costs and index = k, x < count.
   void (*considerRight)(const Cost* costs, Cost k, int count, Cost* best, Cost* index);
+  // limit[x] = min(floor(best[x] factor / 100), kNoCost - 1): the largest
+  // cost within (factor - 100) percent of the best; factor <= 1100.
+  void (*uniquenessLimits)(const Cost* best, int factor, int count, Cost* limit);
+  // Winners into disparities: valid[x] = 255 and disparity[x] =
+  // first_disparity + index + the equiangular offset (Shimizu & Okutomi 2001,
+  // exact for the SAD of a locally linear signal)
+  //
+  //   offset = clamp((minus - plus) / (2 (max(minus, plus) - best)), -1/2, 1/2)
+  //
+  // where the winner is neither the first (index 0) nor the last disparity,
+  // not ambiguous, and the cost rises on both sides; valid = 0 and
+  // disparity = 0 elsewhere.
+  void (*subpixelWinners)(const Cost* best, const Cost* index, const Cost* minus, const Cost* plus,
+                          const uint8_t* ambiguous, int first_disparity, int last_index, int count,
+                          float* disparity, uint8_t* valid);
 };
 
 }  // namespace lineloc

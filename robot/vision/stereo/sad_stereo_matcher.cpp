@@ -5,11 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
-#include <optional>
 #include <stdexcept>
 #include <vector>
-
-#include "robot/vision/block_matching/parabola_fit.h"
 
 namespace lineloc {
 namespace {
@@ -110,27 +107,25 @@ class DisparitySearch {
     if (options_.uniqueness_percent > 0) {
       markAmbiguous();
     }
-    const bool check_left_right = options_.max_left_right_difference_px >= 0;
-    if (check_left_right) {
+    kernels_.subpixelWinners(best_.data(), index_.data(), minus_.data(), plus_.data(),
+                             ambiguous_.data(), options_.min_disparity_px, count_ - 1, width_,
+                             disparity, valid);
+    if (options_.max_left_right_difference_px >= 0) {
       rightWinners();
-    }
-    for (int x = 0; x < width_; ++x) {
-      std::optional<float> choice = winner(x);
-      if (choice && check_left_right && !consistentWithRight(x, *choice)) {
-        choice.reset();
+      for (int x = 0; x < width_; ++x) {
+        if (valid[x] && !consistentWithRight(x, disparity[x])) {
+          disparity[x] = 0.0f;
+          valid[x] = 0;
+        }
       }
-      disparity[x] = choice.value_or(0.0f);
-      valid[x] = choice ? 255 : 0;
     }
   }
 
   // A cost within uniqueness_percent of the best, further than one from it:
   // cost * 100 <= best * (100 + u), i.e. cost <= floor(best (100 + u) / 100).
   void markAmbiguous() {
-    const uint64_t factor = 100 + static_cast<uint64_t>(options_.uniqueness_percent);
-    for (int x = 0; x < width_; ++x) {
-      limit_[x] = static_cast<Cost>(std::min<uint64_t>(best_[x] * factor / 100, kNoCost<Cost> - 1));
-    }
+    kernels_.uniquenessLimits(best_.data(), 100 + options_.uniqueness_percent, width_,
+                              limit_.data());
     for (int k = 0; k < count_; ++k) {
       kernels_.markAmbiguous(costs(k), limit_.data(), index_.data(), static_cast<Cost>(k), width_,
                              ambiguous_.data());
@@ -144,21 +139,6 @@ class DisparitySearch {
       kernels_.considerRight(costs(k) + d, static_cast<Cost>(k), count, right_best_.data(),
                              right_index_.data());
     });
-  }
-
-  // Sub-pixel disparity of x's winner, when it is unique and has costs on
-  // both sides that rise.
-  std::optional<float> winner(int x) const {
-    const int k = index_[x];
-    if (best_[x] == kNoCost<Cost> || k == 0 || k == count_ - 1 || plus_[x] == kNoCost<Cost> ||
-        ambiguous_[x]) {
-      return std::nullopt;
-    }
-    const std::optional<float> offset = equiangularOffset(minus_[x], best_[x], plus_[x]);
-    if (!offset) {
-      return std::nullopt;
-    }
-    return static_cast<float>(options_.min_disparity_px + k) + *offset;
   }
 
   bool consistentWithRight(int x, float disparity_px) const {
@@ -207,8 +187,9 @@ SadStereoMatcher::SadStereoMatcher(const StereoOptions& options, SimdPath path)
         fmt::format("stereo: disparity range [{}, +{}) needs min >= 0 and at least one disparity",
                     options.min_disparity_px, options.num_disparities));
   }
-  if (options.uniqueness_percent < 0) {
-    throw std::invalid_argument("stereo: uniqueness_percent must be >= 0");
+  if (options.uniqueness_percent < 0 || options.uniqueness_percent > kMaxUniquenessPercent) {
+    throw std::invalid_argument(fmt::format("stereo: uniqueness_percent {} outside [0, {}]",
+                                            options.uniqueness_percent, kMaxUniquenessPercent));
   }
   if (options.prefilter_cap < 0 || options.prefilter_cap > 127) {
     throw std::invalid_argument(

@@ -229,6 +229,21 @@ void expectDisparityKernelsMatch(const DisparityKernels<Cost>& vector,
     ASSERT_EQ(w_actual.ambiguous, w_expected.ambiguous) << count;
     ASSERT_EQ(w_actual.right_best, w_expected.right_best) << count;
     ASSERT_EQ(w_actual.right_index, w_expected.right_index) << count;
+    const auto subpixel = [&](const DisparityKernels<Cost>& kernels) {
+      std::pair<std::vector<float>, std::vector<uint8_t>> result{std::vector<float>(count),
+                                                                 std::vector<uint8_t>(count)};
+      kernels.subpixelWinners(w_expected.best.data(), w_expected.index.data(),
+                              w_expected.minus.data(), w_expected.plus.data(),
+                              w_expected.ambiguous.data(), 3, 8, count, result.first.data(),
+                              result.second.data());
+      return result;
+    };
+    ASSERT_EQ(subpixel(vector), subpixel(scalar)) << count;
+    std::vector<Cost> limits_expected(count), limits_actual(count);
+    const std::vector<Cost> best = randomCosts<Cost>(count, kNoCost<Cost>, random);
+    scalar.uniquenessLimits(best.data(), 1100, count, limits_expected.data());
+    vector.uniquenessLimits(best.data(), 1100, count, limits_actual.data());
+    ASSERT_EQ(limits_actual, limits_expected) << count;
   }
 }
 

@@ -155,6 +155,10 @@ TEST(SadStereoMatcher, BadInputIsRejectedWithAClearError) {
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, -1, 16}), std::invalid_argument);
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 0}), std::invalid_argument);
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 16, 0, 200}), std::invalid_argument);
+  EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 16, kMaxUniquenessPercent + 1}),
+               std::invalid_argument);
+  EXPECT_THROW(SadStereoMatcher(StereoOptions{kMaxStereoBlockPx + 2, 0, 16}),
+               std::invalid_argument);
 }
 
 }  // namespace

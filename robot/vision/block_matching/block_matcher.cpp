@@ -12,13 +12,21 @@ namespace lineloc {
 namespace {
 
 constexpr int kEarlyTerminationRows = 4;
+constexpr int kRowAlignmentBytes = 64;
 
-// Total order of candidates: SAD, then squared length, then dy, then dx.
-uint64_t rankOf(uint32_t sad, int dx, int dy) {
-  const uint64_t length2 = static_cast<uint64_t>(dx * dx + dy * dy);
-  return (static_cast<uint64_t>(sad) << 32) | (length2 << 16) |
-         (static_cast<uint64_t>(dy + kMaxSearchRadiusPx) << 8) |
-         static_cast<uint64_t>(dx + kMaxSearchRadiusPx);
+int roundUp(int value, int multiple) {
+  return (value + multiple - 1) / multiple * multiple;
+}
+
+// `frame` (grey) with at least `margin_bytes` zeros on both sides of every
+// row, rows starting 64-byte aligned: the grid search's view of a frame.
+cv::Mat withMargins(const cv::Mat& frame, int margin_bytes) {
+  const int left = roundUp(margin_bytes, kRowAlignmentBytes);
+  const int right =
+      roundUp(left + frame.cols + margin_bytes, kRowAlignmentBytes) - left - frame.cols;
+  cv::Mat padded;
+  cv::copyMakeBorder(frame, padded, 0, 0, left, right, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return padded(cv::Rect(left, 0, frame.cols, frame.rows));
 }
 
 }  // namespace
@@ -42,6 +50,15 @@ class BlockMatcher::Search {
         dy_max_(std::min(options_.search_radius_px, current.rows - options_.block_height_px - y)) {
     best_.x = x;
     best_.y = y;
+  }
+
+  // Refines the winner of a grid search.
+  BlockMatch refine(const BlockBest& winner) {
+    best_.dx = winner.dx;
+    best_.dy = winner.dy;
+    best_.sad = winner.sad;
+    refine();
+    return best_;
   }
 
   BlockMatch run() {
@@ -95,7 +112,7 @@ class BlockMatcher::Search {
 
   // Returns true when (dx, dy) became the best.
   bool consider(uint32_t sad, int dx, int dy) {
-    const uint64_t rank = rankOf(sad, dx, dy);
+    const uint64_t rank = candidateRank(sad, dx, dy);
     if (rank >= best_rank_) {
       return false;
     }
@@ -109,21 +126,9 @@ class BlockMatcher::Search {
   bool tryCandidate(int dx, int dy) { return inWindow(dx, dy) && consider(sadAt(dx, dy), dx, dy); }
 
   void fullSearch() {
-    const bool column_kernel =
-        channels_ == 1 && options_.block_width_px == 16 && options_.block_height_px == 16;
-    const int count = dy_max_ - dy_min_ + 1;
-    std::array<uint32_t, 2 * kMaxSearchRadiusPx + 1> sads;
-    for (int dx = dx_min_; dx <= dx_max_; ++dx) {
-      if (column_kernel) {
-        kernels_.sadColumn16x16(block_, block_stride_, candidate(dx, dy_min_), stride_, count,
-                                sads.data());
-      } else {
-        for (int k = 0; k < count; ++k) {
-          sads[k] = sadAt(dx, dy_min_ + k);
-        }
-      }
-      for (int k = 0; k < count; ++k) {
-        consider(sads[k], dx, dy_min_ + k);
+    for (int dy = dy_min_; dy <= dy_max_; ++dy) {
+      for (int dx = dx_min_; dx <= dx_max_; ++dx) {
+        consider(sadAt(dx, dy), dx, dy);
       }
     }
   }
@@ -281,14 +286,38 @@ BlockMatch BlockMatcher::matchBlock(const cv::Mat& reference, const cv::Mat& cur
   return Search(*this, reference, current, x, y).run();
 }
 
+bool BlockMatcher::usesGridSearch(const cv::Mat& frame) const {
+  const bool exhaustive = options_.strategy == SearchStrategy::kFull ||
+                          options_.strategy == SearchStrategy::kFullEarlyTermination;
+  return exhaustive && frame.channels() == 1 &&
+         gridSearchSupports(options_.block_width_px, options_.block_height_px);
+}
+
 std::vector<BlockMatch> BlockMatcher::matchGrid(const cv::Mat& reference,
                                                 const cv::Mat& current) const {
   validateFrames(reference, current);
+  const int w = options_.block_width_px, h = options_.block_height_px;
   std::vector<BlockMatch> matches;
-  for (int y = 0; y + options_.block_height_px <= reference.rows; y += options_.block_height_px) {
-    for (int x = 0; x + options_.block_width_px <= reference.cols; x += options_.block_width_px) {
-      matches.push_back(Search(*this, reference, current, x, y).run());
+  if (!usesGridSearch(reference)) {
+    for (int y = 0; y + h <= reference.rows; y += h) {
+      for (int x = 0; x + w <= reference.cols; x += w) {
+        matches.push_back(Search(*this, reference, current, x, y).run());
+      }
     }
+    return matches;
+  }
+  const int margin = gridSearchMarginBytes(options_.search_radius_px);
+  const cv::Mat reference_margins = withMargins(reference, margin);
+  const cv::Mat current_margins = withMargins(current, margin);
+  const int columns = reference.cols / w;
+  std::vector<BlockBest> winners(static_cast<size_t>(columns) * (reference.rows / h));
+  kernels_->gridFullSearch({reference_margins.ptr<uint8_t>(), current_margins.ptr<uint8_t>(),
+                            static_cast<ptrdiff_t>(reference_margins.step), reference.cols,
+                            reference.rows, w, h, options_.search_radius_px},
+                           winners.data());
+  for (size_t i = 0; i < winners.size(); ++i) {
+    const int x = static_cast<int>(i % columns) * w, y = static_cast<int>(i / columns) * h;
+    matches.push_back(Search(*this, reference, current, x, y).refine(winners[i]));
   }
   return matches;
 }

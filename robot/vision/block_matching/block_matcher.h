@@ -11,7 +11,13 @@
 // until its centre wins, then the small diamond).
 //
 // Ties between equal SADs go to the shorter vector (dx^2 + dy^2), then to the
-// smaller dy, then dx, so every strategy and SIMD path agrees on the result.
+// smaller dy, then dx (candidate_rank.h), so every strategy and SIMD path
+// agrees on the result. Full search of grey 8 or 16 pixel blocks runs the
+// SIMD path's grid search (sad_kernels.h), one call per frame pair, with or
+// without early termination: the grid search computes a candidate's SAD for
+// several blocks and candidates per instruction stream, faster than the
+// per-candidate partial sums and bound tests could skip work, and the
+// result is the same.
 //
 // Sub-pixel refinement fits a parabola through the SADs at -1, 0, +1 along
 // each axis: offset = (c_- - c_+) / (2 (c_- - 2 c_0 + c_+)), in [-1/2, 1/2].
@@ -32,8 +38,6 @@ struct BlockMatchingOptions {
   int search_radius_px = 16;  // R, at most kMaxSearchRadiusPx
   SearchStrategy strategy = SearchStrategy::kFull;
 };
-
-inline constexpr int kMaxSearchRadiusPx = 127;
 
 enum class MatchStatus {
   kMatched,           // minimum inside the window, sub-pixel refined on both axes
@@ -75,6 +79,8 @@ class BlockMatcher {
   class Search;
 
   void validateFrames(const cv::Mat& reference, const cv::Mat& current) const;
+  // Full search of grey blocks the SadKernels grid search takes.
+  bool usesGridSearch(const cv::Mat& frame) const;
 
   BlockMatchingOptions options_;
   const SadKernels* kernels_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #if defined(__x86_64__) || defined(__i386__)
 #include <x86intrin.h>
 #endif
@@ -13,6 +14,12 @@ int64_t nowNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
+}
+
+int64_t processCpuNs() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<int64_t>(now.tv_sec) * 1000000000 + now.tv_nsec;
 }
 
 uint64_t nowCycles() {
@@ -51,11 +58,13 @@ bool hasCycleCounter() {
 #endif
 }
 
-RunTimer::RunTimer() : start_ns_(nowNs()), start_cycles_(nowCycles()) {}
+RunTimer::RunTimer()
+    : start_ns_(nowNs()), start_cycles_(nowCycles()), start_cpu_ns_(processCpuNs()) {}
 
 RunSample RunTimer::elapsed() const {
   const uint64_t cycles = nowCycles();
-  return {nowNs() - start_ns_, cycles - start_cycles_};
+  const int64_t cpu_ns = processCpuNs();
+  return {nowNs() - start_ns_, cycles - start_cycles_, cpu_ns - start_cpu_ns_};
 }
 
 RunStatistics summarizeRuns(const std::vector<RunSample>& samples) {
@@ -74,18 +83,22 @@ RunStatistics summarizeRuns(const std::vector<RunSample>& samples) {
   const double high = q3 + 1.5 * (q3 - q1);
   std::vector<int64_t> kept_ns;
   std::vector<uint64_t> kept_cycles;
+  std::vector<int64_t> kept_cpu_ns;
   for (const RunSample& sample : samples) {
     if (sample.duration_ns >= low && sample.duration_ns <= high) {
       kept_ns.push_back(sample.duration_ns);
       kept_cycles.push_back(sample.duration_cycles);
+      kept_cpu_ns.push_back(sample.cpu_ns);
     }
   }
   std::sort(kept_ns.begin(), kept_ns.end());
   std::sort(kept_cycles.begin(), kept_cycles.end());
+  std::sort(kept_cpu_ns.begin(), kept_cpu_ns.end());
   statistics.runs = static_cast<int>(samples.size());
   statistics.kept = static_cast<int>(kept_ns.size());
   statistics.median_ns = sortedMedian(kept_ns);
   statistics.median_cycles = sortedMedian(kept_cycles);
+  statistics.median_cpu_ns = sortedMedian(kept_cpu_ns);
   statistics.min_ns = static_cast<double>(all_ns.front());
   statistics.max_kept_ns = static_cast<double>(kept_ns.back());
   return statistics;

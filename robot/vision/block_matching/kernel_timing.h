@@ -14,6 +14,9 @@ namespace lineloc {
 struct RunSample {
   int64_t duration_ns = 0;
   uint64_t duration_cycles = 0;  // 0 where there is no cycle counter
+  // CPU time of the whole process (all threads) over the run: below
+  // duration_ns when the run was preempted, above it when it used threads.
+  int64_t cpu_ns = 0;
 };
 
 struct RunStatistics {
@@ -21,6 +24,7 @@ struct RunStatistics {
   int kept = 0;  // runs inside the fences
   double median_ns = 0.0;
   double median_cycles = 0.0;
+  double median_cpu_ns = 0.0;
   double min_ns = 0.0;
   double max_kept_ns = 0.0;
 };
@@ -37,6 +41,7 @@ class RunTimer {
  private:
   int64_t start_ns_;
   uint64_t start_cycles_;
+  int64_t start_cpu_ns_;
 };
 
 // Statistics of `samples`; all zero when it is empty.

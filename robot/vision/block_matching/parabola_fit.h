@@ -1,13 +1,11 @@
 // Sub-pixel position of a cost minimum from the costs c_-, c_0, c_+ at -1, 0,
-// +1 around the integer minimum, by two models of the cost near its minimum:
+// +1 around the integer minimum, by a parabola through the three:
 //
-//   parabola:    offset = (c_- - c_+) / (2 (c_- - 2 c_0 + c_+))
-//   equiangular: offset = (c_- - c_+) / (2 (max(c_-, c_+) - c_0))
+//   offset = (c_- - c_+) / (2 (c_- - 2 c_0 + c_+)), clamped to [-1/2, 1/2].
 //
-// both clamped to [-1/2, 1/2]. The equiangular fit (a V of equal slopes,
-// Shimizu & Okutomi 2001, also cv::StereoBM's) is exact for the SAD of a
-// locally linear signal, |d - t| * sum|gradient|, where the parabola is off by
-// up to 0.086 px.
+// (The stereo matcher fits the equiangular V instead, exact for the SAD of a
+// locally linear signal where the parabola is off by up to 0.086 px; see
+// disparity_kernels.h.)
 #pragma once
 
 #include <algorithm>
@@ -24,15 +22,6 @@ inline std::optional<float> parabolaOffset(uint32_t minus, uint32_t centre, uint
   }
   return static_cast<float>(
       std::clamp((static_cast<double>(minus) - plus) / (2.0 * curvature), -0.5, 0.5));
-}
-
-inline std::optional<float> equiangularOffset(uint32_t minus, uint32_t centre, uint32_t plus) {
-  const double rise = static_cast<double>(std::max(minus, plus)) - centre;
-  if (rise <= 0.0) {
-    return std::nullopt;
-  }
-  return static_cast<float>(
-      std::clamp((static_cast<double>(minus) - plus) / (2.0 * rise), -0.5, 0.5));
 }
 
 }  // namespace lineloc

@@ -8,9 +8,11 @@ namespace {
 
 struct Avx2 {
   static constexpr int kBytes = 32;
+  static constexpr int kGridBatch = 4;
   using Reg = __m256i;
 
   static Reg zero() { return _mm256_setzero_si256(); }
+  static Reg ones() { return _mm256_set1_epi32(-1); }
   static Reg load(const uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const Reg*>(p)); }
   static void store(uint8_t* p, Reg x) { _mm256_storeu_si256(reinterpret_cast<Reg*>(p), x); }
   static __m128i load16(const uint8_t* p) {
@@ -21,9 +23,12 @@ struct Avx2 {
   }
   static Reg add64(Reg x, Reg y) { return _mm256_add_epi64(x, y); }
   static Reg sad(Reg x, Reg y) { return _mm256_sad_epu8(x, y); }
-  static Reg absDiff(Reg x, Reg y) {
-    return _mm256_or_si256(_mm256_subs_epu8(x, y), _mm256_subs_epu8(y, x));
-  }
+  static Reg unpackLow64(Reg x, Reg y) { return _mm256_unpacklo_epi64(x, y); }
+  static Reg unpackHigh64(Reg x, Reg y) { return _mm256_unpackhi_epi64(x, y); }
+  static Reg bitOr(Reg x, Reg y) { return _mm256_or_si256(x, y); }
+  static Reg shiftLeft64By32(Reg x) { return _mm256_slli_epi64(x, 32); }
+  static Reg shiftLeft32By16(Reg x) { return _mm256_slli_epi32(x, 16); }
+  static Reg minU32(Reg x, Reg y) { return _mm256_min_epu32(x, y); }
   static Reg loadRows16(const uint8_t* p, ptrdiff_t stride) {
     return _mm256_inserti128_si256(_mm256_castsi128_si256(load16(p)), load16(p + stride), 1);
   }
@@ -38,10 +43,6 @@ struct Avx2 {
   }
   static uint32_t sum(Reg x) {
     return sum128(_mm_add_epi64(_mm256_castsi256_si128(x), _mm256_extracti128_si256(x, 1)));
-  }
-  static void laneSums(Reg x, uint32_t* out) {
-    out[0] = sum128(_mm256_castsi256_si128(x));
-    out[1] = sum128(_mm256_extracti128_si256(x, 1));
   }
   static uint32_t sadPartial(const uint8_t* a, const uint8_t* b, int n) {
     uint32_t total = 0;

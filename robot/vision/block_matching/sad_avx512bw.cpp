@@ -9,9 +9,11 @@ namespace {
 
 struct Avx512Bw {
   static constexpr int kBytes = 64;
+  static constexpr int kGridBatch = 12;
   using Reg = __m512i;
 
   static Reg zero() { return _mm512_setzero_si512(); }
+  static Reg ones() { return _mm512_set1_epi32(-1); }
   static Reg load(const uint8_t* p) { return _mm512_loadu_si512(p); }
   static void store(uint8_t* p, Reg x) { _mm512_storeu_si512(p, x); }
   static __m128i load16(const uint8_t* p) {
@@ -19,9 +21,12 @@ struct Avx512Bw {
   }
   static Reg add64(Reg x, Reg y) { return _mm512_add_epi64(x, y); }
   static Reg sad(Reg x, Reg y) { return _mm512_sad_epu8(x, y); }
-  static Reg absDiff(Reg x, Reg y) {
-    return _mm512_sub_epi8(_mm512_max_epu8(x, y), _mm512_min_epu8(x, y));
-  }
+  static Reg unpackLow64(Reg x, Reg y) { return _mm512_unpacklo_epi64(x, y); }
+  static Reg unpackHigh64(Reg x, Reg y) { return _mm512_unpackhi_epi64(x, y); }
+  static Reg bitOr(Reg x, Reg y) { return _mm512_or_si512(x, y); }
+  static Reg shiftLeft64By32(Reg x) { return _mm512_slli_epi64(x, 32); }
+  static Reg shiftLeft32By16(Reg x) { return _mm512_slli_epi32(x, 16); }
+  static Reg minU32(Reg x, Reg y) { return _mm512_min_epu32(x, y); }
   static Reg loadRows16(const uint8_t* p, ptrdiff_t stride) {
     const __m256i low =
         _mm256_inserti128_si256(_mm256_castsi128_si256(load16(p)), load16(p + stride), 1);
@@ -36,11 +41,6 @@ struct Avx512Bw {
   }
   static Reg broadcast16(const uint8_t* p) { return _mm512_broadcast_i32x4(load16(p)); }
   static uint32_t sum(Reg x) { return static_cast<uint32_t>(_mm512_reduce_add_epi64(x)); }
-  static void laneSums(Reg x, uint32_t* out) {
-    const Reg pairs = _mm512_add_epi64(x, _mm512_bsrli_epi128(x, 8));
-    const __m256i sums = _mm512_cvtepi64_epi32(_mm512_maskz_compress_epi64(0x55, pairs));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(sums));
-  }
   static uint32_t sadPartial(const uint8_t* a, const uint8_t* b, int n) {
     const __mmask64 mask = (1ull << n) - 1;
     return sum(sad(_mm512_maskz_loadu_epi8(mask, a), _mm512_maskz_loadu_epi8(mask, b)));

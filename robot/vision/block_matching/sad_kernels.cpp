@@ -60,6 +60,11 @@ std::string_view simdPathName(SimdPath path) {
   return "unknown";
 }
 
+bool gridSearchSupports(int block_width_px, int block_height_px) {
+  const auto supported = [](int size) { return size == 8 || size == 16; };
+  return supported(block_width_px) && supported(block_height_px);
+}
+
 int simdPathWidthBytes(SimdPath path) {
   switch (path) {
     case SimdPath::kSse2:

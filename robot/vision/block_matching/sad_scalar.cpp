@@ -1,7 +1,9 @@
 // Scalar reference of the SAD kernels: the definition, one pixel at a time.
 // Compiled without auto-vectorisation so that it stays the scalar baseline.
+#include <algorithm>
 #include <cstdlib>
 
+#include "robot/vision/block_matching/disparity_kernel_loops.h"
 #include "robot/vision/block_matching/sad_paths.h"
 
 namespace lineloc::sad_paths {
@@ -18,32 +20,63 @@ uint32_t sad(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b
   return sum;
 }
 
-uint32_t sad16x16(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride) {
-  return sad(a, a_stride, b, b_stride, 16, 16);
+// One function per block size, with constant loop bounds (the inner loop
+// unrolled); kept out of line so that it stays so inside the search loops.
+template <int kWidth, int kHeight>
+[[gnu::noinline]] uint32_t fixedSizeSad(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b,
+                                        ptrdiff_t b_stride) {
+  return sad(a, a_stride, b, b_stride, kWidth, kHeight);
 }
 
-uint32_t sad8x8(const uint8_t* a, ptrdiff_t a_stride, const uint8_t* b, ptrdiff_t b_stride) {
-  return sad(a, a_stride, b, b_stride, 8, 8);
-}
-
-void sadColumn16x16(const uint8_t* block, ptrdiff_t block_stride, const uint8_t* candidates,
-                    ptrdiff_t stride, int count, uint32_t* sads) {
-  for (int k = 0; k < count; ++k) {
-    sads[k] = sad16x16(block, block_stride, candidates + k * stride, stride);
+template <int kWidth, int kHeight>
+void gridFullSearchOf(const GridSearch& search, BlockBest* best) {
+  const int radius = search.radius_px;
+  for (int y = 0; y + kHeight <= search.height_px; y += kHeight) {
+    for (int x = 0; x + kWidth <= search.width_px; x += kWidth, ++best) {
+      const uint8_t* block = search.reference + y * search.stride + x;
+      uint64_t best_rank = UINT64_MAX;
+      for (int dy = std::max(-radius, -y); dy <= std::min(radius, search.height_px - kHeight - y);
+           ++dy) {
+        for (int dx = std::max(-radius, -x); dx <= std::min(radius, search.width_px - kWidth - x);
+             ++dx) {
+          const uint8_t* candidate = search.current + (y + dy) * search.stride + x + dx;
+          const uint32_t sum =
+              fixedSizeSad<kWidth, kHeight>(block, search.stride, candidate, search.stride);
+          const uint64_t rank = candidateRank(sum, dx, dy);
+          if (rank < best_rank) {
+            best_rank = rank;
+            *best = {sum, dx, dy};
+          }
+        }
+      }
+    }
   }
 }
 
-void absDiffRow(const uint8_t* a, const uint8_t* b, int width, uint8_t* out) {
-  for (int i = 0; i < width; ++i) {
-    out[i] = static_cast<uint8_t>(std::abs(a[i] - b[i]));
+void gridFullSearch(const GridSearch& search, BlockBest* best) {
+  const int w = search.block_width_px, h = search.block_height_px;
+  if (w == 16 && h == 16) {
+    gridFullSearchOf<16, 16>(search, best);
+  } else if (w == 16) {
+    gridFullSearchOf<16, 8>(search, best);
+  } else if (h == 16) {
+    gridFullSearchOf<8, 16>(search, best);
+  } else {
+    gridFullSearchOf<8, 8>(search, best);
   }
 }
 
 }  // namespace
 
 const SadKernels& scalarKernels() {
-  static const SadKernels kernels{SimdPath::kScalar, sad16x16,   sad8x8, sad,
-                                  sadColumn16x16,    absDiffRow, nullptr};
+  static const SadKernels kernels{SimdPath::kScalar,
+                                  fixedSizeSad<16, 16>,
+                                  fixedSizeSad<8, 8>,
+                                  sad,
+                                  gridFullSearch,
+                                  DisparityLoops<uint16_t>::table(),
+                                  DisparityLoops<uint32_t>::table(),
+                                  nullptr};
   return kernels;
 }
 

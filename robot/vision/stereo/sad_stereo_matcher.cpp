@@ -2,115 +2,167 @@
 
 #include <fmt/format.h>
 
-#include <limits>
+#include <algorithm>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <vector>
 
-#include "robot/vision/block_matching/parabola_fit.h"
-
 namespace lineloc {
 namespace {
 
-constexpr uint32_t kNoCost = std::numeric_limits<uint32_t>::max();
-
-// Block sums of |L(x) - R(x - d)| for one disparity: column sums over the
-// block's rows, kept up to date as the block slides down one row.
-class DisparityColumnSums {
+// The disparity search of one image pair with Cost-bit costs: the column
+// sums and block costs of every disparity, one image row at a time
+// (disparity_kernels.h), and the winner of each pixel.
+template <typename Cost>
+class DisparitySearch {
  public:
-  DisparityColumnSums(int disparity, int width) : disparity_(disparity), columns_(width, 0) {}
+  DisparitySearch(const StereoOptions& options, const DisparityKernels<Cost>& kernels,
+                  const cv::Mat& left, const cv::Mat& right)
+      : options_(options),
+        kernels_(kernels),
+        left_(left),
+        right_(right),
+        width_(left.cols),
+        half_(options.block_size_px / 2),
+        count_(options.num_disparities),
+        columns_(static_cast<size_t>(count_) * width_, 0),
+        costs_(static_cast<size_t>(count_) * width_, kNoCost<Cost>),
+        scratch_(2 * static_cast<size_t>(width_)),
+        no_costs_(width_, kNoCost<Cost>),
+        best_(width_),
+        index_(width_),
+        minus_(width_),
+        plus_(width_),
+        limit_(width_),
+        ambiguous_(width_),
+        right_best_(width_),
+        right_index_(width_) {}
 
-  // Adds (sign +1) or removes (sign -1) image row `row` of both images.
-  void update(const SadKernels& kernels, const uint8_t* left, const uint8_t* right, int width,
-              int sign, std::vector<uint8_t>& scratch) {
-    const int count = width - disparity_;
-    if (count <= 0) {
-      return;
+  DisparityMap run() {
+    DisparityMap map{cv::Mat(left_.size(), CV_32F, cv::Scalar(0)),
+                     cv::Mat(left_.size(), CV_8U, cv::Scalar(0))};
+    const int block = options_.block_size_px;
+    for (int row = 0; row < block; ++row) {
+      forEachDisparity([&](int, int d, int count) {
+        kernels_.addRow(left_.ptr<uint8_t>(row) + d, right_.ptr<uint8_t>(row), count, columns(d));
+      });
     }
-    kernels.absDiffRow(left + disparity_, right, count, scratch.data());
-    uint32_t* column = columns_.data() + disparity_;
-    for (int x = 0; x < count; ++x) {
-      column[x] += static_cast<uint32_t>(sign * scratch[x]);
+    for (int y = half_; y + half_ < left_.rows; ++y) {
+      if (y > half_) {
+        slideColumns(y + half_, y - half_ - 1);
+      }
+      blockCosts();
+      chooseRow(map.disparity_px.ptr<float>(y), map.valid.ptr<uint8_t>(y));
     }
-  }
-
-  // costs[x] = sum of the columns x - h .. x + h, for blocks that lie in both
-  // images (x - h >= disparity, x + h < width); kNoCost elsewhere.
-  void blockSums(int half, uint32_t* costs) const {
-    const int width = static_cast<int>(columns_.size());
-    std::fill(costs, costs + width, kNoCost);
-    const int first = disparity_ + half;
-    if (first + half >= width) {
-      return;
-    }
-    uint32_t sum = 0;
-    for (int x = disparity_; x < first + half; ++x) {
-      sum += columns_[x];
-    }
-    for (int x = first; x + half < width; ++x) {
-      sum += columns_[x + half];
-      costs[x] = sum;
-      sum -= columns_[x - half];
-    }
+    return map;
   }
 
  private:
-  int disparity_;
-  std::vector<uint32_t> columns_;
-};
-
-struct PixelChoice {
-  bool valid;
-  float disparity_px;
-};
-
-// Winner takes all over costs[k * stride] for the disparities k, with the
-// uniqueness test and the parabola refinement.
-PixelChoice choose(const uint32_t* costs, ptrdiff_t stride, int count, int min_disparity,
-                   int uniqueness_percent) {
-  int best = -1;
-  uint32_t best_cost = kNoCost;
-  for (int k = 0; k < count; ++k) {
-    if (costs[k * stride] < best_cost) {
-      best_cost = costs[k * stride];
-      best = k;
-    }
-  }
-  if (best < 0 || best == 0 || best == count - 1 || costs[(best - 1) * stride] == kNoCost) {
-    return {false, 0.0f};
-  }
-  const uint64_t limit = static_cast<uint64_t>(best_cost) * (100 + uniqueness_percent);
-  for (int k = 0; k < count; ++k) {
-    if (std::abs(k - best) > 1 && costs[k * stride] != kNoCost &&
-        static_cast<uint64_t>(costs[k * stride]) * 100 <= limit && uniqueness_percent > 0) {
-      return {false, 0.0f};
-    }
-  }
-  const std::optional<float> offset =
-      equiangularOffset(costs[(best - 1) * stride], best_cost, costs[(best + 1) * stride]);
-  if (!offset) {
-    return {false, 0.0f};
-  }
-  return {true, static_cast<float>(min_disparity + best) + *offset};
-}
-
-// Integer disparity index of least cost seen from each right-image pixel xr:
-// argmin_k costs[k][xr + d_k], -1 where no block fits.
-void rightWinners(const uint32_t* costs, int count, int width, int min_disparity,
-                  std::vector<int>& winners) {
-  std::vector<uint32_t> best(width, kNoCost);
-  winners.assign(width, -1);
-  for (int k = 0; k < count; ++k) {
-    const uint32_t* row = costs + static_cast<size_t>(k) * width;
-    const int d = min_disparity + k;
-    for (int xr = 0; xr + d < width; ++xr) {
-      if (row[xr + d] < best[xr]) {
-        best[xr] = row[xr + d];
-        winners[xr] = k;
+  // f(k, d, count) for the disparities d = min + k whose columns x in
+  // [d, width) are not empty.
+  template <typename F>
+  void forEachDisparity(F&& f) const {
+    for (int k = 0; k < count_; ++k) {
+      const int d = options_.min_disparity_px + k;
+      if (d < width_) {
+        f(k, d, width_ - d);
       }
     }
   }
-}
+
+  Cost* columns(int d) {
+    return columns_.data() + static_cast<size_t>(d - options_.min_disparity_px) * width_ + d;
+  }
+  Cost* costs(int k) { return costs_.data() + static_cast<size_t>(k) * width_; }
+
+  void slideColumns(int row_in, int row_out) {
+    forEachDisparity([&](int, int d, int count) {
+      kernels_.slideRow(left_.ptr<uint8_t>(row_in) + d, right_.ptr<uint8_t>(row_in),
+                        left_.ptr<uint8_t>(row_out) + d, right_.ptr<uint8_t>(row_out), count,
+                        columns(d));
+    });
+  }
+
+  // costs(k)[x] for x in [d + h, width - h): the block sums; kNoCost
+  // elsewhere since construction.
+  void blockCosts() {
+    const int block = options_.block_size_px;
+    forEachDisparity([&](int k, int d, int count) {
+      if (count >= block) {
+        kernels_.windowSums(columns(d), count, block, costs(k) + d + half_, scratch_.data());
+      }
+    });
+  }
+
+  void chooseRow(float* disparity, uint8_t* valid) {
+    std::fill(best_.begin(), best_.end(), kNoCost<Cost>);
+    std::fill(index_.begin(), index_.end(), Cost{0});
+    for (int k = 0; k < count_; ++k) {
+      kernels_.considerDisparity(costs(k), k > 0 ? costs(k - 1) : no_costs_.data(),
+                                 static_cast<Cost>(k), width_, best_.data(), index_.data(),
+                                 minus_.data(), plus_.data());
+    }
+    std::fill(ambiguous_.begin(), ambiguous_.end(), uint8_t{0});
+    if (options_.uniqueness_percent > 0) {
+      markAmbiguous();
+    }
+    kernels_.subpixelWinners(best_.data(), index_.data(), minus_.data(), plus_.data(),
+                             ambiguous_.data(), options_.min_disparity_px, count_ - 1, width_,
+                             disparity, valid);
+    if (options_.max_left_right_difference_px >= 0) {
+      rightWinners();
+      for (int x = 0; x < width_; ++x) {
+        if (valid[x] && !consistentWithRight(x, disparity[x])) {
+          disparity[x] = 0.0f;
+          valid[x] = 0;
+        }
+      }
+    }
+  }
+
+  // A cost within uniqueness_percent of the best, further than one from it:
+  // cost * 100 <= best * (100 + u), i.e. cost <= floor(best (100 + u) / 100).
+  void markAmbiguous() {
+    kernels_.uniquenessLimits(best_.data(), 100 + options_.uniqueness_percent, width_,
+                              limit_.data());
+    for (int k = 0; k < count_; ++k) {
+      kernels_.markAmbiguous(costs(k), limit_.data(), index_.data(), static_cast<Cost>(k), width_,
+                             ambiguous_.data());
+    }
+  }
+
+  // Winner over d of the right image's pixel xr: argmin_k costs(k)[xr + d_k].
+  void rightWinners() {
+    std::fill(right_best_.begin(), right_best_.end(), kNoCost<Cost>);
+    forEachDisparity([&](int k, int d, int count) {
+      kernels_.considerRight(costs(k) + d, static_cast<Cost>(k), count, right_best_.data(),
+                             right_index_.data());
+    });
+  }
+
+  bool consistentWithRight(int x, float disparity_px) const {
+    const int xr = x - static_cast<int>(std::lround(disparity_px));
+    if (xr < 0 || right_best_[xr] == kNoCost<Cost>) {
+      return false;
+    }
+    return std::abs(options_.min_disparity_px + static_cast<int>(right_index_[xr]) - (x - xr)) <=
+           options_.max_left_right_difference_px;
+  }
+
+  const StereoOptions& options_;
+  const DisparityKernels<Cost>& kernels_;
+  const cv::Mat& left_;
+  const cv::Mat& right_;
+  const int width_, half_, count_;
+  std::vector<Cost> columns_;  // per disparity k: column sums at x in [d_k, width)
+  std::vector<Cost> costs_;    // per disparity k: block costs
+  std::vector<Cost> scratch_;
+  const std::vector<Cost> no_costs_;
+  std::vector<Cost> best_, index_, minus_, plus_, limit_;
+  std::vector<uint8_t> ambiguous_;
+  std::vector<Cost> right_best_, right_index_;
+};
 
 // cap + clamp(Sobel_x(image), -cap, cap), in [0, 2 cap].
 cv::Mat clippedXSobel(const cv::Mat& image, int cap) {
@@ -125,17 +177,19 @@ cv::Mat clippedXSobel(const cv::Mat& image, int cap) {
 
 SadStereoMatcher::SadStereoMatcher(const StereoOptions& options, SimdPath path)
     : options_(options), kernels_(&sadKernels(path)) {
-  if (options.block_size_px < 3 || options.block_size_px % 2 == 0) {
-    throw std::invalid_argument(
-        fmt::format("stereo: block size {} px must be odd and >= 3", options.block_size_px));
+  if (options.block_size_px < 3 || options.block_size_px > kMaxStereoBlockPx ||
+      options.block_size_px % 2 == 0) {
+    throw std::invalid_argument(fmt::format("stereo: block size {} px must be odd, in [3, {}]",
+                                            options.block_size_px, kMaxStereoBlockPx));
   }
   if (options.min_disparity_px < 0 || options.num_disparities < 1) {
     throw std::invalid_argument(
         fmt::format("stereo: disparity range [{}, +{}) needs min >= 0 and at least one disparity",
                     options.min_disparity_px, options.num_disparities));
   }
-  if (options.uniqueness_percent < 0) {
-    throw std::invalid_argument("stereo: uniqueness_percent must be >= 0");
+  if (options.uniqueness_percent < 0 || options.uniqueness_percent > kMaxUniquenessPercent) {
+    throw std::invalid_argument(fmt::format("stereo: uniqueness_percent {} outside [0, {}]",
+                                            options.uniqueness_percent, kMaxUniquenessPercent));
   }
   if (options.prefilter_cap < 0 || options.prefilter_cap > 127) {
     throw std::invalid_argument(
@@ -174,52 +228,15 @@ void SadStereoMatcher::validate(const cv::Mat& left, const cv::Mat& right) const
 
 DisparityMap SadStereoMatcher::match(const cv::Mat& left, const cv::Mat& right) const {
   const int block = options_.block_size_px;
-  const int width = left.cols;
-  const int half = block / 2;
-  const int count = options_.num_disparities;
-  std::vector<DisparityColumnSums> sums;
-  for (int k = 0; k < count; ++k) {
-    sums.emplace_back(options_.min_disparity_px + k, width);
+  const uint64_t largest_pixel_cost =
+      options_.prefilter_cap > 0 ? 2 * static_cast<uint64_t>(options_.prefilter_cap) : 255;
+  const bool fits_16_bits =
+      static_cast<uint64_t>(block) * block * largest_pixel_cost < kNoCost<uint16_t> &&
+      options_.num_disparities < kNoCost<uint16_t>;
+  if (fits_16_bits) {
+    return DisparitySearch<uint16_t>(options_, kernels_->disparity16, left, right).run();
   }
-  std::vector<uint8_t> scratch(width);
-  std::vector<uint32_t> costs(static_cast<size_t>(count) * width);
-  const auto update = [&](int row, int sign) {
-    for (DisparityColumnSums& sum : sums) {
-      sum.update(*kernels_, left.ptr<uint8_t>(row), right.ptr<uint8_t>(row), width, sign, scratch);
-    }
-  };
-  for (int row = 0; row < block - 1; ++row) {
-    update(row, +1);
-  }
-  const bool check_left_right = options_.max_left_right_difference_px >= 0;
-  std::vector<int> right_winners;
-  DisparityMap map{cv::Mat(left.size(), CV_32F, cv::Scalar(0)),
-                   cv::Mat(left.size(), CV_8U, cv::Scalar(0))};
-  for (int y = half; y + half < left.rows; ++y) {
-    update(y + half, +1);
-    for (int k = 0; k < count; ++k) {
-      sums[k].blockSums(half, costs.data() + static_cast<size_t>(k) * width);
-    }
-    if (check_left_right) {
-      rightWinners(costs.data(), count, width, options_.min_disparity_px, right_winners);
-    }
-    float* disparity = map.disparity_px.ptr<float>(y);
-    uint8_t* valid = map.valid.ptr<uint8_t>(y);
-    for (int x = 0; x < width; ++x) {
-      PixelChoice choice = choose(costs.data() + x, width, count, options_.min_disparity_px,
-                                  options_.uniqueness_percent);
-      if (choice.valid && check_left_right) {
-        const int xr = x - static_cast<int>(std::lround(choice.disparity_px));
-        const int k = xr >= 0 ? right_winners[xr] : -1;
-        choice.valid = k >= 0 && std::abs(options_.min_disparity_px + k - (x - xr)) <=
-                                     options_.max_left_right_difference_px;
-      }
-      disparity[x] = choice.valid ? choice.disparity_px : 0.0f;
-      valid[x] = choice.valid ? 255 : 0;
-    }
-    update(y - half, -1);
-  }
-  return map;
+  return DisparitySearch<uint32_t>(options_, kernels_->disparity32, left, right).run();
 }
 
 }  // namespace lineloc

@@ -5,10 +5,12 @@
 //   C(x, y, d) = sum_{|i|, |j| <= h} |L(x + i, y + j) - R(x + i - d, y + j)|,
 //
 // block (2h + 1)^2, winner takes all, sub-pixel by the equiangular (V) fit
-// through C(d - 1), C(d), C(d + 1) (parabola_fit.h: exact for a SAD). The per-row absolute
-// differences run on the SAD kernels' SIMD path; the block sums are running sums (columns updated
-// one row at a time, rows by a sliding window), so the cost per pixel and disparity does not grow
-// with the block.
+// through C(d - 1), C(d), C(d + 1) (disparity_kernels.h: exact for a SAD). The
+// cost volume is swept one image row at a time on the SAD kernels' SIMD path
+// (block_matching/disparity_kernels.h): column sums slid down the image, block
+// sums by power-of-two partial sums along x, and the winner searches, all as
+// passes along x over one row of costs per disparity, so the cost per pixel
+// and disparity grows only with log2 of the block.
 //
 // With prefilter_cap > 0 both images are first replaced by their clipped
 // horizontal Sobel derivative (cv::StereoBM's XSOBEL pre-filter).
@@ -26,11 +28,14 @@
 
 namespace lineloc {
 
+inline constexpr int kMaxStereoBlockPx = 255;
+inline constexpr int kMaxUniquenessPercent = 1000;
+
 struct StereoOptions {
-  int block_size_px = 15;    // odd, >= 3
-  int min_disparity_px = 0;  // >= 0
-  int num_disparities = 64;  // >= 1
-  int uniqueness_percent = 0;
+  int block_size_px = 15;      // odd, in [3, kMaxStereoBlockPx]
+  int min_disparity_px = 0;    // >= 0
+  int num_disparities = 64;    // >= 1
+  int uniqueness_percent = 0;  // in [0, kMaxUniquenessPercent]
   // > 0: match min(max(dI/dx, -cap), cap) (Sobel 3x3) instead of grey levels,
   // as cv::StereoBM's default pre-filter does; robust to exposure changes.
   int prefilter_cap = 31;

@@ -6,13 +6,21 @@
 // Bound: the machine's psadbw-class throughput, measured here as independent
 // psadbw instructions per time-stamp-counter cycle on registers (no loads),
 // times the vector width: bytes of |a - b| per cycle. Full search throughput
-// counts the pixel differences a full search needs, 256 per candidate.
+// counts the pixel differences a full search needs, 256 per candidate of the
+// window clipped to the frame (work a kernel spends beyond that, e.g. whole
+// batches of candidates, is not counted).
 //
-// Timing: each benchmark iteration is timed in ns and RDTSC cycles; the
-// summary at the end gives medians over all repetitions after Tukey-fence
-// outlier removal. Cache state: "warm" runs reuse the same two frames (2 x
-// 300 KB, resident in L2/L3 after the first run); "cold" runs evict the caches
-// by streaming a 64 MB buffer before each run (outside the timed region).
+// Timing: each benchmark iteration is timed in ns, RDTSC cycles and process
+// CPU time; the summary at the end gives medians over all repetitions after
+// Tukey-fence outlier removal. "cpu/wall" is CPU time over wall time: 1.00
+// for a single-threaded run that had a core to itself, below 1 when it was
+// preempted (this machine's 2 cores are shared with other builds: then
+// Google Benchmark's wall "Time" exceeds its "CPU"), near the thread count
+// for cv::StereoBM, which runs in OpenCV's thread pool; it also runs with one
+// thread for a like-for-like comparison with the single-threaded matcher.
+// Cache state: "warm" runs reuse the same two frames (2 x 300 KB, resident in
+// L2/L3 after the first run); "cold" runs evict the caches by streaming a
+// 64 MB buffer before each run (outside the timed region).
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -96,10 +104,13 @@ void timeRuns(benchmark::State& state, const std::string& name, bool cold, Work&
   }
 }
 
-void fullSearch(benchmark::State& state, SimdPath path, bool cold) {
-  const BlockMatcher matcher({kBlockPx, kBlockPx, kRadiusPx, SearchStrategy::kFull}, path);
+void fullSearch(benchmark::State& state, SimdPath path, SearchStrategy strategy, bool cold) {
+  const BlockMatcher matcher({kBlockPx, kBlockPx, kRadiusPx, strategy}, path);
   const Frames& f = frames();
-  timeRuns(state, fmt::format("full search {} {}", simdPathName(path), cold ? "cold" : "warm"),
+  const bool early = strategy == SearchStrategy::kFullEarlyTermination;
+  timeRuns(state,
+           fmt::format("full search {}{} {}", simdPathName(path), early ? " early-term" : "",
+                       cold ? "cold" : "warm"),
            cold, [&] { benchmark::DoNotOptimize(matcher.matchGrid(f.first, f.second)); });
   state.counters["pixel_diff_per_s"] =
       benchmark::Counter(pixelDifferencesPerFrame(f.first.cols, f.first.rows),
@@ -115,11 +126,18 @@ void sadStereo(benchmark::State& state, SimdPath path) {
            [&] { benchmark::DoNotOptimize(matcher.compute(f.left, f.right)); });
 }
 
-void stereoBm(benchmark::State& state) {
+void stereoBm(benchmark::State& state, int threads) {
   const auto bm = cv::StereoBM::create(kStereo.num_disparities, kStereo.block_size_px);
+  bm->setUniquenessRatio(kStereo.uniqueness_percent);
   const Frames& f = frames();
   cv::Mat disparity;
-  timeRuns(state, "stereo cv::StereoBM", false, [&] { bm->compute(f.left, f.right, disparity); });
+  const int default_threads = cv::getNumThreads();
+  if (threads > 0) {
+    cv::setNumThreads(threads);
+  }
+  timeRuns(state, threads > 0 ? "stereo cv::StereoBM 1 thread" : "stereo cv::StereoBM", false,
+           [&] { bm->compute(f.left, f.right, disparity); });
+  cv::setNumThreads(default_threads);
 }
 
 // Independent psadbw per TSC cycle on registers.
@@ -139,79 +157,94 @@ double psadbwRate(SimdPath path) {
   return best;
 }
 
+// Percent of a bound; 0 where there is none (no vector path).
+double fractionOf(double bytes_per_cycle, double bound_bytes_per_cycle) {
+  return bound_bytes_per_cycle > 0 ? 100.0 * bytes_per_cycle / bound_bytes_per_cycle : 0.0;
+}
+
+double cpuPerWall(const RunStatistics& stats) {
+  return stats.median_cpu_ns / stats.median_ns;
+}
+
 void printSummary() {
   const Frames& f = frames();
   const double differences = pixelDifferencesPerFrame(f.first.cols, f.first.rows);
-  double machine_bytes_per_cycle = 0.0;
   fmt::print("\npsadbw-class bound (independent psadbw on registers, per TSC cycle):\n");
-  std::map<SimdPath, double> bound_bytes_per_cycle;
+  std::map<std::string_view, double> bound_bytes_per_cycle;
+  double machine_bytes_per_cycle = 0.0;
   for (SimdPath path : supportedSimdPaths()) {
     if (path == SimdPath::kScalar) {
       continue;
     }
     const double rate = psadbwRate(path);
-    bound_bytes_per_cycle[path] = rate * simdPathWidthBytes(path);
-    machine_bytes_per_cycle = std::max(machine_bytes_per_cycle, bound_bytes_per_cycle[path]);
+    const double bytes = rate * simdPathWidthBytes(path);
+    bound_bytes_per_cycle[simdPathName(path)] = bytes;
+    machine_bytes_per_cycle = std::max(machine_bytes_per_cycle, bytes);
     fmt::print("  {:>9}: {:5.2f} instr/cycle x {:2d} B = {:6.1f} B/cycle\n", simdPathName(path),
-               rate, simdPathWidthBytes(path), bound_bytes_per_cycle[path]);
+               rate, simdPathWidthBytes(path), bytes);
   }
-  const auto& scalar = samples()["full search scalar warm"];
-  const double scalar_ns = summarizeRuns(scalar).median_ns;
+  const RunStatistics scalar = summarizeRuns(samples()["full search scalar warm"]);
+  const double tsc_ghz = scalar.median_cycles / scalar.median_ns;
+  fmt::print("  machine: {:.1f} B/cycle = {:.0f} GB/s at the {:.3f} GHz TSC\n",
+             machine_bytes_per_cycle, machine_bytes_per_cycle * tsc_ghz, tsc_ghz);
   fmt::print("\n16x16 full search +-16 px, 640x480 ({:.1f} M pixel differences per frame)\n",
              differences * 1e-6);
-  fmt::print("{:<28} {:>6} {:>11} {:>13} {:>8} {:>8} {:>10} {:>9}\n", "run", "kept", "median ms",
-             "median Mcyc", "GB/s", "B/cycle", "of bound", "x scalar");
+  fmt::print("{:<36} {:>9} {:>9} {:>8} {:>5} {:>7} {:>7} {:>8} {:>8} {:>8}\n", "run", "kept",
+             "median ms", "Mcyc", "cpu/w", "GB/s", "B/cycle", "of bound", "of path", "x scalar");
   for (const auto& [name, runs] : samples()) {
     const RunStatistics stats = summarizeRuns(runs);
     if (name.rfind("full search", 0) != 0 || stats.kept == 0) {
       continue;
     }
     const double bytes_per_cycle = differences / stats.median_cycles;
-    fmt::print("{:<28} {:>3}/{:<3} {:>10.3f} {:>13.3f} {:>8.1f} {:>8.2f} {:>9.1f}% {:>9.1f}\n",
-               name, stats.kept, stats.runs, stats.median_ns * 1e-6, stats.median_cycles * 1e-6,
-               differences / stats.median_ns, bytes_per_cycle,
-               100.0 * bytes_per_cycle / machine_bytes_per_cycle, scalar_ns / stats.median_ns);
+    const std::string_view path = std::string_view(name).substr(12, name.find(' ', 12) - 12);
+    const double path_bound = bound_bytes_per_cycle.count(path) ? bound_bytes_per_cycle[path] : 0;
+    fmt::print(
+        "{:<36} {:>4}/{:<4} {:>9.3f} {:>8.3f} {:>5.2f} {:>7.1f} {:>7.2f} {:>7.1f}% {:>7.1f}% "
+        "{:>8.1f}\n",
+        name, stats.kept, stats.runs, stats.median_ns * 1e-6, stats.median_cycles * 1e-6,
+        cpuPerWall(stats), differences / stats.median_ns, bytes_per_cycle,
+        fractionOf(bytes_per_cycle, machine_bytes_per_cycle),
+        fractionOf(bytes_per_cycle, path_bound), scalar.median_ns / stats.median_ns);
   }
   fmt::print(
-      "(of bound: of the machine's widest psadbw bound, {:.1f} B/cycle; cycles are TSC "
-      "cycles)\n\nstereo 640x480, block {}, {} disparities\n",
-      machine_bytes_per_cycle, kStereo.block_size_px, kStereo.num_disparities);
-  const double opencv_ns = summarizeRuns(samples()["stereo cv::StereoBM"]).median_ns;
+      "(of bound: of the machine's widest psadbw bound; of path: of that path's own; cycles are "
+      "TSC cycles)\n\nstereo 640x480, block {}, {} disparities, uniqueness {} %\n",
+      kStereo.block_size_px, kStereo.num_disparities, kStereo.uniqueness_percent);
+  const double opencv_ns = summarizeRuns(samples()["stereo cv::StereoBM 1 thread"]).median_ns;
   for (const auto& [name, runs] : samples()) {
     const RunStatistics stats = summarizeRuns(runs);
     if (name.rfind("stereo", 0) == 0) {
-      fmt::print("{:<28} {:>3}/{:<3} {:>10.3f} ms {:>10.3f} Mcyc  {:.2f} x cv::StereoBM's time\n",
-                 name, stats.kept, stats.runs, stats.median_ns * 1e-6, stats.median_cycles * 1e-6,
-                 stats.median_ns / opencv_ns);
+      fmt::print(
+          "{:<36} {:>4}/{:<4} {:>9.3f} ms {:>8.3f} Mcyc  cpu/wall {:.2f}  {:.2f} x the time of "
+          "cv::StereoBM on 1 thread\n",
+          name, stats.kept, stats.runs, stats.median_ns * 1e-6, stats.median_cycles * 1e-6,
+          cpuPerWall(stats), stats.median_ns / opencv_ns);
     }
   }
 }
 
 void registerBenchmarks() {
+  const auto configure = [](benchmark::internal::Benchmark* benchmark) {
+    benchmark->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+  };
   for (SimdPath path : supportedSimdPaths()) {
-    benchmark::RegisterBenchmark(fmt::format("FullSearch16x16/{}/warm", simdPathName(path)).c_str(),
-                                 fullSearch, path, false)
-        ->Unit(benchmark::kMillisecond)
-        ->Repetitions(5)
-        ->ReportAggregatesOnly(true);
+    configure(benchmark::RegisterBenchmark(
+        fmt::format("FullSearch16x16/{}/warm", simdPathName(path)).c_str(), fullSearch, path,
+        SearchStrategy::kFull, false));
   }
-  benchmark::RegisterBenchmark(
-      fmt::format("FullSearch16x16/{}/cold", simdPathName(bestSimdPath())).c_str(), fullSearch,
-      bestSimdPath(), true)
-      ->Unit(benchmark::kMillisecond)
-      ->Repetitions(5)
-      ->ReportAggregatesOnly(true);
+  const std::string best(simdPathName(bestSimdPath()));
+  configure(benchmark::RegisterBenchmark(fmt::format("FullSearch16x16/{}/cold", best).c_str(),
+                                         fullSearch, bestSimdPath(), SearchStrategy::kFull, true));
+  configure(benchmark::RegisterBenchmark(
+      fmt::format("FullSearch16x16/{}/early-termination/warm", best).c_str(), fullSearch,
+      bestSimdPath(), SearchStrategy::kFullEarlyTermination, false));
   for (SimdPath path : {SimdPath::kScalar, bestSimdPath()}) {
-    benchmark::RegisterBenchmark(fmt::format("Stereo/lineloc/{}", simdPathName(path)).c_str(),
-                                 sadStereo, path)
-        ->Unit(benchmark::kMillisecond)
-        ->Repetitions(5)
-        ->ReportAggregatesOnly(true);
+    configure(benchmark::RegisterBenchmark(
+        fmt::format("Stereo/lineloc/{}", simdPathName(path)).c_str(), sadStereo, path));
   }
-  benchmark::RegisterBenchmark("Stereo/cv::StereoBM", stereoBm)
-      ->Unit(benchmark::kMillisecond)
-      ->Repetitions(5)
-      ->ReportAggregatesOnly(true);
+  configure(benchmark::RegisterBenchmark("Stereo/cv::StereoBM", stereoBm, 0));
+  configure(benchmark::RegisterBenchmark("Stereo/cv::StereoBM/1 thread", stereoBm, 1));
 }
 
 }  // namespace

@@ -79,8 +79,15 @@ TEST(BlockMatcher, EarlyTerminationFindsTheFullSearchResult) {
     const BlockMatchingOptions full{width, height, 8, SearchStrategy::kFull};
     BlockMatchingOptions early = full;
     early.strategy = SearchStrategy::kFullEarlyTermination;
-    EXPECT_TRUE(sameMatches(BlockMatcher(early).matchGrid(reference, current),
-                            BlockMatcher(full).matchGrid(reference, current)));
+    const std::vector<BlockMatch> expected = BlockMatcher(full).matchGrid(reference, current);
+    EXPECT_TRUE(sameMatches(BlockMatcher(early).matchGrid(reference, current), expected));
+    // One block at a time, early termination runs its spiral of partial SADs
+    // also where a grid would run the grid search.
+    std::vector<BlockMatch> spiral;
+    for (const BlockMatch& match : expected) {
+      spiral.push_back(BlockMatcher(early).matchBlock(reference, current, match.x, match.y));
+    }
+    EXPECT_TRUE(sameMatches(spiral, expected)) << width << "x" << height;
   }
 }
 

@@ -107,7 +107,8 @@ TEST(SadStereoMatcher, EveryPathGivesTheScalarResult) {
   const cv::Mat left = randomTexture(97, 61, 1);
   const cv::Mat right = randomTexture(97, 61, 2);
   for (const StereoOptions& options :
-       {StereoOptions{5, 0, 20, 0, 0, -1}, StereoOptions{9, 3, 33, 10, 31, 1}}) {
+       {StereoOptions{5, 0, 20, 0, 0, -1}, StereoOptions{9, 3, 33, 10, 31, 1},
+        StereoOptions{17, 2, 24, 5, 0, 0}}) {  // the last one's costs need 32 bits
     const DisparityMap expected = SadStereoMatcher(options, SimdPath::kScalar).compute(left, right);
     for (SimdPath path : supportedSimdPaths()) {
       EXPECT_TRUE(sameMaps(SadStereoMatcher(options, path).compute(left, right), expected))
@@ -154,6 +155,10 @@ TEST(SadStereoMatcher, BadInputIsRejectedWithAClearError) {
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, -1, 16}), std::invalid_argument);
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 0}), std::invalid_argument);
   EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 16, 0, 200}), std::invalid_argument);
+  EXPECT_THROW(SadStereoMatcher(StereoOptions{9, 0, 16, kMaxUniquenessPercent + 1}),
+               std::invalid_argument);
+  EXPECT_THROW(SadStereoMatcher(StereoOptions{kMaxStereoBlockPx + 2, 0, 16}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,68 @@
+// The oriented distance map: distances to segments of a similar direction,
+// truncated, and nothing but the truncation for anything outside the image.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "backbone/matching/oriented_distance_map.h"
+
+namespace lineloc {
+namespace {
+
+constexpr double kHorizontal = 0.0;
+constexpr double kVertical = M_PI / 2.0;
+
+ImageSegment segment(float x0, float y0, float x1, float y1) {
+  ImageSegment s;
+  s.start = {x0, y0};
+  s.end = {x1, y1};
+  return s;
+}
+
+OrientedDistanceMap horizontalAt100(int downsample) {
+  return OrientedDistanceMap({segment(100, 100, 300, 100)}, 640, 480, {15.0, 10.0, downsample});
+}
+
+TEST(OrientedDistanceMap, MeasuresTheDistanceToASegmentOfTheSameDirection) {
+  const OrientedDistanceMap map = horizontalAt100(1);
+  EXPECT_NEAR(map.distance({200, 100}, kHorizontal), 0.0, 1e-6);
+  // Borgefors' 5x5 mask is within 2 % of the Euclidean distance.
+  EXPECT_NEAR(map.distance({200, 106}, kHorizontal), 6.0, 0.15);
+  EXPECT_NEAR(map.distance({200, 94}, M_PI), 6.0, 0.15);          // direction is taken mod pi
+  EXPECT_FLOAT_EQ(map.distance({200, 150}, kHorizontal), 10.0f);  // truncated
+}
+
+TEST(OrientedDistanceMap, IgnoresSegmentsOfAnotherDirection) {
+  const OrientedDistanceMap map = horizontalAt100(1);
+  EXPECT_FLOAT_EQ(map.distance({200, 100}, kVertical), 10.0f);
+  // Within half a bin (11.25 degrees) the segment is always seen.
+  EXPECT_NEAR(map.distance({200, 100}, 11.0 * M_PI / 180.0), 0.0, 1e-6);
+  EXPECT_NEAR(map.distance({200, 100}, -11.0 * M_PI / 180.0), 0.0, 1e-6);
+  // Beyond one and a half bins (33.75 degrees) never.
+  EXPECT_FLOAT_EQ(map.distance({200, 100}, 34.0 * M_PI / 180.0), 10.0f);
+}
+
+TEST(OrientedDistanceMap, HalfResolutionKeepsDistancesInFullResolutionPixels) {
+  const OrientedDistanceMap map = horizontalAt100(2);
+  EXPECT_NEAR(map.distance({200, 108}, kHorizontal), 8.0, 1.0);
+}
+
+TEST(OrientedDistanceMap, OutsideTheImageShortSegmentsAndNaNGiveTheTruncation) {
+  const OrientedDistanceMap map = horizontalAt100(1);
+  EXPECT_FLOAT_EQ(map.distance({-1, 100}, kHorizontal), 10.0f);
+  EXPECT_FLOAT_EQ(map.distance({640, 100}, kHorizontal), 10.0f);
+  EXPECT_FLOAT_EQ(map.distance({std::nan(""), 100}, kHorizontal), 10.0f);
+  EXPECT_FLOAT_EQ(map.distance({1e300, 100}, kHorizontal), 10.0f);
+  const OrientedDistanceMap short_only({segment(100, 100, 110, 100)}, 640, 480, {15.0, 10.0, 1});
+  EXPECT_FLOAT_EQ(short_only.distance({105, 100}, kHorizontal), 10.0f);
+}
+
+TEST(OrientedDistanceMap, BinsWrapAroundHalfATurn) {
+  EXPECT_EQ(OrientedDistanceMap::binOf(0.0), 0);
+  EXPECT_EQ(OrientedDistanceMap::binOf(M_PI), 0);
+  EXPECT_EQ(OrientedDistanceMap::binOf(-M_PI / 8.0), OrientedDistanceMap::kOrientationBins - 1);
+  EXPECT_EQ(OrientedDistanceMap::binOf(M_PI / 2.0), OrientedDistanceMap::kOrientationBins / 2);
+}
+
+}  // namespace
+}  // namespace lineloc

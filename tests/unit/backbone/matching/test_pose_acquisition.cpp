@@ -1,0 +1,114 @@
+// Acquisition from a DGPS-quality prior on the synthetic street: the search
+// finds the camera metres away and the aligned pose is consistent with its
+// covariance; clutter does not change that; a view that cannot tell poses
+// apart is never answered with a precise pose.
+#include <gtest/gtest.h>
+
+#include "backbone/matching/pose_acquisition.h"
+#include "synthetic_street.h"
+
+namespace lineloc {
+namespace {
+
+using namespace lineloc::testing;
+
+// DGPS: 4 m per horizontal axis; the height comes from the ground (10 cm);
+// yaw from a compass-aided filter (0.5 degrees).
+constexpr double kPriorPositionSigmaM = 4.0;
+constexpr double kPriorHeightSigmaM = 0.1;
+constexpr double kPriorYawSigmaRad = 0.5 * M_PI / 180.0;
+
+PoseWithCovariance dgpsPrior(std::mt19937& random) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  PoseWithCovariance prior = truePose();
+  prior.pose.translation() +=
+      Eigen::Vector3d(kPriorPositionSigmaM * n(random), kPriorPositionSigmaM * n(random),
+                      kPriorHeightSigmaM * n(random));
+  prior.pose.linear() = Eigen::AngleAxisd(kPriorYawSigmaRad * n(random), Eigen::Vector3d::UnitZ())
+                            .toRotationMatrix() *
+                        prior.pose.linear();
+  prior.covariance = diagonalPoseCovariance(kPriorPositionSigmaM, kPriorYawSigmaRad);
+  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  return prior;
+}
+
+// Trials each acquisition must answer with a consistent pose; ambiguity is
+// allowed (the street repeats), a wrong precise pose is not.
+void expectConsistentOrAmbiguous(int clutter_percent, uint32_t seed) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces);
+  std::mt19937 random(seed);
+  int ok = 0;
+  constexpr int kTrials = 6;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    Scene scene = render(street, occlusion, 0, random);
+    const int clutter =
+        static_cast<int>(scene.image.size()) * clutter_percent / (100 - clutter_percent);
+    scene = render(street, occlusion, clutter, random);
+    const Acquisition acquisition = acquirePose(scene.image, street.edges, occlusion,
+                                                dgpsPrior(random), kCamera, AcquisitionOptions{});
+    if (acquisition.alignment.status != AlignmentStatus::kOk) {
+      EXPECT_EQ(acquisition.alignment.status, AlignmentStatus::kAmbiguous)
+          << acquisition.alignment.message;
+      continue;
+    }
+    ++ok;
+    EXPECT_LT(normalizedErrorSquared(acquisition.alignment.T_world_camera, truePose()),
+              kChi2Six999);
+  }
+  // The street has distinct building heights: most views are unambiguous.
+  EXPECT_GE(ok, kTrials / 2);
+}
+
+TEST(PoseAcquisition, FindsTheCameraMetresFromTheDgpsPrior) {
+  expectConsistentOrAmbiguous(0, 21);
+}
+
+TEST(PoseAcquisition, ThirtyPercentClutterChangesNothing) {
+  expectConsistentOrAmbiguous(30, 23);
+}
+
+TEST(PoseAcquisition, AFeaturelessFacadeIsNeverAPrecisePose) {
+  Street wall;
+  addBox(wall, 8, -50, 9, 200, 10);  // along the street, nothing to place the camera along it
+  const OcclusionScene occlusion(wall.faces);
+  std::mt19937 random(5);
+  const Scene scene = render(wall, occlusion, 0, random);
+  const Acquisition acquisition = acquirePose(scene.image, wall.edges, occlusion, dgpsPrior(random),
+                                              kCamera, AcquisitionOptions{});
+  EXPECT_NE(acquisition.alignment.status, AlignmentStatus::kOk) << acquisition.alignment.message;
+}
+
+TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces);
+  std::mt19937 random(9);
+  const Scene scene = render(street, occlusion, 10, random);
+  const PoseSearch search(street.edges, occlusion, kCamera, PoseSearchOptions{});
+  const OrientedDistanceMap map(scene.image, kCamera.width, kCamera.height, {15.0, 6.0, 1});
+  const Coverage truth = search.coverage(scene.visible, truePose().pose, map);
+  EXPECT_GT(truth.covered_px, 0.8 * truth.model_px);
+  for (const Eigen::Vector3d& offset :
+       {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 5, 0), Eigen::Vector3d(-3, -3, 0)}) {
+    Eigen::Isometry3d moved = truePose().pose;
+    moved.translation() += offset;
+    const PoseWithCovariance viewpoint{moved, Matrix6d::Zero()};
+    const Coverage elsewhere = search.coverage(
+        visibleSegments(street.edges, occlusion, viewpoint, kCamera, {}), moved, map);
+    EXPECT_LT(elsewhere.score, truth.score) << offset.transpose();
+  }
+}
+
+TEST(PoseSearch, InsideABuildingThereIsNothingToFind) {
+  Street block;
+  addBox(block, -100, -100, 100, 100, 30);
+  const OcclusionScene occlusion(block.faces);
+  const PoseSearch search(block.edges, occlusion, kCamera, PoseSearchOptions{});
+  PoseWithCovariance prior = truePose();
+  prior.covariance = diagonalPoseCovariance(2.0, 0.01);
+  std::mt19937 random(1);
+  EXPECT_TRUE(search.search(render(block, occlusion, 20, random).image, prior).empty());
+}
+
+}  // namespace
+}  // namespace lineloc

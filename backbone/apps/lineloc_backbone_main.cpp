@@ -46,6 +46,11 @@ int main(int argc, char** argv) {
         "prediction), {} dropped as invalid, {} map errors\n",
         counters.received, counters.answered, counters.fixes_ok, counters.searches,
         counters.dropped_invalid, counters.map_errors);
+    std::string stages;
+    for (const lineloc::StagePercentiles& stage : lineloc::stagePercentiles(counters)) {
+      stages += fmt::format(" {} {:.2f}/{:.2f}", stage.stage, stage.median_ms, stage.p99_ms);
+    }
+    std::cout << "lineloc-backbone: per LineSet, ms median/p99:" << stages << '\n';
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

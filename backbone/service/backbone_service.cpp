@@ -11,6 +11,7 @@
 #include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
+#include "common/time/percentile.h"
 
 namespace lineloc {
 namespace {
@@ -20,14 +21,38 @@ constexpr int64_t kWaitNs = 100'000'000;
 
 }  // namespace
 
+std::vector<StagePercentiles> stagePercentiles(const BackboneCounters& counters) {
+  const std::pair<const char*, int64_t StageTimingsNs::*> stages[] = {
+      {"map", &StageTimingsNs::map},
+      {"visibility", &StageTimingsNs::visibility},
+      {"matching", &StageTimingsNs::matching},
+      {"pose", &StageTimingsNs::pose},
+      {"total", &StageTimingsNs::total}};
+  std::vector<StagePercentiles> result;
+  for (const auto& [stage, member] : stages) {
+    std::vector<int64_t> times_ns;
+    times_ns.reserve(counters.recent_timings.size());
+    for (const StageTimingsNs& timings : counters.recent_timings) {
+      times_ns.push_back(timings.*member);
+    }
+    result.push_back({stage, percentile(times_ns, 50) * 1e-6, percentile(times_ns, 99) * 1e-6});
+  }
+  return result;
+}
+
 void writeCountersJson(const BackboneCounters& counters, const std::string& path) {
+  nlohmann::json stage_ms;
+  for (const StagePercentiles& stage : stagePercentiles(counters)) {
+    stage_ms[stage.stage] = {{"median", stage.median_ms}, {"p99", stage.p99_ms}};
+  }
   const nlohmann::json json = {{"received", counters.received},
                                {"answered", counters.answered},
                                {"fixes_ok", counters.fixes_ok},
                                {"dropped_invalid", counters.dropped_invalid},
                                {"map_errors", counters.map_errors},
                                {"searches", counters.searches},
-                               {"last_drop_reason", counters.last_drop_reason}};
+                               {"last_drop_reason", counters.last_drop_reason},
+                               {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
   {
     std::ofstream stream(temporary);

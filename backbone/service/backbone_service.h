@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "backbone/service/line_set_handler.h"
 
@@ -29,7 +30,16 @@ struct BackboneConfig {
 // Serves until `stop` is true; returns the final counters.
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
-// Writes the counters as a JSON object to `path` (atomically, by rename).
+// Median and 99th percentile (ms) of each stage over the counters' recent answers.
+struct StagePercentiles {
+  std::string stage;
+  double median_ms = 0.0;
+  double p99_ms = 0.0;
+};
+std::vector<StagePercentiles> stagePercentiles(const BackboneCounters& counters);
+
+// Writes the counters and stage percentiles as a JSON object to `path`
+// (atomically, by rename).
 void writeCountersJson(const BackboneCounters& counters, const std::string& path);
 
 }  // namespace lineloc

@@ -115,6 +115,12 @@ PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.answered;
   counters_.fixes_ok += fix.status == lineloc_msg_FIX_OK ? 1 : 0;
+  std::vector<StageTimingsNs>& recent = counters_.recent_timings;
+  if (recent.size() < kTimingWindow) {
+    recent.push_back(fix.timings);
+  } else {
+    recent[counters_.answered % kTimingWindow] = fix.timings;
+  }
   return fix;
 }
 

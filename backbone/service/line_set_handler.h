@@ -26,6 +26,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
@@ -43,7 +44,11 @@ struct BackboneCounters {
   uint64_t fixes_ok = 0;
   uint64_t searches = 0;
   std::string last_drop_reason;
+  // Stage times of the last kTimingWindow answers, oldest overwritten first.
+  std::vector<StageTimingsNs> recent_timings;
 };
+
+inline constexpr size_t kTimingWindow = 4096;
 
 struct PipelineOptions {
   double query_radius_m = 150.0;

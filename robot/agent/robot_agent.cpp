@@ -233,16 +233,6 @@ class Playback {
 
 }  // namespace
 
-int64_t percentile(std::vector<int64_t> values, double percent) {
-  if (values.empty()) {
-    return 0;
-  }
-  const size_t rank = static_cast<size_t>(std::ceil(percent / 100.0 * values.size()));
-  const size_t index = std::clamp<size_t>(rank, 1, values.size()) - 1;
-  std::nth_element(values.begin(), values.begin() + index, values.end());
-  return values[index];
-}
-
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop) {
   if (!isValidRobotId(config.robot_id)) {
     throw std::runtime_error(

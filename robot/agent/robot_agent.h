@@ -68,7 +68,4 @@ struct RobotRunSummary {
 // missing or vanished backbone is not an error (the robot dead-reckons).
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop);
 
-// Nearest-rank percentile (0..100) of `values`; 0 for an empty list.
-int64_t percentile(std::vector<int64_t> values, double percent);
-
 }  // namespace lineloc

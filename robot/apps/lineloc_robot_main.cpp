@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "common/config/program_options.h"
+#include "common/time/percentile.h"
 #include "robot/agent/robot_agent.h"
 
 namespace {

@@ -18,6 +18,7 @@
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
+#include "common/time/percentile.h"
 #include "tests/support/child_process.h"
 #include "tests/support/test_database.h"
 #include "tests/support/test_dds.h"
@@ -93,13 +94,6 @@ void BM_LineSetRoundTrip(benchmark::State& state) {
   state.counters["segments"] = kSegments;
 }
 BENCHMARK(BM_LineSetRoundTrip)->UseManualTime()->Iterations(2000)->Unit(benchmark::kMicrosecond);
-
-double percentile(std::vector<double> values, double percent) {
-  std::sort(values.begin(), values.end());
-  const size_t index =
-      std::min(values.size() - 1, static_cast<size_t>(percent / 100.0 * values.size()));
-  return values[index];
-}
 
 // ddsperf ping/pong with `payload_bytes`; returns its last statistics line.
 std::string runDdsperf(size_t payload_bytes) {

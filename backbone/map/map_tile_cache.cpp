@@ -89,7 +89,36 @@ std::shared_ptr<const MapTile> MapTileCache::waitForTile(const TileKey& key,
   }
 }
 
-MapView MapTileCache::around(const Eigen::Vector3d& position_world, double radius_m) {
+std::shared_ptr<const MapView> MapTileCache::merged(
+    const std::vector<TileKey>& keys, std::vector<std::shared_ptr<const MapTile>> tiles) {
+  for (auto recent = recent_views_.begin(); recent != recent_views_.end(); ++recent) {
+    if (recent->first == keys && recent->second.tiles == tiles) {
+      recent_views_.splice(recent_views_.begin(), recent_views_, recent);
+      return recent->second.view;
+    }
+  }
+  auto view = std::make_shared<MapView>();
+  std::set<int64_t> line_ids;
+  std::set<int64_t> face_ids;
+  for (const auto& tile : tiles) {
+    for (const db::ModelLine& line : tile->lines) {
+      if (line_ids.insert(line.id).second)
+        view->lines.push_back(line);
+    }
+    for (const db::ModelFaceRecord& face : tile->faces) {
+      if (face_ids.insert(face.id).second)
+        view->faces.push_back(face);
+    }
+  }
+  recent_views_.push_front({keys, {std::move(tiles), view}});
+  if (recent_views_.size() > kRecentViews) {
+    recent_views_.pop_back();
+  }
+  return view;
+}
+
+std::shared_ptr<const MapView> MapTileCache::around(const Eigen::Vector3d& position_world,
+                                                    double radius_m) {
   const std::vector<TileKey> keys = keysAround(position_world, radius_m);
   std::vector<std::shared_ptr<const MapTile>> found;
   {
@@ -106,21 +135,8 @@ MapView MapTileCache::around(const Eigen::Vector3d& position_world, double radiu
     for (const TileKey& key : keys) {
       found.push_back(waitForTile(key, lock));
     }
+    return merged(keys, std::move(found));
   }
-  MapView view;
-  std::set<int64_t> line_ids;
-  std::set<int64_t> face_ids;
-  for (const auto& tile : found) {
-    for (const db::ModelLine& line : tile->lines) {
-      if (line_ids.insert(line.id).second)
-        view.lines.push_back(line);
-    }
-    for (const db::ModelFaceRecord& face : tile->faces) {
-      if (face_ids.insert(face.id).second)
-        view.faces.push_back(face);
-    }
-  }
-  return view;
 }
 
 void MapTileCache::prefetch(const Eigen::Vector3d& position_world, double radius_m) {

@@ -5,8 +5,10 @@
 //
 // One worker thread owns all database access (a libpq connection is not
 // thread-safe): tiles a frame needs now jump the queue, prefetches wait behind
-// them. A tile that failed to load is not cached; the frame that needed it
-// gets the error, the next one retries.
+// them. A view merged from the same tiles as one of the last few is that view
+// again (the same object), so that what a caller builds from a view (a
+// ray-casting scene) can be kept for as long as the view does not change. A tile that failed to
+// load is not cached; the frame that needed it gets the error, the next one retries.
 #pragma once
 
 #include <Eigen/Core>
@@ -56,7 +58,7 @@ class MapTileCache {
   // The lines and faces of every tile meeting the square of half-side
   // `radius_m` around `position_world`; blocks while missing tiles load.
   // Rethrows the loader's error when a needed tile failed.
-  MapView around(const Eigen::Vector3d& position_world, double radius_m);
+  std::shared_ptr<const MapView> around(const Eigen::Vector3d& position_world, double radius_m);
 
   // Queues the tiles around a future position for background loading.
   void prefetch(const Eigen::Vector3d& position_world, double radius_m);
@@ -73,6 +75,15 @@ class MapTileCache {
     std::shared_ptr<const MapTile> tile;
     std::list<TileKey>::iterator recency;
   };
+  // A merged view and the tiles it was merged from.
+  struct MergedView {
+    std::vector<std::shared_ptr<const MapTile>> tiles;
+    std::shared_ptr<const MapView> view;
+  };
+  static constexpr size_t kRecentViews = 16;
+
+  std::shared_ptr<const MapView> merged(const std::vector<TileKey>& keys,
+                                        std::vector<std::shared_ptr<const MapTile>> tiles);
 
   std::vector<TileKey> keysAround(const Eigen::Vector3d& position_world, double radius_m) const;
   Eigen::AlignedBox2d bounds(const TileKey& key) const;
@@ -94,6 +105,8 @@ class MapTileCache {
   std::map<TileKey, bool> pending_;  // queued or loading; value: someone waits for it
   std::map<TileKey, std::exception_ptr> failed_;
   MapCacheStats stats_;
+  // Most recent first.
+  std::list<std::pair<std::vector<TileKey>, MergedView>> recent_views_;
   bool stopping_ = false;
   std::thread worker_;
 };

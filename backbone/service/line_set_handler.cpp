@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "backbone/map/ground_level.h"
 #include "common/time/clock.h"
 
@@ -69,33 +71,48 @@ void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
   last_position_[line_set.robot_id] = {line_set.stamp_ns, position};
 }
 
+LineSetHandler::PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view)
+    : view(std::move(map_view)),
+      segments(toSegments(view->lines)),
+      scene(toRings(view->faces)),
+      ground_level(groundLevel(*view)) {}
+
+std::shared_ptr<const LineSetHandler::PreparedMap> LineSetHandler::prepare(
+    const std::shared_ptr<const MapView>& view) {
+  const auto found = std::find_if(prepared_maps_.begin(), prepared_maps_.end(),
+                                  [&view](const auto& prepared) { return prepared->view == view; });
+  if (found != prepared_maps_.end()) {
+    prepared_maps_.splice(prepared_maps_.begin(), prepared_maps_, found);
+    return prepared_maps_.front();
+  }
+  prepared_maps_.push_front(std::make_shared<const PreparedMap>(view));
+  if (prepared_maps_.size() > kPreparedMaps) {
+    prepared_maps_.pop_back();
+  }
+  return prepared_maps_.front();
+}
+
 PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
-                                                 const MapView& view) const {
+                                                 const PreparedMap& map) const {
   PoseWithCovariance prior = line_set.predicted_T_world_camera;
   const double ground_variance = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
-  if (line_set.camera_height_m <= 0.0 || !(prior.covariance(2, 2) > ground_variance)) {
+  if (line_set.camera_height_m <= 0.0 || !map.ground_level ||
+      !(prior.covariance(2, 2) > ground_variance)) {
     return prior;
   }
-  const std::optional<double> ground = groundLevel(view);
-  if (!ground) {
-    return prior;
-  }
-  prior.pose.translation().z() = *ground + line_set.camera_height_m;
+  prior.pose.translation().z() = *map.ground_level + line_set.camera_height_m;
   prior.covariance.row(2).setZero();
   prior.covariance.col(2).setZero();
   prior.covariance(2, 2) = ground_variance;
   return prior;
 }
 
-void LineSetHandler::localizeInto(const LineSetData& line_set, const MapView& view,
+void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap& map,
                                   const PoseWithCovariance& prior, PoseFixData& fix) {
-  const int64_t scene_start_ns = steadyClockNs();
-  const OcclusionScene scene(toRings(view.faces));
-  const int64_t scene_ns = steadyClockNs() - scene_start_ns;
-  const Localization localization = localize(line_set.segments, toSegments(view.lines), scene,
-                                             prior, line_set.camera, options_.localizer);
+  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
+                                             line_set.camera, options_.localizer);
   const Alignment& alignment = localization.alignment;
-  fix.timings.visibility = scene_ns + localization.visibility_ns;
+  fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
   fix.timings.pose = alignment.pose_ns;
   fix.status = toFixStatus(alignment.status);
@@ -144,23 +161,26 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
   try {
-    const MapView view =
+    const std::shared_ptr<const MapView> view =
         map_.around(line_set.predicted_T_world_camera.pose.translation(), options_.query_radius_m);
     fix.timings.map = steadyClockNs() - start_ns;
-    fix.model_lines = static_cast<uint32_t>(view.lines.size());
+    fix.model_lines = static_cast<uint32_t>(view->lines.size());
     prefetchAlongMotion(line_set);
-    if (view.lines.empty()) {
+    if (view->lines.empty()) {
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
       return finish(fix, start_ns);
     }
-    const PoseWithCovariance prior = groundedPrior(line_set, view);
+    const int64_t prepare_start_ns = steadyClockNs();
+    const std::shared_ptr<const PreparedMap> map = prepare(view);
+    fix.timings.visibility = steadyClockNs() - prepare_start_ns;
+    const PoseWithCovariance prior = groundedPrior(line_set, *map);
     if (search_worker_ == nullptr || !needsAcquisition(prior, options_.localizer)) {
-      localizeInto(line_set, view, prior, fix);
+      localizeInto(line_set, *map, prior, fix);
       return finish(fix, start_ns);
     }
-    auto search = [this, line_set, view, prior, fix, start_ns]() mutable {
+    auto search = [this, line_set, map, prior, fix, start_ns]() mutable {
       try {
-        localizeInto(line_set, view, prior, fix);
+        localizeInto(line_set, *map, prior, fix);
       } catch (const std::exception& error) {
         spdlog::error("search for {} #{} failed: {}", fix.robot_id, fix.sequence_number,
                       error.what());

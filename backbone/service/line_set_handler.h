@@ -11,6 +11,11 @@
 // ground_level_sigma_m) whenever its own is poorer: DGPS altitude is metres
 // off, the street is not.
 //
+// What localization needs of a map view — the model segments, the ray-casting
+// scene of the faces, the ground level — is built once per view and kept for
+// the few most recent views (the tile cache hands out the same view object
+// while its tiles stay the same), so steady frames build nothing.
+//
 // Given a way to publish late answers, a LineSet whose prediction needs a
 // search is handed to a SearchWorker thread and answered from there
 // (search_worker.h); without one, everything is answered inline.
@@ -21,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -70,9 +76,20 @@ class LineSetHandler {
 
  private:
   void prefetchAlongMotion(const LineSetData& line_set);
-  void localizeInto(const LineSetData& line_set, const MapView& view,
+  // A map view made ready for localization.
+  struct PreparedMap {
+    explicit PreparedMap(std::shared_ptr<const MapView> map_view);
+    std::shared_ptr<const MapView> view;
+    std::vector<ModelSegment> segments;
+    OcclusionScene scene;
+    std::optional<double> ground_level;
+  };
+  static constexpr size_t kPreparedMaps = 8;
+
+  std::shared_ptr<const PreparedMap> prepare(const std::shared_ptr<const MapView>& view);
+  void localizeInto(const LineSetData& line_set, const PreparedMap& map,
                     const PoseWithCovariance& prior, PoseFixData& fix);
-  PoseWithCovariance groundedPrior(const LineSetData& line_set, const MapView& view) const;
+  PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -87,6 +104,7 @@ class LineSetHandler {
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
+  std::list<std::shared_ptr<const PreparedMap>> prepared_maps_;  // most recent first
   // Last, so that it is destroyed first: its searches use the members above.
   std::unique_ptr<SearchWorker> search_worker_;
 };

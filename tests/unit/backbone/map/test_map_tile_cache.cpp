@@ -53,7 +53,7 @@ TEST(MapTileCache, LoadsOnceAndReturnsEachLineAndFaceOnce) {
   CountingLoader loader;
   MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 64);
   // 150 m around (50, 50) spans -100..200 in x and y: tiles -1..2, 16 of them.
-  const MapView view = cache.around({50, 50, 1.5}, 150.0);
+  const MapView view = *cache.around({50, 50, 1.5}, 150.0);
   EXPECT_EQ(loader.calls, 16);
   EXPECT_EQ(view.lines.size(), 17u);
   EXPECT_EQ(view.faces.size(), 1u);
@@ -61,6 +61,20 @@ TEST(MapTileCache, LoadsOnceAndReturnsEachLineAndFaceOnce) {
   EXPECT_EQ(loader.calls, 16) << "the second frame must be served from memory";
   EXPECT_EQ(cache.stats().hits, 16u);
   EXPECT_EQ(cache.stats().misses, 16u);
+}
+
+TEST(MapTileCache, TheSameTilesGiveTheSameViewUntilOneIsReloaded) {
+  CountingLoader loader;
+  MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 4);
+  const auto first = cache.around({50, 50, 0}, 10.0);  // tile (0, 0) alone
+  EXPECT_EQ(cache.around({60, 40, 0}, 10.0), first);
+  cache.around({550, 50, 0}, 10.0);  // four other tiles evict (0, 0)
+  cache.around({50, 550, 0}, 10.0);
+  cache.around({950, 950, 0}, 10.0);
+  cache.around({1550, 50, 0}, 10.0);
+  const auto reloaded = cache.around({50, 50, 0}, 10.0);
+  EXPECT_NE(reloaded, first);
+  EXPECT_EQ(reloaded->lines.size(), first->lines.size());
 }
 
 TEST(MapTileCache, PrefetchedTilesAreHitsLater) {
@@ -78,7 +92,7 @@ TEST(MapTileCache, AFailedLoadIsReportedThenRetried) {
   loader.failures_left = 1;
   MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 64);
   EXPECT_THROW(cache.around({50, 50, 0}, 10.0), std::runtime_error);
-  EXPECT_EQ(cache.around({50, 50, 0}, 10.0).lines.size(), 2u);
+  EXPECT_EQ(cache.around({50, 50, 0}, 10.0)->lines.size(), 2u);
   EXPECT_EQ(cache.stats().failures, 1u);
 }
 
@@ -86,11 +100,11 @@ TEST(MapTileCache, EvictsLeastRecentlyUsedAndStillAnswersCorrectly) {
   CountingLoader loader;
   MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 4);
   for (int step = 0; step < 10; ++step) {
-    EXPECT_EQ(cache.around({50.0 + 100 * step, 50, 0}, 10.0).lines.size(), 2u);
+    EXPECT_EQ(cache.around({50.0 + 100 * step, 50, 0}, 10.0)->lines.size(), 2u);
   }
   EXPECT_EQ(cache.stats().evicted, 6u);
   // A query needing more tiles than the cache holds still gets them all.
-  EXPECT_EQ(cache.around({50, 50, 0}, 150.0).lines.size(), 17u);
+  EXPECT_EQ(cache.around({50, 50, 0}, 150.0)->lines.size(), 17u);
 }
 
 TEST(MapTileCache, ServesConcurrentCallers) {
@@ -102,7 +116,7 @@ TEST(MapTileCache, ServesConcurrentCallers) {
     callers.emplace_back([&, t] {
       for (int step = 0; step < 20; ++step) {
         const auto view = cache.around({25.0 * (step + t), 50, 0}, 120.0);
-        wrong += view.lines.empty() ? 1 : 0;
+        wrong += view->lines.empty() ? 1 : 0;
       }
     });
   }

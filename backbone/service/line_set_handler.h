@@ -16,6 +16,14 @@
 // the few most recent views (the tile cache hands out the same view object
 // while its tiles stay the same), so steady frames build nothing.
 //
+// A pose found by a search is only answered FIX_OK once a second search, on a
+// later frame of the same robot, finds the pose the first one predicts: the
+// first acquired pose A1 moved by the robot's own predicted motion between the
+// two frames, A1 P1^-1 P2 (dead reckoning over a second is centimetres, DGPS
+// metres), within confirm_position_m and confirm_rotation_rad of A2. A wrong
+// pose the search picked by chance does not repeat; until one is confirmed the
+// answer is FIX_AMBIGUOUS.
+//
 // Given a way to publish late answers, a LineSet whose prediction needs a
 // search is handed to a SearchWorker thread and answered from there
 // (search_worker.h); without one, everything is answered inline.
@@ -60,6 +68,10 @@ struct PipelineOptions {
   double query_radius_m = 150.0;
   double prefetch_lookahead_s = 3.0;
   double ground_level_sigma_m = 0.1;
+  double confirm_position_m = 0.3;
+  double confirm_rotation_rad = 0.5 * M_PI / 180.0;
+  // An unconfirmed search result older than this is forgotten.
+  double confirm_within_s = 5.0;
   LocalizerOptions localizer;
 };
 
@@ -90,6 +102,9 @@ class LineSetHandler {
   void localizeInto(const LineSetData& line_set, const PreparedMap& map,
                     const PoseWithCovariance& prior, PoseFixData& fix);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
+  // True when `acquired` at `line_set`'s time confirms the robot's previous
+  // search result; remembers it for the next one either way.
+  bool confirmsPreviousSearch(const LineSetData& line_set, const Eigen::Isometry3d& acquired);
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -105,6 +120,13 @@ class LineSetHandler {
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
   std::list<std::shared_ptr<const PreparedMap>> prepared_maps_;  // most recent first
+  struct SearchResult {
+    int64_t stamp_ns;
+    Eigen::Isometry3d T_world_camera_found;
+    Eigen::Isometry3d T_world_camera_predicted;
+  };
+  std::mutex searches_mutex_;
+  std::map<std::string, SearchResult> last_search_;
   // Last, so that it is destroyed first: its searches use the members above.
   std::unique_ptr<SearchWorker> search_worker_;
 };

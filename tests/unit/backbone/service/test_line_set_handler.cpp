@@ -28,11 +28,12 @@ PoseWithCovariance lookingNorth(const Eigen::Vector3d& position) {
 }
 
 std::unique_ptr<LineSetMessage> lineSetMessage(std::vector<ImageSegment> segments,
-                                               const PoseWithCovariance& predicted) {
+                                               const PoseWithCovariance& predicted,
+                                               uint32_t sequence_number = 3) {
   LineSetData data;
   data.robot_id = "handler-test";
-  data.sequence_number = 3;
-  data.stamp_ns = 1'000'000;
+  data.sequence_number = sequence_number;
+  data.stamp_ns = 1'000'000 + sequence_number * 50'000'000LL;
   data.camera = kCamera;
   data.segments = std::move(segments);
   data.predicted_T_world_camera = predicted;
@@ -98,14 +99,20 @@ TEST_F(LineSetHandlerTest, AlignsTheModelSeenFromAPerturbedPrediction) {
   const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
   PoseWithCovariance predicted = truth;
   predicted.pose.translation() += Eigen::Vector3d(0.25, -0.2, 0.05);
-  const auto message = lineSetMessage(observedEdges(database_.conninfo(), truth), predicted);
-  ASSERT_GE(message->message().segments._length, 6u);
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
+  ASSERT_GE(seen.size(), 6u);
 
-  const std::optional<PoseFixData> fix = handler.handle(message->message());
+  // The prediction is too poor to track: the first search's pose waits for a
+  // second search to confirm it.
+  const auto first = handler.handle(lineSetMessage(seen, predicted, 2)->message());
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->status, lineloc_msg_FIX_AMBIGUOUS) << toString(first->status);
+  const std::optional<PoseFixData> fix =
+      handler.handle(lineSetMessage(seen, predicted, 3)->message());
   ASSERT_TRUE(fix.has_value());
   EXPECT_EQ(fix->robot_id, "handler-test");
   EXPECT_EQ(fix->sequence_number, 3u);
-  EXPECT_EQ(fix->stamp_ns, 1'000'000);
+  EXPECT_EQ(fix->stamp_ns, 151'000'000);
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   EXPECT_EQ(fix->model_lines, 24u);
   // Within 3 sigma of the reported covariance along each axis.
@@ -117,6 +124,22 @@ TEST_F(LineSetHandlerTest, AlignsTheModelSeenFromAPerturbedPrediction) {
   EXPECT_GT(fix->timings.total, 0);
   EXPECT_GE(fix->timings.total, fix->timings.map);
   EXPECT_EQ(handler.counters().fixes_ok, 1u);
+}
+
+TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
+  PoseWithCovariance predicted = truth;
+  predicted.pose.translation() += Eigen::Vector3d(0.25, -0.2, 0.05);
+  handler.handle(lineSetMessage(seen, predicted, 2)->message());
+  // The robot believes it drove 2 m, yet the camera sees the same view.
+  predicted.pose.translation() += Eigen::Vector3d(0.0, 2.0, 0.0);
+  const auto fix = handler.handle(lineSetMessage(seen, predicted, 3)->message());
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->status, lineloc_msg_FIX_AMBIGUOUS) << toString(fix->status);
+  EXPECT_EQ(handler.counters().fixes_ok, 0u);
 }
 
 TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {

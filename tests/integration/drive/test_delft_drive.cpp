@@ -2,7 +2,8 @@
 // PostGIS database, a 30 s simulated drive (DGPS + compass start, parked cars,
 // trees, pedestrians), lineloc-backbone and lineloc-robot as separate
 // processes over DDS on loopback in real time, and the robot's poses checked
-// against the simulator's ground truth.
+// against the simulator's ground truth — once as it is, once with the
+// backbone killed mid-drive and started again.
 //
 // Bounds, from the simulated noise: the renderer's sensor noise and blur leave
 // segment endpoints 0.05-0.3 px uncertain; twenty-odd building lines 10-60 m
@@ -15,11 +16,16 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <regex>
+#include <thread>
 
 #include "common/trajectory/tum_trajectory.h"
 #include "tests/support/child_process.h"
@@ -39,6 +45,11 @@ constexpr double kMaxAttitudeRmseDeg = 0.2;
 constexpr double kMinFixedFraction = 0.95;
 // The filter settles on the first fix within this.
 constexpr double kSettleSeconds = 1.0;
+// The restart test: the backbone dies this long into the robot's run, stays
+// away this long, and the drive's last seconds are checked.
+constexpr int kKillAfterSeconds = 12;
+constexpr int kOutageSeconds = 3;
+constexpr double kLastPartSeconds = 8.0;
 const std::vector<std::string> kSiteOrigin = {"84900", "447600", "0"};
 
 std::map<int64_t, Eigen::Isometry3d> byStamp(const std::vector<StampedPose>& poses) {
@@ -66,14 +77,63 @@ void runOrFail(const std::string& program, std::vector<std::string> args, const 
   ASSERT_EQ(exit_code, std::optional<int>(0)) << program << ":\n" << readFile(log);
 }
 
+// Position and attitude RMSE of the fused poses from `from_ns` on.
+struct Accuracy {
+  double position_rmse_m = 0.0;
+  double attitude_rmse_deg = 0.0;
+  int frames = 0;
+};
+
+Accuracy accuracyFrom(const std::map<int64_t, Eigen::Isometry3d>& fused,
+                      const std::map<int64_t, Eigen::Isometry3d>& truth, int64_t from_ns) {
+  double squared_position = 0.0;
+  double squared_attitude = 0.0;
+  Accuracy accuracy;
+  for (auto pose = fused.lower_bound(from_ns); pose != fused.end(); ++pose) {
+    const auto true_pose = truth.find(pose->first);
+    if (true_pose == truth.end()) {
+      ADD_FAILURE() << "no ground truth at " << pose->first;
+      continue;
+    }
+    squared_position +=
+        (pose->second.translation() - true_pose->second.translation()).squaredNorm();
+    const double angle_rad =
+        Eigen::AngleAxisd(pose->second.linear().transpose() * true_pose->second.linear()).angle();
+    squared_attitude += angle_rad * angle_rad;
+    ++accuracy.frames;
+  }
+  if (accuracy.frames > 0) {
+    accuracy.position_rmse_m = std::sqrt(squared_position / accuracy.frames);
+    accuracy.attitude_rmse_deg = std::sqrt(squared_attitude / accuracy.frames) * 180.0 / M_PI;
+  }
+  return accuracy;
+}
+
 class DelftDrive : public ::testing::Test {
  protected:
   void SetUp() override {
     work_ = fs::temp_directory_path() / ("delft_drive_" + std::to_string(getpid()));
     fs::remove_all(work_);
     fs::create_directories(work_);
-    city_ = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
-    ASSERT_TRUE(fs::exists(city_)) << "shared data missing: " << city_;
+    const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+    ASSERT_TRUE(fs::exists(city)) << "shared data missing: " << city;
+    std::vector<std::string> load = {"--db", database_.conninfo(), "--site", "delft", "--origin"};
+    load.insert(load.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    load.push_back(city.string());
+    runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
+    std::vector<std::string> simulate = {"--city-model",
+                                         city.string(),
+                                         "--output",
+                                         (work_ / "dataset").string(),
+                                         "--seed",
+                                         "1",
+                                         "--duration-s",
+                                         std::to_string(kDriveSeconds),
+                                         "--camera-height-m",
+                                         fmt::format("{}", kCameraHeightM),
+                                         "--site-origin"};
+    simulate.insert(simulate.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    runOrFail("lineloc-sim", simulate, work_ / "sim.log", 600'000);
   }
   void TearDown() override {
     if (!HasFailure()) {
@@ -86,77 +146,61 @@ class DelftDrive : public ::testing::Test {
             test::testDdsConfig()};
   }
 
+  std::unique_ptr<test::ChildProcess> startBackbone(const std::string& log_name) const {
+    std::vector<std::string> args = dds();
+    args.insert(args.end(), {"--db", database_.conninfo(), "--site", "delft"});
+    return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
+                                                args, (work_ / log_name).string());
+  }
+
+  std::unique_ptr<test::ChildProcess> startRobot() const {
+    std::vector<std::string> args = dds();
+    args.insert(args.end(),
+                {"--robot-id", "drive", "--images", (work_ / "dataset").string(), "--calibration",
+                 (work_ / "dataset" / "cam0" / "calibration.yaml").string(), "--site-crs",
+                 "EPSG:7415", "--camera-height-m", fmt::format("{}", kCameraHeightM),
+                 "--trajectory-out", (work_ / "fixes.tum").string(), "--fused-trajectory-out",
+                 (work_ / "fused.tum").string(), "--site-origin"});
+    args.insert(args.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot",
+                                                args, (work_ / "robot.log").string());
+  }
+
+  void waitForRobot(test::ChildProcess& robot) const {
+    ASSERT_EQ(robot.wait((kDriveSeconds + 120) * 1000), std::optional<int>(0))
+        << readFile(work_ / "robot.log");
+  }
+
+  std::map<int64_t, Eigen::Isometry3d> poses(const fs::path& relative) const {
+    return byStamp(readTumFile((work_ / relative).string()));
+  }
+
   fs::path work_;
-  fs::path city_;
   test::TestDatabase database_{"delft_drive"};
 };
 
 TEST_F(DelftDrive, TheRobotKnowsItsPoseToCentimetresSoonAfterADgpsStart) {
-  std::vector<std::string> load = {"--db", database_.conninfo(), "--site", "delft", "--origin"};
-  load.insert(load.end(), kSiteOrigin.begin(), kSiteOrigin.end());
-  load.push_back(city_.string());
-  runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
-  std::vector<std::string> simulate = {"--city-model",
-                                       city_.string(),
-                                       "--output",
-                                       (work_ / "dataset").string(),
-                                       "--seed",
-                                       "1",
-                                       "--duration-s",
-                                       std::to_string(kDriveSeconds),
-                                       "--camera-height-m",
-                                       fmt::format("{}", kCameraHeightM),
-                                       "--site-origin"};
-  simulate.insert(simulate.end(), kSiteOrigin.begin(), kSiteOrigin.end());
-  runOrFail("lineloc-sim", simulate, work_ / "sim.log", 600'000);
-
-  std::vector<std::string> backbone = dds();
-  backbone.insert(backbone.end(), {"--db", database_.conninfo(), "--site", "delft"});
-  test::ChildProcess backbone_process(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone", backbone,
-                                      (work_ / "backbone.log").string());
-  std::vector<std::string> robot = dds();
-  robot.insert(robot.end(),
-               {"--robot-id", "drive", "--images", (work_ / "dataset").string(), "--calibration",
-                (work_ / "dataset" / "cam0" / "calibration.yaml").string(), "--site-crs",
-                "EPSG:7415", "--camera-height-m", fmt::format("{}", kCameraHeightM),
-                "--trajectory-out", (work_ / "fixes.tum").string(), "--fused-trajectory-out",
-                (work_ / "fused.tum").string(), "--site-origin"});
-  robot.insert(robot.end(), kSiteOrigin.begin(), kSiteOrigin.end());
-  runOrFail("lineloc-robot", robot, work_ / "robot.log", (kDriveSeconds + 120) * 1000);
-  backbone_process.signal(SIGTERM);
-  backbone_process.wait(10'000);
+  const auto backbone = startBackbone("backbone.log");
+  const auto robot = startRobot();
+  waitForRobot(*robot);
+  backbone->signal(SIGTERM);
+  backbone->wait(10'000);
 
   const std::string robot_log = readFile(work_ / "robot.log");
   const int sent = countIn(robot_log, R"(([0-9]+) frames sent)");
   ASSERT_GT(sent, kDriveSeconds * 10) << robot_log;
   EXPECT_EQ(countIn(robot_log, R"(([0-9]+) fixes received)"), sent) << robot_log;
 
-  const auto truth = byStamp(readTumFile((work_ / "dataset" / "groundtruth_cam0.tum").string()));
-  const auto fused = byStamp(readTumFile((work_ / "fused.tum").string()));
-  const auto fixes = byStamp(readTumFile((work_ / "fixes.tum").string()));
+  const auto fused = poses("fused.tum");
+  const auto fixes = poses("fixes.tum");
   ASSERT_FALSE(fixes.empty()) << robot_log;
   ASSERT_FALSE(fused.empty());
   const int64_t first_frame_ns = fused.begin()->first;
   const int64_t first_fix_ns = fixes.begin()->first;
   EXPECT_LE((first_fix_ns - first_frame_ns) * 1e-9, kMaxSecondsToFirstFix);
 
-  const int64_t settled_ns = first_fix_ns + static_cast<int64_t>(kSettleSeconds * 1e9);
-  double squared_position = 0.0;
-  double squared_attitude = 0.0;
-  int frames = 0;
-  for (auto pose = fused.lower_bound(settled_ns); pose != fused.end(); ++pose) {
-    const auto true_pose = truth.find(pose->first);
-    ASSERT_NE(true_pose, truth.end()) << "no ground truth at " << pose->first;
-    squared_position +=
-        (pose->second.translation() - true_pose->second.translation()).squaredNorm();
-    const double angle_rad =
-        Eigen::AngleAxisd(pose->second.linear().transpose() * true_pose->second.linear()).angle();
-    squared_attitude += angle_rad * angle_rad;
-    ++frames;
-  }
-  ASSERT_GT(frames, 0);
-  const double position_rmse_m = std::sqrt(squared_position / frames);
-  const double attitude_rmse_deg = std::sqrt(squared_attitude / frames) * 180.0 / M_PI;
+  const Accuracy accuracy = accuracyFrom(fused, poses(fs::path("dataset") / "groundtruth_cam0.tum"),
+                                         first_fix_ns + static_cast<int64_t>(kSettleSeconds * 1e9));
   const auto fixes_after =
       static_cast<double>(std::distance(fixes.lower_bound(first_fix_ns), fixes.end()));
   const auto frames_after =
@@ -164,11 +208,50 @@ TEST_F(DelftDrive, TheRobotKnowsItsPoseToCentimetresSoonAfterADgpsStart) {
   fmt::print(
       "drive: first fix {:.2f} s after the first frame; from {:.0f} s after it, position "
       "RMSE {:.3f} m, attitude RMSE {:.3f} deg over {} frames; {} fixes over {} frames\n",
-      (first_fix_ns - first_frame_ns) * 1e-9, kSettleSeconds, position_rmse_m, attitude_rmse_deg,
-      frames, fixes_after, frames_after);
-  EXPECT_LE(position_rmse_m, kMaxPositionRmseM);
-  EXPECT_LE(attitude_rmse_deg, kMaxAttitudeRmseDeg);
+      (first_fix_ns - first_frame_ns) * 1e-9, kSettleSeconds, accuracy.position_rmse_m,
+      accuracy.attitude_rmse_deg, accuracy.frames, fixes_after, frames_after);
+  ASSERT_GT(accuracy.frames, 0);
+  EXPECT_LE(accuracy.position_rmse_m, kMaxPositionRmseM);
+  EXPECT_LE(accuracy.attitude_rmse_deg, kMaxAttitudeRmseDeg);
   EXPECT_GE(fixes_after / frames_after, kMinFixedFraction);
+}
+
+// The backbone killed mid-drive and started again: the robot dead-reckons
+// through the outage, the new backbone (which knows nothing of the robot)
+// finds it again, and the end of the drive is as accurate as ever.
+TEST_F(DelftDrive, ABackboneKilledMidDriveAndRestartedPullsTheRobotBack) {
+  auto backbone = startBackbone("backbone.log");
+  const auto robot = startRobot();
+  std::this_thread::sleep_for(std::chrono::seconds(kKillAfterSeconds));
+  backbone->signal(SIGKILL);
+  backbone->wait(10'000);
+  std::this_thread::sleep_for(std::chrono::seconds(kOutageSeconds));
+  backbone = startBackbone("backbone-restarted.log");
+  waitForRobot(*robot);
+  backbone->signal(SIGTERM);
+  backbone->wait(10'000);
+
+  const auto fused = poses("fused.tum");
+  const auto fixes = poses("fixes.tum");
+  ASSERT_FALSE(fused.empty());
+  // The outage shows as frames without a fix (the robot dead-reckoned).
+  int64_t longest_gap_ns = 0;
+  for (auto fix = fixes.begin(); fix != fixes.end() && std::next(fix) != fixes.end(); ++fix) {
+    longest_gap_ns = std::max(longest_gap_ns, std::next(fix)->first - fix->first);
+  }
+  EXPECT_GE(longest_gap_ns * 1e-9, kOutageSeconds - 1.0);
+  const int64_t end_ns = fused.rbegin()->first;
+  const int64_t last_part_ns = end_ns - static_cast<int64_t>(kLastPartSeconds * 1e9);
+  ASSERT_NE(fixes.lower_bound(last_part_ns), fixes.end()) << "no fix after the restart:\n"
+                                                          << readFile(work_ / "robot.log");
+  const Accuracy accuracy =
+      accuracyFrom(fused, poses(fs::path("dataset") / "groundtruth_cam0.tum"), last_part_ns);
+  fmt::print(
+      "restart: last {:.0f} s of the drive, position RMSE {:.3f} m, attitude RMSE {:.3f} "
+      "deg over {} frames\n",
+      kLastPartSeconds, accuracy.position_rmse_m, accuracy.attitude_rmse_deg, accuracy.frames);
+  EXPECT_LE(accuracy.position_rmse_m, kMaxPositionRmseM);
+  EXPECT_LE(accuracy.attitude_rmse_deg, kMaxAttitudeRmseDeg);
 }
 
 }  // namespace

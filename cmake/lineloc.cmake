@@ -75,12 +75,14 @@ function(lineloc_add_fuzz_target name)
   endif()
 endfunction()
 
-# lineloc_add_integration_test(NAME SOURCES... LIBS ... DEPENDS programs...):
+# lineloc_add_integration_test(NAME [REAL_TIME] SOURCES... LIBS ... DEPENDS programs...):
 # a GoogleTest binary that starts the project's real programs (from
 # LINELOC_BIN_DIR) against the private PostGIS cluster and DDS on loopback;
-# labelled "integration".
+# labelled "integration". REAL_TIME tests replay sensors in real time and check
+# what the robot achieved in that time: they run alone (RUN_SERIAL), so other
+# tests do not take the cores the real robot and backbone would have.
 function(lineloc_add_integration_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "REAL_TIME" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
                         GTest::gtest_main)
@@ -91,7 +93,11 @@ function(lineloc_add_integration_test name)
   if(ARG_DEPENDS)
     add_dependencies(${name} ${ARG_DEPENDS})
   endif()
+  set(run_serial FALSE)
+  if(ARG_REAL_TIME)
+    set(run_serial TRUE)
+  endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS integration
-                       FIXTURES_REQUIRED postgis
+                       FIXTURES_REQUIRED postgis RUN_SERIAL ${run_serial}
                        ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
 endfunction()

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 
 #include "common/pose/pose_estimator.h"
 #include "common/time/clock.h"
@@ -67,6 +68,14 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
     matched.matches.push_back(best);
   }
   return matched;
+}
+
+// The a-posteriori variance factor s^2 = chi^2 / (2 n - 6) of n line
+// correspondences (two residuals each, six pose parameters), when the
+// residuals are larger than their stated noise; 1 otherwise, or with too few.
+double varianceFactor(double chi2, int correspondences) {
+  const int redundancy = 2 * correspondences - 6;
+  return redundancy > 0 ? std::max(1.0, chi2 / redundancy) : 1.0;
 }
 
 double largestPositionSigma(const Matrix6d& covariance) {
@@ -135,12 +144,17 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
       return alignment;
     }
     alignment.inliers = 0;
+    double inlier_chi2 = 0.0;
     for (const CorrespondenceResidual& residual : estimate.line_residuals) {
-      alignment.inliers += residual.normalized_residual < options.inlier_threshold_sigma ? 1 : 0;
+      if (residual.normalized_residual < options.inlier_threshold_sigma) {
+        ++alignment.inliers;
+        inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
+      }
     }
     alignment.rms_residual_px = estimate.rms_residual_px;
     const bool done = converged(current.pose, estimate.T_world_camera.pose, options);
     current = estimate.T_world_camera;
+    current.covariance *= varianceFactor(inlier_chi2, alignment.inliers);
     if (done) {
       break;
     }

@@ -12,6 +12,10 @@
 //
 // Each correspondence's endpoint covariance is the image fit's plus the edge
 // and model error floors below, divided by the model line's visibility weight.
+// When the inliers' residuals exceed that noise, the pose covariance is scaled
+// by the a-posteriori variance factor s^2 = chi^2 / (2 n - 6) (Förstner &
+// Wrobel, "Photogrammetric Computer Vision", 2016, §4.2.3), so a fix is never
+// more confident than its own residuals allow.
 //
 // The answer is only OK when enough matches carry it and the result is well
 // conditioned: too few inliers, or a position standard deviation beyond

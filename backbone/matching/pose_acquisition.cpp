@@ -69,8 +69,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     Verified verified{alignModel(image, visible, start, camera, options.alignment), {}, {}};
     acquisition.alignment.matching_ns += verified.alignment.matching_ns;
     acquisition.alignment.pose_ns += verified.alignment.pose_ns;
-    if (verified.alignment.status == AlignmentStatus::kOk &&
-        verified.alignment.inliers >= options.min_inliers) {
+    if (verified.alignment.status == AlignmentStatus::kOk) {
       verified.coverage =
           search.coverage(visible, verified.alignment.T_world_camera.pose, verification_map);
       verified.visible = std::move(visible);
@@ -90,10 +89,19 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   const int64_t pose_ns = acquisition.alignment.pose_ns;
   acquisition.alignment = best->alignment;
   acquisition.visible = best->visible;
+  acquisition.alignment.T_world_camera.covariance += diagonalPoseCovariance(
+      options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
   acquisition.best_score = best->coverage.score;
   acquisition.rival_score = rival != nullptr ? rival->coverage.score : 0.0;
+  if (acquisition.alignment.inliers < options.min_inliers) {
+    acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
+    acquisition.alignment.message =
+        fmt::format("the best aligned hypothesis has {} inliers, {} needed",
+                    acquisition.alignment.inliers, options.min_inliers);
+    return acquisition;
+  }
   if (acquisition.rival_score >= options.ambiguous_score_fraction * acquisition.best_score) {
     acquisition.alignment.status = AlignmentStatus::kAmbiguous;
     acquisition.alignment.message =

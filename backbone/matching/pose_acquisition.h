@@ -9,6 +9,12 @@
 // street, a single façade) and the answer is kAmbiguous, never the likelier
 // of two precise poses. Inlier counts do not separate them: a wrong pose near
 // a façade full of windows finds as many lines to agree with.
+//
+// An acquired pose may still have settled on a neighbour of the right one a
+// window's width away (a near-parallel line taken for the right one): its
+// covariance is widened by the search's own resolution, acquired_*_sigma,
+// so the robot takes it as a start, and tracking (tight gates, many frames)
+// brings it to centimetres.
 #pragma once
 
 #include <vector>
@@ -27,14 +33,19 @@ struct AcquisitionOptions {
   // Hidden-line removal for the alignment at each hypothesis.
   VisibilityOptions visibility;
   DistanceMapOptions verification_distances{15.0, 3.0, 1};
-  // An acquired pose needs this many inliers: a wrong pose near a façade
-  // finds a handful of window lines to agree with, the right one most of the
-  // building outlines in view.
+  // Added to an acquired pose's covariance (standard deviations); below the
+  // localizer's tracking limits, so the next frame is tracked.
+  double acquired_position_sigma_m = 0.15;
+  double acquired_rotation_sigma_rad = 0.3 * M_PI / 180.0;
+  // The best aligned hypothesis needs this many inliers: a wrong pose near a
+  // façade finds a handful of window lines to agree with, the right one most
+  // of the building outlines in view. Hypotheses with fewer still compete (a
+  // weak but better-scoring one is never passed over for a worse one).
   int min_inliers = 12;
   // A second aligned hypothesis scoring at least this fraction of the best
   // one, farther than distinct_position_m or distinct_yaw_rad from it, makes
   // the answer ambiguous.
-  double ambiguous_score_fraction = 0.8;
+  double ambiguous_score_fraction = 0.75;
 };
 
 struct Acquisition {

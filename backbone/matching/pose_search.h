@@ -62,7 +62,7 @@ struct PoseSearchOptions {
   // Side of the cells that share one visibility computation (metres).
   double visibility_cell_m = 3.0;
   // Distinct hypotheses kept after the coarse level, best first.
-  int max_hypotheses = 6;
+  int max_hypotheses = 12;
   // Hypotheses closer than both of these are the same (non-maximum suppression).
   double distinct_position_m = 1.0;
   double distinct_yaw_rad = 1.0 * M_PI / 180.0;

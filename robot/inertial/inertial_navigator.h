@@ -63,7 +63,9 @@ struct InertialNavigatorConfig {
   // Camera mounted looking forward: camera z = body x, camera x = -body y, camera y = -body z.
   Eigen::Isometry3d T_body_camera = defaultBodyCamera();
   Eigen::Vector3d p_body_gps_antenna = Eigen::Vector3d::Zero();
-  int64_t history_ns = 1'000'000'000;
+  // Long enough for a fix found by the backbone's search from a DGPS start,
+  // which answers its frame a second or two late.
+  int64_t history_ns = 3'000'000'000;
   double gate_probability = 0.999;
 
   // Still: per-axis standard deviations within twice the white noise of one

@@ -421,7 +421,9 @@ TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {
                 .norm(),
             1e-3);
   EXPECT_GT(beyond.T_world_camera.covariance.trace(), at_last.T_world_camera.covariance.trace());
-  EXPECT_EQ(navigator.predictAt(last - 2'000'000'000).status, PredictionStatus::kBeforeHistory);
+  const int64_t history_ns = InertialNavigatorConfig{}.history_ns;
+  EXPECT_EQ(navigator.predictAt(last - history_ns - 500'000'000).status,
+            PredictionStatus::kBeforeHistory);
 }
 
 }  // namespace

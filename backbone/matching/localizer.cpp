@@ -24,10 +24,10 @@ Localization localize(const std::vector<ImageSegment>& image,
   Localization localization;
   if (needsAcquisition(prior, options)) {
     Acquisition acquisition = acquirePose(image, lines, scene, prior, camera, options.acquisition);
-    localization.acquired = true;
+    localization.search = acquisition.summary;
     localization.alignment = std::move(acquisition.alignment);
     localization.visible = std::move(acquisition.visible);
-    localization.visibility_ns = acquisition.search_ns;
+    localization.visibility_ns = acquisition.summary.search_ns;
     return localization;
   }
   const int64_t visibility_start_ns = steadyClockNs();

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "backbone/matching/pose_acquisition.h"
@@ -24,7 +25,8 @@ struct LocalizerOptions {
 
 struct Localization {
   Alignment alignment;
-  bool acquired = false;
+  // Set when the pose was acquired by a search rather than tracked.
+  std::optional<SearchSummary> search;
   // The model pieces visible from the prior (tracking) or from the winning
   // hypothesis (acquisition).
   std::vector<VisibleSegment> visible;

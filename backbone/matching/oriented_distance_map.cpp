@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 
 namespace lineloc {
 namespace {
 
 constexpr int kBins = OrientedDistanceMap::kOrientationBins;
 constexpr double kBinWidthRad = M_PI / kBins;
-constexpr uchar kBackground = 255;
 
 // Position of a direction in bin units, in [0, bins).
 double binCoordinate(double direction_rad) {
@@ -33,40 +31,93 @@ OrientedDistanceMap::OrientedDistanceMap(const std::vector<ImageSegment>& segmen
       downsample_(std::max(1, options.downsample)) {
   const cv::Size size((width_px + downsample_ - 1) / downsample_,
                       (height_px + downsample_ - 1) / downsample_);
-  std::array<cv::Mat1b, kBins> masks;
-  for (cv::Mat1b& mask : masks) {
-    mask = cv::Mat1b(size, kBackground);
+  for (cv::Mat1f& map : maps_) {
+    map = cv::Mat1f(size, truncation_px_);
   }
-  const double scale = 1.0 / downsample_;
   for (const ImageSegment& segment : segments) {
-    const Eigen::Vector2f along = segment.end - segment.start;
-    if (along.norm() < options.min_segment_length_px) {
+    const Eigen::Vector2d a = segment.start.cast<double>();
+    const Eigen::Vector2d b = segment.end.cast<double>();
+    const Eigen::Vector2d along = b - a;
+    if (!(along.norm() >= options.min_segment_length_px)) {
       continue;
     }
     const double coordinate = binCoordinate(std::atan2(along.y(), along.x()));
     const int nearest = static_cast<int>(std::lround(coordinate));
     const int neighbour = coordinate > nearest ? nearest + 1 : nearest - 1;
-    const cv::Point2d a(segment.start.x() * scale, segment.start.y() * scale);
-    const cv::Point2d b(segment.end.x() * scale, segment.end.y() * scale);
     for (const int bin : {wrapBin(nearest), wrapBin(neighbour)}) {
-      cv::line(masks[bin], a, b, cv::Scalar(0), 1, cv::LINE_8);
+      drawDistanceBand(maps_[bin], a, b);
     }
-  }
-  for (int bin = 0; bin < kBins; ++bin) {
-    cv::distanceTransform(masks[bin], maps_[bin], cv::DIST_L2, cv::DIST_MASK_5, CV_32F);
-    maps_[bin] = cv::min(maps_[bin] * downsample_, truncation_px_);
   }
 }
 
-float OrientedDistanceMap::distance(const Eigen::Vector2d& pixel, double direction_rad) const {
-  const cv::Mat1f& map = maps_[binOf(direction_rad)];
-  const double u = pixel.x() / downsample_;
-  const double v = pixel.y() / downsample_;
+// Row y of the band meets the capsule {q : |q - s| <= tau} inside
+// [min x - tau, max x + tau] and, for a segment that is not horizontal, inside
+// the strip |n . (q - a)| <= tau about its line: x = x_line(y) +- tau / |n_x|.
+void OrientedDistanceMap::drawDistanceBand(cv::Mat1f& map, const Eigen::Vector2d& a,
+                                           const Eigen::Vector2d& b) const {
+  const double scale = downsample_;
+  const double tau = truncation_px_;
+  const Eigen::Vector2d along = b - a;
+  const double length_squared = along.squaredNorm();
+  const double length = std::sqrt(length_squared);
+  const double abs_normal_x = std::abs(along.y()) / length;
+  const int row_first =
+      std::max(0, static_cast<int>(std::ceil((std::min(a.y(), b.y()) - tau) / scale)));
+  const int row_last =
+      std::min(map.rows - 1, static_cast<int>(std::floor((std::max(a.y(), b.y()) + tau) / scale)));
+  const double x_min = std::min(a.x(), b.x()) - tau;
+  const double x_max = std::max(a.x(), b.x()) + tau;
+  for (int row = row_first; row <= row_last; ++row) {
+    const double y = row * scale;
+    double from = x_min;
+    double to = x_max;
+    if (abs_normal_x > 1e-9) {
+      const double x_line = a.x() + along.x() * (y - a.y()) / along.y();
+      from = std::max(from, x_line - tau / abs_normal_x);
+      to = std::min(to, x_line + tau / abs_normal_x);
+    }
+    const int col_first = std::max(0, static_cast<int>(std::ceil(from / scale)));
+    const int col_last = std::min(map.cols - 1, static_cast<int>(std::floor(to / scale)));
+    float* cells = map[row];
+    for (int col = col_first; col <= col_last; ++col) {
+      const Eigen::Vector2d offset(col * scale - a.x(), y - a.y());
+      const double t = std::clamp(offset.dot(along) / length_squared, 0.0, 1.0);
+      const float distance = static_cast<float>((offset - t * along).norm());
+      cells[col] = std::min(cells[col], distance);
+    }
+  }
+}
+
+float OrientedDistanceMap::lookup(const cv::Mat1f& map, const Eigen::Vector2d& scaled_pixel) const {
+  const double u = scaled_pixel.x() + 0.5;
+  const double v = scaled_pixel.y() + 0.5;
   // Written so that NaN fails the test too.
   if (!(u >= 0.0 && v >= 0.0 && u < map.cols && v < map.rows)) {
     return truncation_px_;
   }
   return map(static_cast<int>(v), static_cast<int>(u));
+}
+
+float OrientedDistanceMap::distance(const Eigen::Vector2d& pixel, double direction_rad) const {
+  return lookup(maps_[binOf(direction_rad)], pixel / downsample_);
+}
+
+double OrientedDistanceMap::coveredLength(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                          double spacing_px) const {
+  const Eigen::Vector2d along = b - a;
+  const double length = along.norm();
+  const int samples = static_cast<int>(length / spacing_px);
+  if (samples == 0) {
+    return 0.0;
+  }
+  const cv::Mat1f& map = maps_[binOf(std::atan2(along.y(), along.x()))];
+  const Eigen::Vector2d step = along / (static_cast<double>(samples) * downsample_);
+  Eigen::Vector2d sample = a / downsample_ + 0.5 * step;
+  double distance_sum = 0.0;
+  for (int k = 0; k < samples; ++k, sample += step) {
+    distance_sum += lookup(map, sample);
+  }
+  return length * (1.0 - distance_sum / (samples * truncation_px_));
 }
 
 }  // namespace lineloc

@@ -54,8 +54,8 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   const int64_t search_start_ns = steadyClockNs();
   const PoseSearch search(lines, scene, camera, options.search);
   const std::vector<PoseHypothesis> hypotheses = search.search(image, prior);
-  acquisition.search_ns = steadyClockNs() - search_start_ns;
-  acquisition.hypotheses = static_cast<int>(hypotheses.size());
+  acquisition.summary.search_ns = steadyClockNs() - search_start_ns;
+  acquisition.summary.hypotheses = static_cast<int>(hypotheses.size());
 
   const OrientedDistanceMap verification_map(image, camera.width, camera.height,
                                              options.verification_distances);
@@ -76,7 +76,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
       aligned.push_back(std::move(verified));
     }
   }
-  acquisition.aligned = static_cast<int>(aligned.size());
+  acquisition.summary.aligned = static_cast<int>(aligned.size());
   if (aligned.empty()) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message =
@@ -93,8 +93,8 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
       options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
-  acquisition.best_score = best->coverage.score;
-  acquisition.rival_score = rival != nullptr ? rival->coverage.score : 0.0;
+  acquisition.summary.best_score = best->coverage.score;
+  acquisition.summary.rival_score = rival != nullptr ? rival->coverage.score : 0.0;
   if (acquisition.alignment.inliers < options.min_inliers) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message =
@@ -102,11 +102,12 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
                     acquisition.alignment.inliers, options.min_inliers);
     return acquisition;
   }
-  if (acquisition.rival_score >= options.ambiguous_score_fraction * acquisition.best_score) {
+  const SearchSummary& summary = acquisition.summary;
+  if (summary.rival_score >= options.ambiguous_score_fraction * summary.best_score) {
     acquisition.alignment.status = AlignmentStatus::kAmbiguous;
     acquisition.alignment.message =
         fmt::format("two distinct poses align: coverage scores {:.1f} and {:.1f}",
-                    acquisition.best_score, acquisition.rival_score);
+                    summary.best_score, summary.rival_score);
   }
   return acquisition;
 }

@@ -48,17 +48,23 @@ struct AcquisitionOptions {
   double ambiguous_score_fraction = 0.75;
 };
 
-struct Acquisition {
-  Alignment alignment;
-  // The model pieces visible from the best aligned hypothesis.
-  std::vector<VisibleSegment> visible;
-  // Hypotheses the search proposed and how many of them aligned.
+// What a search found, for logs and benchmarks.
+struct SearchSummary {
+  // Hypotheses the grid search proposed and how many of them aligned.
   int hypotheses = 0;
   int aligned = 0;
   // Verification scores of the best aligned pose and its best distinct rival (0: none).
   double best_score = 0.0;
   double rival_score = 0.0;
+  // Time of the grid search alone (pose_search.h).
   int64_t search_ns = 0;
+};
+
+struct Acquisition {
+  Alignment alignment;
+  // The model pieces visible from the best aligned hypothesis.
+  std::vector<VisibleSegment> visible;
+  SearchSummary summary;
 };
 
 // `lines` and `scene` are the model near the prior; `prior.pose` carries the

@@ -132,8 +132,6 @@ Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
                               const Eigen::Isometry3d& T_world_camera,
                               const OrientedDistanceMap& map) const {
   const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
-  const double truncation = map.truncationPx();
-  const double spacing = options_.sample_spacing_px;
   Coverage coverage;
   for (const VisibleSegment& segment : visible) {
     Eigen::Vector3d a = T_camera_world * segment.start_world;
@@ -146,19 +144,11 @@ Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
     if (!clipToImage(pa, pb, camera_.width, camera_.height)) {
       continue;
     }
-    const Eigen::Vector2d along = pb - pa;
-    const double length = along.norm();
-    const int samples = static_cast<int>(length / spacing);
-    if (samples == 0) {
+    const double length = (pb - pa).norm();
+    if (length < options_.sample_spacing_px) {
       continue;
     }
-    const double direction = std::atan2(along.y(), along.x());
-    const Eigen::Vector2d step = along / samples;
-    double covered = 0.0;
-    for (int k = 0; k < samples; ++k) {
-      covered += 1.0 - map.distance(pa + (k + 0.5) * step, direction) / truncation;
-    }
-    coverage.covered_px += covered * (length / samples);
+    coverage.covered_px += map.coveredLength(pa, pb, options_.sample_spacing_px);
     coverage.model_px += length;
   }
   if (coverage.model_px >= options_.min_model_length_px) {
@@ -168,9 +158,8 @@ Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
 }
 
 PoseSearch::GridPose PoseSearch::refine(const GridPose& start, const Eigen::Matrix3d& R_prior,
-                                        const std::vector<ImageSegment>& image) const {
+                                        const OrientedDistanceMap& map) const {
   const SearchLevel& fine = options_.fine;
-  const OrientedDistanceMap map(image, camera_.width, camera_.height, fine.distances);
   const std::vector<VisibleSegment> visible =
       visibleFrom(start.position_world, yawed(R_prior, start.yaw_offset_rad), fine.yaw_range_rad);
   GridPose best = start;
@@ -237,9 +226,10 @@ std::vector<PoseHypothesis> PoseSearch::search(const std::vector<ImageSegment>& 
     }
   }
 
+  const OrientedDistanceMap fine_map(image, camera_.width, camera_.height, options_.fine.distances);
   std::vector<GridPose> refined;
   for (const GridPose& start : distinctBest(std::move(scored))) {
-    refined.push_back(refine(start, R_prior, image));
+    refined.push_back(refine(start, R_prior, fine_map));
   }
   std::vector<PoseHypothesis> hypotheses;
   for (const GridPose& pose : distinctBest(std::move(refined))) {

@@ -109,9 +109,9 @@ class PoseSearch {
     double yaw_offset_rad = 0.0;
     Coverage coverage;
   };
-  // The best pose on the fine grid around `start`.
+  // The best pose on the fine grid around `start`, scored against the fine level's map.
   GridPose refine(const GridPose& start, const Eigen::Matrix3d& R_prior,
-                  const std::vector<ImageSegment>& image) const;
+                  const OrientedDistanceMap& map) const;
   std::vector<GridPose> distinctBest(std::vector<GridPose> poses) const;
   Eigen::Isometry3d poseOf(const GridPose& grid, const Eigen::Matrix3d& R_prior) const;
 

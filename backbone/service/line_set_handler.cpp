@@ -122,37 +122,66 @@ void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap
   if (alignment.status == AlignmentStatus::kOk) {
     fix.T_world_camera = alignment.T_world_camera;
   }
-  if (localization.acquired && alignment.status == AlignmentStatus::kOk &&
-      !confirmsPreviousSearch(line_set, alignment.T_world_camera.pose)) {
-    fix.status = lineloc_msg_FIX_AMBIGUOUS;
-    fix.T_world_camera = line_set.predicted_T_world_camera;
+  if (!localization.search) {
+    return;
   }
-  if (localization.acquired) {
+  {
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.searches;
   }
+  std::string outcome = alignment.message;
+  if (alignment.status == AlignmentStatus::kOk) {
+    const Confirmation confirmation =
+        confirmPreviousSearch(line_set, alignment.T_world_camera.pose);
+    outcome = toString(confirmation);
+    if (confirmation != Confirmation::kConfirmed) {
+      fix.status = lineloc_msg_FIX_AMBIGUOUS;
+      fix.T_world_camera = line_set.predicted_T_world_camera;
+    }
+  }
+  const SearchSummary& search = *localization.search;
+  spdlog::info(
+      "search for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
+      "best / {:.1f} rival, {} inliers, grid search {:.0f} ms",
+      line_set.robot_id, line_set.sequence_number, lineloc::toString(fix.status), outcome,
+      search.aligned, search.hypotheses, search.best_score, search.rival_score, alignment.inliers,
+      search.search_ns * 1e-6);
 }
 
-bool LineSetHandler::confirmsPreviousSearch(const LineSetData& line_set,
-                                            const Eigen::Isometry3d& acquired) {
+const char* LineSetHandler::toString(Confirmation confirmation) {
+  switch (confirmation) {
+    case Confirmation::kConfirmed:
+      return "confirms the previous search";
+    case Confirmation::kFirst:
+      return "awaits confirmation by the next search";
+    case Confirmation::kDisagrees:
+      return "disagrees with the previous search";
+  }
+  return "";
+}
+
+LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
+    const LineSetData& line_set, const Eigen::Isometry3d& acquired) {
   const SearchResult current{line_set.stamp_ns, acquired, line_set.predicted_T_world_camera.pose};
   const std::lock_guard<std::mutex> lock(searches_mutex_);
   const auto previous = last_search_.find(line_set.robot_id);
   if (previous == last_search_.end()) {
     last_search_.emplace(line_set.robot_id, current);
-    return false;
+    return Confirmation::kFirst;
   }
   const SearchResult last = std::exchange(previous->second, current);
   const double age_s = (current.stamp_ns - last.stamp_ns) * 1e-9;
   if (!(age_s > 0.0 && age_s <= options_.confirm_within_s)) {
-    return false;
+    return Confirmation::kFirst;
   }
   const Eigen::Isometry3d expected = last.T_world_camera_found *
                                      last.T_world_camera_predicted.inverse() *
                                      current.T_world_camera_predicted;
   const Eigen::AngleAxisd rotation(expected.linear().transpose() * acquired.linear());
-  return (expected.translation() - acquired.translation()).norm() <= options_.confirm_position_m &&
-         std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
+  const bool agrees =
+      (expected.translation() - acquired.translation()).norm() <= options_.confirm_position_m &&
+      std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
+  return agrees ? Confirmation::kConfirmed : Confirmation::kDisagrees;
 }
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {

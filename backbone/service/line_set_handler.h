@@ -102,9 +102,13 @@ class LineSetHandler {
   void localizeInto(const LineSetData& line_set, const PreparedMap& map,
                     const PoseWithCovariance& prior, PoseFixData& fix);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
-  // True when `acquired` at `line_set`'s time confirms the robot's previous
-  // search result; remembers it for the next one either way.
-  bool confirmsPreviousSearch(const LineSetData& line_set, const Eigen::Isometry3d& acquired);
+  enum class Confirmation { kConfirmed, kFirst, kDisagrees };
+  static const char* toString(Confirmation confirmation);
+  // Whether `acquired` at `line_set`'s time confirms the robot's previous
+  // search result (kFirst: there is none recent); remembers it for the next
+  // one either way.
+  Confirmation confirmPreviousSearch(const LineSetData& line_set,
+                                     const Eigen::Isometry3d& acquired);
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 

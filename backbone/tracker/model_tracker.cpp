@@ -20,7 +20,7 @@ TrackedFrame ModelTracker::track(const std::vector<ImageSegment>& segments) {
   Localization localization =
       localize(segments, model_.lines, scene_, predicted, camera_, options_.localizer);
   frame.alignment = std::move(localization.alignment);
-  frame.acquired = localization.acquired;
+  frame.acquired = localization.search.has_value();
   frame.visible = std::move(localization.visible);
   frame.T_world_camera =
       frame.alignment.status == AlignmentStatus::kOk ? frame.alignment.T_world_camera : predicted;

@@ -26,9 +26,11 @@ OrientedDistanceMap horizontalAt100(int downsample) {
 TEST(OrientedDistanceMap, MeasuresTheDistanceToASegmentOfTheSameDirection) {
   const OrientedDistanceMap map = horizontalAt100(1);
   EXPECT_NEAR(map.distance({200, 100}, kHorizontal), 0.0, 1e-6);
-  // Borgefors' 5x5 mask is within 2 % of the Euclidean distance.
-  EXPECT_NEAR(map.distance({200, 106}, kHorizontal), 6.0, 0.15);
-  EXPECT_NEAR(map.distance({200, 94}, M_PI), 6.0, 0.15);          // direction is taken mod pi
+  // Exact Euclidean distances, also past a segment's end.
+  EXPECT_NEAR(map.distance({200, 106}, kHorizontal), 6.0, 1e-6);
+  EXPECT_NEAR(map.distance({200, 94}, M_PI), 6.0, 1e-6);  // direction is taken mod pi
+  EXPECT_NEAR(map.distance({304, 103}, kHorizontal), 5.0, 1e-6);
+  EXPECT_NEAR(map.distance({96, 97}, kHorizontal), 5.0, 1e-6);
   EXPECT_FLOAT_EQ(map.distance({200, 150}, kHorizontal), 10.0f);  // truncated
 }
 
@@ -55,6 +57,24 @@ TEST(OrientedDistanceMap, OutsideTheImageShortSegmentsAndNaNGiveTheTruncation) {
   EXPECT_FLOAT_EQ(map.distance({1e300, 100}, kHorizontal), 10.0f);
   const OrientedDistanceMap short_only({segment(100, 100, 110, 100)}, 640, 480, {15.0, 10.0, 1});
   EXPECT_FLOAT_EQ(short_only.distance({105, 100}, kHorizontal), 10.0f);
+}
+
+TEST(OrientedDistanceMap, CoveredLengthIsTheLengthWeightedByOneMinusTheMeanDistance) {
+  const OrientedDistanceMap map = horizontalAt100(1);
+  // On the segment: fully covered; 6 px beside it: 1 - 6/10 of the length;
+  // 20 px away or across it: nothing.
+  EXPECT_NEAR(map.coveredLength({120, 100}, {280, 100}, 6.0), 160.0, 1e-6);
+  EXPECT_NEAR(map.coveredLength({280, 100}, {120, 100}, 6.0), 160.0, 1e-6);
+  EXPECT_NEAR(map.coveredLength({120, 106}, {280, 106}, 6.0), 0.4 * 160.0, 1e-3);
+  EXPECT_NEAR(map.coveredLength({120, 120}, {280, 120}, 6.0), 0.0, 1e-6);
+  EXPECT_NEAR(map.coveredLength({200, 20}, {200, 180}, 6.0), 0.0, 1e-6);
+  // Half on the segment, half beyond its end: half covered, give or take the
+  // distance ramp past the end.
+  EXPECT_NEAR(map.coveredLength({200, 100}, {400, 100}, 4.0), 100.0 + 0.5 * 10.0, 4.0);
+  // Shorter than one sample spacing: nothing to sample.
+  EXPECT_EQ(map.coveredLength({120, 100}, {125, 100}, 6.0), 0.0);
+  // Half resolution measures the same.
+  EXPECT_NEAR(horizontalAt100(2).coveredLength({120, 100}, {280, 100}, 6.0), 160.0, 1e-6);
 }
 
 TEST(OrientedDistanceMap, BinsWrapAroundHalfATurn) {

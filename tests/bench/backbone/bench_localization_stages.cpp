@@ -1,0 +1,205 @@
+// Where a frame's time goes, stage by stage, on frames of a simulated drive
+// through the bundled Delft model: the robot's front end (lines and corners
+// from the image), the LineSet's encoding, and on the backbone hidden-line
+// removal from the predicted pose, matching, the pose estimate — and the
+// search a DGPS + compass start needs (pose_search.h, pose_acquisition.h).
+// The DDS hop and the PostGIS map are measured by bench_dds_round_trip and
+// bench_db; the backbone's map stage is a cache hit in steady state.
+//
+// Tracking frames are predicted from the truth moved by the robot's tracking
+// uncertainty (2 cm, 0.1 degree); searched frames by a DGPS error (4 m per
+// axis) and a compass error (0.5 degree), as a start gives.
+//
+// Run: build/bin/bench_localization_stages (simulates its frames first, a few
+// seconds). Each stage reports its median over the frames; the
+// exposure -> fix budget of a 30 Hz robot is the sum of the tracking stages
+// plus the DDS round trip.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+
+#include "backbone/matching/localizer.h"
+#include "backbone/tracker/model_file.h"
+#include "common/camera/camera_calibration.h"
+#include "common/messages/messages.h"
+#include "common/trajectory/tum_trajectory.h"
+#include "robot/input/image_sequence.h"
+#include "robot/vision/features/feature_extractor.h"
+#include "sim/dataset/drive_simulation.h"
+
+namespace fs = std::filesystem;
+
+namespace lineloc {
+namespace {
+
+constexpr double kCameraHeightM = 1.5;
+constexpr double kDriveSeconds = 12.0;
+constexpr double kCameraRateHz = 2.0;
+constexpr double kTrackingPositionSigmaM = 0.02;
+constexpr double kTrackingRotationSigmaRad = 0.1 * M_PI / 180.0;
+constexpr double kDgpsSigmaM = 4.0;
+constexpr double kCompassSigmaRad = 0.5 * M_PI / 180.0;
+const Eigen::Vector3d kSiteOrigin(84900.0, 447600.0, 0.0);
+
+struct Frame {
+  cv::Mat image;
+  Eigen::Isometry3d truth;
+  std::vector<ImageSegment> segments;
+};
+
+// A simulated drive's frames, the Delft model in the same site frame and its
+// ray-casting scene: built once for every benchmark.
+struct Drive {
+  Drive() {
+    const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+    const fs::path folder = fs::temp_directory_path() / fmt::format("bench_stages_{}", getpid());
+    fs::remove_all(folder);
+    DriveSimulationConfig config;
+    config.city_model = city.string();
+    config.site_origin = {kSiteOrigin.x(), kSiteOrigin.y(), kSiteOrigin.z()};
+    config.output = folder.string();
+    config.duration_s = kDriveSeconds;
+    config.drive.initial_still_s = 0.5;
+    config.camera_rate_hz = kCameraRateHz;
+    config.camera_height_m = kCameraHeightM;
+    simulateDrive(config);
+    calibration = readCameraCalibration((folder / "cam0" / "calibration.yaml").string());
+    std::map<int64_t, Eigen::Isometry3d> truth;
+    for (const StampedPose& pose : readTumFile((folder / "groundtruth_cam0.tum").string())) {
+      truth[pose.stamp_ns] = pose.pose;
+    }
+    FeatureExtractor extractor(calibration);
+    for (const FrameRef& ref : listImageSequence((folder / "cam0").string())) {
+      Frame frame{cv::imread(ref.path, cv::IMREAD_GRAYSCALE), truth.at(*ref.stamp_ns), {}};
+      frame.segments = extractor.extract(frame.image).segments;
+      frames.push_back(std::move(frame));
+    }
+    fs::remove_all(folder);
+    model = readLocalModel(city.string(), kSiteOrigin, std::nullopt).model;
+    scene = std::make_unique<OcclusionScene>(model.faces);
+  }
+
+  // The truth moved by one draw of the given uncertainty.
+  PoseWithCovariance predicted(const Frame& frame, double position_sigma_m,
+                               double rotation_sigma_rad, std::mt19937& random) const {
+    std::normal_distribution<double> n(0.0, 1.0);
+    PoseWithCovariance prediction;
+    prediction.pose.linear() =
+        Eigen::AngleAxisd(rotation_sigma_rad * n(random), Eigen::Vector3d::UnitZ()) *
+        frame.truth.linear();
+    prediction.pose.translation() =
+        frame.truth.translation() + position_sigma_m * Eigen::Vector3d(n(random), n(random), 0.0);
+    prediction.covariance = diagonalPoseCovariance(position_sigma_m, rotation_sigma_rad);
+    return prediction;
+  }
+
+  CameraCalibration calibration;
+  std::vector<Frame> frames;
+  TrackedModel model;
+  std::unique_ptr<OcclusionScene> scene;
+};
+
+const Drive& drive() {
+  static const Drive instance;
+  return instance;
+}
+
+const Frame& frameAt(int64_t iteration) {
+  return drive().frames[static_cast<size_t>(iteration) % drive().frames.size()];
+}
+
+void BM_RobotFrontEnd(benchmark::State& state) {
+  FeatureExtractor extractor(drive().calibration);
+  int64_t iteration = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(extractor.extract(frameAt(iteration++).image));
+  }
+}
+
+void BM_LineSetEncoding(benchmark::State& state) {
+  int64_t iteration = 0;
+  for (auto _ : state) {
+    LineSetData data;
+    data.camera = drive().calibration.camera;
+    data.segments = frameAt(iteration++).segments;
+    LineSetMessage message(data);
+    benchmark::DoNotOptimize(fromMessage(message.message()));
+  }
+}
+
+void BM_BackboneVisibility(benchmark::State& state) {
+  std::mt19937 random(1);
+  int64_t iteration = 0;
+  for (auto _ : state) {
+    const Frame& frame = frameAt(iteration++);
+    const PoseWithCovariance prior =
+        drive().predicted(frame, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, random);
+    benchmark::DoNotOptimize(visibleSegments(drive().model.lines, *drive().scene, prior,
+                                             drive().calibration.camera, VisibilityOptions{}));
+  }
+}
+
+// Matching and the robust pose, timed apart by the alignment itself.
+void BM_BackboneMatchingAndPose(benchmark::State& state) {
+  std::mt19937 random(2);
+  int64_t iteration = 0;
+  int ok = 0;
+  double matching_ms = 0.0;
+  double pose_ms = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const Frame& frame = frameAt(iteration++);
+    const PoseWithCovariance prior =
+        drive().predicted(frame, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, random);
+    const std::vector<VisibleSegment> visible =
+        visibleSegments(drive().model.lines, *drive().scene, prior, drive().calibration.camera, {});
+    state.ResumeTiming();
+    const Alignment alignment =
+        alignModel(frame.segments, visible, prior, drive().calibration.camera, {});
+    ok += alignment.status == AlignmentStatus::kOk ? 1 : 0;
+    matching_ms += alignment.matching_ns * 1e-6;
+    pose_ms += alignment.pose_ns * 1e-6;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / iteration;
+  state.counters["matching_ms"] = matching_ms / iteration;
+  state.counters["pose_ms"] = pose_ms / iteration;
+}
+
+void BM_BackboneSearchFromDgps(benchmark::State& state) {
+  std::mt19937 random(3);
+  int64_t iteration = 0;
+  int ok = 0;
+  double search_ms = 0.0;
+  for (auto _ : state) {
+    const Frame& frame = frameAt(iteration++);
+    const PoseWithCovariance prior =
+        drive().predicted(frame, kDgpsSigmaM, kCompassSigmaRad, random);
+    const Acquisition acquisition =
+        acquirePose(frame.segments, drive().model.lines, *drive().scene, prior,
+                    drive().calibration.camera, AcquisitionOptions{});
+    ok += acquisition.alignment.status == AlignmentStatus::kOk ? 1 : 0;
+    search_ms += acquisition.summary.search_ns * 1e-6;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / iteration;
+  state.counters["grid_search_ms"] = search_ms / iteration;
+}
+
+// Each per-frame stage: five repetitions over the frames, their median reported.
+void perFrameStage(benchmark::internal::Benchmark* stage) {
+  stage->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly();
+}
+
+BENCHMARK(BM_RobotFrontEnd)->Apply(perFrameStage);
+BENCHMARK(BM_LineSetEncoding)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneVisibility)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneMatchingAndPose)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneSearchFromDgps)->Unit(benchmark::kMillisecond)->Iterations(8);
+
+}  // namespace
+}  // namespace lineloc
+
+BENCHMARK_MAIN();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -59,21 +60,25 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
 
   const OrientedDistanceMap verification_map(image, camera.width, camera.height,
                                              options.verification_distances);
-  std::vector<Verified> aligned;
-  for (const PoseHypothesis& hypothesis : hypotheses) {
-    const PoseWithCovariance start{hypothesis.T_world_camera,
+  std::vector<Verified> verified(hypotheses.size());
+  parallelFor(static_cast<int>(hypotheses.size()), options.search.threads, [&](int i) {
+    const PoseWithCovariance start{hypotheses[i].T_world_camera,
                                    diagonalPoseCovariance(options.hypothesis_position_sigma_m,
                                                           options.hypothesis_rotation_sigma_rad)};
-    std::vector<VisibleSegment> visible =
-        visibleSegments(lines, scene, start, camera, options.visibility);
-    Verified verified{alignModel(image, visible, start, camera, options.alignment), {}, {}};
-    acquisition.alignment.matching_ns += verified.alignment.matching_ns;
-    acquisition.alignment.pose_ns += verified.alignment.pose_ns;
-    if (verified.alignment.status == AlignmentStatus::kOk) {
-      verified.coverage =
-          search.coverage(visible, verified.alignment.T_world_camera.pose, verification_map);
-      verified.visible = std::move(visible);
-      aligned.push_back(std::move(verified));
+    Verified& candidate = verified[i];
+    candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
+    candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
+    if (candidate.alignment.status == AlignmentStatus::kOk) {
+      candidate.coverage = search.coverage(
+          candidate.visible, candidate.alignment.T_world_camera.pose, verification_map);
+    }
+  });
+  std::vector<Verified> aligned;
+  for (Verified& candidate : verified) {
+    acquisition.alignment.matching_ns += candidate.alignment.matching_ns;
+    acquisition.alignment.pose_ns += candidate.alignment.pose_ns;
+    if (candidate.alignment.status == AlignmentStatus::kOk) {
+      aligned.push_back(std::move(candidate));
     }
   }
   acquisition.summary.aligned = static_cast<int>(aligned.size());

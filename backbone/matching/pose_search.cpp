@@ -5,6 +5,8 @@
 #include <map>
 #include <utility>
 
+#include "common/parallel/parallel_for.h"
+
 namespace lineloc {
 namespace {
 
@@ -195,42 +197,54 @@ std::vector<PoseHypothesis> PoseSearch::search(const std::vector<ImageSegment>& 
   const double yaw_range = std::clamp(range * std::sqrt(prior.covariance(5, 5)),
                                       options_.min_yaw_range_rad, options_.max_yaw_range_rad);
   const SearchLevel& coarse = options_.coarse;
-  const OrientedDistanceMap coarse_map(image, camera_.width, camera_.height, coarse.distances);
-  const std::vector<double> yaws = gridOffsets(yaw_range, coarse.yaw_step_rad);
 
-  std::map<std::pair<int, int>, std::vector<VisibleSegment>> visible_by_cell;
-  std::vector<GridPose> scored;
+  // The coarse positions inside the region and not under a roof, each with
+  // the visibility cell it belongs to.
+  std::map<std::pair<int, int>, int> cell_index;
+  std::vector<Eigen::Vector3d> cell_centres;
+  std::vector<std::pair<Eigen::Vector3d, int>> positions;
   for (const double dx : gridOffsets(half_x, coarse.position_step_m)) {
     for (const double dy : gridOffsets(half_y, coarse.position_step_m)) {
       const Eigen::Vector2d offset(dx, dy);
+      const Eigen::Vector3d position = centre + Eigen::Vector3d(dx, dy, 0.0);
       const bool inside_region = offset.dot(information * offset) <= range * range ||
                                  offset.norm() <= coarse.position_step_m;
-      const Eigen::Vector3d position = centre + Eigen::Vector3d(dx, dy, 0.0);
       if (!inside_region || underRoof(position)) {
         continue;
       }
       const std::pair<int, int> cell{
           static_cast<int>(std::lround(dx / options_.visibility_cell_m)),
           static_cast<int>(std::lround(dy / options_.visibility_cell_m))};
-      auto found = visible_by_cell.find(cell);
-      if (found == visible_by_cell.end()) {
-        const Eigen::Vector3d cell_centre =
-            centre + options_.visibility_cell_m * Eigen::Vector3d(cell.first, cell.second, 0.0);
-        found = visible_by_cell.emplace(cell, visibleFrom(cell_centre, R_prior, yaw_range)).first;
+      const auto [found, added] = cell_index.emplace(cell, static_cast<int>(cell_centres.size()));
+      if (added) {
+        cell_centres.push_back(centre + options_.visibility_cell_m *
+                                            Eigen::Vector3d(cell.first, cell.second, 0.0));
       }
-      for (const double yaw : yaws) {
-        GridPose pose{position, yaw, {}};
-        pose.coverage = coverage(found->second, poseOf(pose, R_prior), coarse_map);
-        scored.push_back(pose);
-      }
+      positions.emplace_back(position, found->second);
     }
   }
+  std::vector<std::vector<VisibleSegment>> visible_by_cell(cell_centres.size());
+  parallelFor(static_cast<int>(cell_centres.size()), options_.threads, [&](int cell) {
+    visible_by_cell[cell] = visibleFrom(cell_centres[cell], R_prior, yaw_range);
+  });
+
+  const OrientedDistanceMap coarse_map(image, camera_.width, camera_.height, coarse.distances);
+  const std::vector<double> yaws = gridOffsets(yaw_range, coarse.yaw_step_rad);
+  std::vector<GridPose> scored(positions.size() * yaws.size());
+  parallelFor(static_cast<int>(positions.size()), options_.threads, [&](int index) {
+    const auto& [position, cell] = positions[index];
+    for (size_t k = 0; k < yaws.size(); ++k) {
+      GridPose& pose = scored[index * yaws.size() + k];
+      pose = {position, yaws[k], {}};
+      pose.coverage = coverage(visible_by_cell[cell], poseOf(pose, R_prior), coarse_map);
+    }
+  });
 
   const OrientedDistanceMap fine_map(image, camera_.width, camera_.height, options_.fine.distances);
-  std::vector<GridPose> refined;
-  for (const GridPose& start : distinctBest(std::move(scored))) {
-    refined.push_back(refine(start, R_prior, fine_map));
-  }
+  const std::vector<GridPose> starts = distinctBest(std::move(scored));
+  std::vector<GridPose> refined(starts.size());
+  parallelFor(static_cast<int>(starts.size()), options_.threads,
+              [&](int i) { refined[i] = refine(starts[i], R_prior, fine_map); });
   std::vector<PoseHypothesis> hypotheses;
   for (const GridPose& pose : distinctBest(std::move(refined))) {
     hypotheses.push_back({poseOf(pose, R_prior), pose.coverage});

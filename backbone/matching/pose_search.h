@@ -23,6 +23,7 @@
 // (inside a building) are skipped. The search runs coarse to fine: the best
 // distinct coarse hypotheses (non-maximum suppression) are searched again on a
 // finer grid around themselves, height included, with a sharper distance map.
+// Cells, positions and hypotheses are shared out among `threads` threads.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -68,6 +69,8 @@ struct PoseSearchOptions {
   double distinct_yaw_rad = 1.0 * M_PI / 180.0;
   // Hidden-line removal for scoring: coarser sampling than for alignment.
   VisibilityOptions visibility{.sample_spacing_px = 16.0};
+  // Threads sharing the cells and hypotheses of one search (0: one per core).
+  int threads = 0;
 };
 
 struct Coverage {

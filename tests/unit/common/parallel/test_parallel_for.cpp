@@ -1,0 +1,63 @@
+// parallelFor: every index exactly once whatever the thread count, work
+// really spread over threads, and a thrown exception brought back to the caller.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "common/parallel/parallel_for.h"
+
+namespace lineloc {
+namespace {
+
+TEST(ParallelFor, CallsEveryIndexExactlyOnce) {
+  for (const int threads : {0, 1, 2, 3, 16}) {
+    for (const int count : {0, 1, 2, 7, 1000}) {
+      std::vector<std::atomic<int>> calls(static_cast<size_t>(count));
+      parallelFor(count, threads, [&](int i) { ++calls[static_cast<size_t>(i)]; });
+      for (int i = 0; i < count; ++i) {
+        EXPECT_EQ(calls[static_cast<size_t>(i)], 1)
+            << "index " << i << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
+TEST(ParallelFor, RunsOnAsManyThreadsAsAsked) {
+  // Each call waits until three threads are inside: only possible when three run at once.
+  std::atomic<int> inside{0};
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  parallelFor(3, 3, [&](int) {
+    ++inside;
+    while (inside < 3) {
+      std::this_thread::yield();
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    seen.insert(std::this_thread::get_id());
+  });
+  EXPECT_EQ(seen.size(), 3u);
+}
+
+TEST(ParallelFor, RethrowsTheFirstExceptionOnTheCaller) {
+  std::atomic<int> calls{0};
+  EXPECT_THROW(parallelFor(100, 2,
+                           [&](int i) {
+                             ++calls;
+                             if (i == 0) {
+                               throw std::runtime_error("piece 0 failed");
+                             }
+                             std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                           }),
+               std::runtime_error);
+  // The other thread stops taking pieces once piece 0 has thrown.
+  EXPECT_LT(calls.load(), 100);
+}
+
+}  // namespace
+}  // namespace lineloc

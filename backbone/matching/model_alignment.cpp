@@ -119,6 +119,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   pose_options.refinement.loss = RobustLoss::kCauchy;
   pose_options.refinement.function_tolerance = options.function_tolerance;
   pose_options.refinement.parameter_tolerance = options.parameter_tolerance;
+  pose_options.refinement.step_information_tolerance = options.step_information_tolerance;
   for (int round = 0; round < options.max_rounds; ++round) {
     alignment.rounds = round + 1;
     const int64_t matching_start_ns = steadyClockNs();

@@ -57,6 +57,8 @@ struct AlignmentOptions {
   // below the pose's standard deviation, far above rounding.
   double function_tolerance = 1e-10;
   double parameter_tolerance = 1e-9;
+  // ... or its step is below a thousandth of the pose's standard deviation.
+  double step_information_tolerance = 1e-6;
   // Pose change (m, rad) below which the rounds have converged.
   double converged_translation_m = 1e-4;
   double converged_rotation_rad = 1e-5;

@@ -353,7 +353,8 @@ PoseEstimate refineCheckedPose(const PoseProblem& problem,
     if (!step.allFinite()) {
       return poseFailure(PoseStatus::kDiverged, "refinement: the step is not finite");
     }
-    if (isSmallStep(step, T_camera_world, options.parameter_tolerance)) {
+    if (isSmallStep(step, T_camera_world, options.parameter_tolerance) ||
+        step.dot(current.information * step) < options.step_information_tolerance) {
       return summarize(prepared, T_camera_world, current, options, PoseStatus::kConverged,
                        iteration);
     }

@@ -42,6 +42,12 @@ struct RefinementOptions {
   double function_tolerance = 1e-14;
   // Stop when |dt| <= tol (|t| + tol) and |dtheta| <= tol (radians).
   double parameter_tolerance = 1e-13;
+  // Stop when a step is this small against the pose's own uncertainty:
+  // dx^T (J^T W J) dx below it, dx^T I dx being the step's squared length in
+  // standard deviations of the estimate (0: never; 1e-6 stops at a thousandth
+  // of a standard deviation, where a flat robust cost can otherwise creep on
+  // for many iterations).
+  double step_information_tolerance = 0.0;
   // Stop when the largest entry of the gradient J^T r is below this.
   double gradient_tolerance = 1e-16;
   double initial_damping = 1e-4;

@@ -164,6 +164,33 @@ TEST(PoseEstimatorTest, IterationLimitIsReported) {
   EXPECT_EQ(estimate.iterations, 1);
 }
 
+// Stopping once a step is a thousandth of a standard deviation long ends
+// where the tight tolerances end, to far below the estimate's own uncertainty:
+// (x - x_tight)^T I (x - x_tight) stays near (1e-3)^2.
+TEST(PoseEstimatorTest, StepsBelowTheUncertaintyStopTheRefinement) {
+  const test::Scene scene = makeScene({10, 15, false, 1.0, 12});
+  std::mt19937 random(12);
+  PoseOptions tight;
+  tight.prior_T_world_camera = test::perturbPose(scene.T_world_camera, 0.05, 0.3, random);
+  tight.refinement.loss = RobustLoss::kCauchy;
+  PoseOptions loose = tight;
+  loose.refinement.step_information_tolerance = 1e-6;
+  const PoseEstimate reference = estimatePose(scene.problem, tight);
+  const PoseEstimate estimate = estimatePose(scene.problem, loose);
+  ASSERT_TRUE(reference.ok()) << reference.message;
+  ASSERT_TRUE(estimate.ok()) << estimate.message;
+  EXPECT_LT(estimate.iterations, reference.iterations);
+  Eigen::Matrix<double, 6, 1> difference;
+  difference.head<3>() =
+      estimate.T_world_camera.pose.translation() - reference.T_world_camera.pose.translation();
+  const Eigen::AngleAxisd rotation(estimate.T_world_camera.pose.linear() *
+                                   reference.T_world_camera.pose.linear().transpose());
+  difference.tail<3>() = rotation.angle() * rotation.axis();
+  const double squared_sigmas =
+      difference.dot(reference.T_world_camera.covariance.ldlt().solve(difference));
+  EXPECT_LT(squared_sigmas, 1e-4);
+}
+
 TEST(PoseEstimatorTest, WrongMatchesAreInconsistent) {
   test::Scene scene = makeScene({20, 0, false, 0.5, 10});
   for (size_t i = 0; i + 1 < scene.problem.points.size(); i += 2) {

@@ -7,7 +7,8 @@
 # in real time, and prints lineloc-eval's report against the ground truth.
 #
 # Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
-# LINELOC_DEMO_DOMAIN (DDS domain, 42). Everything goes to out/demo/.
+# LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42).
+# Everything goes to out/demo/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -16,6 +17,7 @@ OUT="$ROOT/out/demo"
 DOMAIN_ID="${LINELOC_DEMO_DOMAIN:-42}"
 DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
 SEED="${LINELOC_DEMO_SEED:-1}"
+CAMERA_HZ="${LINELOC_DEMO_CAMERA_HZ:-30}"
 CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
 # Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
 SITE_CRS=EPSG:7415
@@ -36,10 +38,10 @@ READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-migrate" --db "$CONNINFO"
 "$BIN/lineloc-load" --db "$CONNINFO" --site delft --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
-echo "demo: simulating a ${DURATION_S} s drive (seed $SEED)"
+echo "demo: simulating a ${DURATION_S} s drive (seed $SEED, camera ${CAMERA_HZ} Hz)"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
-  --camera-height-m "$CAMERA_HEIGHT_M"
+  --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ"
 
 "$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft \
   --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &

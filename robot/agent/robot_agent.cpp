@@ -20,6 +20,7 @@
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/agent/sensor_streams.h"
+#include "robot/input/image_prefetcher.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
@@ -276,6 +277,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   waitForBackbone(writer, config.wait_for_backbone_s, stop);
 
   const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
+  // Frames are decoded ahead of their exposure, as a camera driver delivers them.
+  ImagePrefetcher images(streams.frames);
   const Playback playback(config, streams.timeline.empty() ? 0 : streams.timeline.front().stamp_ns);
   const int64_t state_period_ns =
       config.state_rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.state_rate_hz) : 0;
@@ -322,7 +325,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           line_set.predicted_T_world_camera = configured;
         }
         fused.write({line_set.stamp_ns, line_set.predicted_T_world_camera.pose});
-        const FrameFeatures& features = extractor.extract(readGreyImage(frame.path));
+        const FrameFeatures& features = extractor.extract(images.take(event.index));
         line_set.segments = features.segments;
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);

@@ -1,10 +1,12 @@
 // Sub-pixel edge points with gradient direction and grey-level step, on 8-bit
 // grey images (Persa & Jonker §3: the edges that become straight lines).
 //
-// Gaussian pre-smoothing (gaussian_smoother.h) and OpenCV's 3x3 Sobel
-// gradient g = (gx, gy) (SIMD). A pixel is an edge point when |g| >= min_gradient and |g| is
-// a strict maximum along the gradient direction quantised to 0, 45, 90 or 135
-// degrees (non-maximum suppression). Its sub-pixel position is the peak of the
+// Gaussian pre-smoothing (gaussian_smoother.h) and the 3x3 Sobel gradient
+// g = (gx, gy), zero on the 1 px image border. A pixel is an edge point when
+// |g| >= min_gradient and |g| is a maximum along the gradient direction
+// quantised to 0, 45, 90 or 135 degrees (non-maximum suppression: strictly
+// above the neighbour on the dark side, at least the one on the bright side).
+// Its sub-pixel position is the peak of the
 // Gaussian through the three magnitudes along that direction d (a parabola
 // through l = ln |g|^2, exact for a blurred step, whose |g| is a Gaussian):
 //   p = pixel + delta d,  delta = (l- - l+) / (2 (l- - 2 l0 + l+)),  |delta| <= 1/2,
@@ -13,6 +15,14 @@
 // I(p + 3d) - I(p - 3d) in the smoothed image, d pointing dark -> bright: for
 // a step of height h blurred to sigma s in all, h erf(3 / (sqrt(2) s)).
 //
+// Each point also records its nearest neighbours along the edge, ahead and
+// behind (for EdgeLinker), found while their rows are at hand.
+//
+// One pass over the rows computes the gradient, |g|^2, the suppression and
+// the neighbours together (three rows of |g|^2 and of point indices in
+// flight), SIMD through Highway, dispatched at run time to the best
+// instruction set the processor has, down to plain scalar code; only the
+// surviving pixels are handled one by one.
 // Buffers are kept between calls: no allocation once the image size is stable.
 #pragma once
 
@@ -32,6 +42,10 @@ struct EdgePoint {
   Eigen::Vector2f normal;    // gradient / |gradient|
   float step;                // grey-level step across the edge (bright - dark)
   int pixel_x, pixel_y;      // the pixel it was found at
+  // The nearest edge points among the 8 neighbours with the gradient on the
+  // same side (g.g' > 0), ahead of and behind this one along the tangent
+  // t = (-gy, gx) / |g| (by sub-pixel position), or -1.
+  int32_t ahead = -1, behind = -1;
 };
 
 struct EdgeDetectorOptions {
@@ -39,30 +53,62 @@ struct EdgeDetectorOptions {
   float min_gradient = 8.0f;        // grey levels per pixel
 };
 
+// Working storage of EdgeDetector's SIMD passes: the pixels of one row that
+// survive non-maximum suppression (column, |g|^2 there and behind and ahead
+// along d, d) and their sub-pixel offset along d and 1 / |g|.
+struct EdgeRowMaxima {
+  std::vector<int32_t> x, here, before, after, direction_x, direction_y;
+  std::vector<float> offset, inverse_magnitude;
+  int count = 0;
+};
+
+// Told of the gradient of each image row as soon as EdgeDetector has it, top
+// to bottom, so that other operators on the gradient run while its rows are
+// still in cache.
+class GradientRowListener {
+ public:
+  virtual ~GradientRowListener() = default;
+  // Rows 0..y of `gradient_x`, `gradient_y` are complete.
+  virtual void gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) = 0;
+};
+
 class EdgeDetector {
  public:
+  // gradientX(), gradientY() hold gain x grey levels per px: Sobel (8 x the
+  // slope) of the smoothed image kept with 4 fractional bits.
+  static constexpr float kGradientGain = 128.0f;
+
   // Throws std::invalid_argument for a negative sigma or a non-positive threshold.
   explicit EdgeDetector(const EdgeDetectorOptions& options);
 
-  // `grey`: CV_8UC1, at least 5 x 5 (checked by the caller). Edge points are
-  // found at least 3 px from the border.
-  void detect(const cv::Mat& grey);
+  // `grey`: CV_8UC1, at least 7 x 7 (checked by the caller). Edge points are
+  // found at least 3 px from the border. `listener`, if given, is told of
+  // every gradient row.
+  void detect(const cv::Mat& grey, GradientRowListener* listener = nullptr);
 
+  // In raster order of their pixels.
   const std::vector<EdgePoint>& points() const { return points_; }
-  // CV_32S, the index of the edge point found at each pixel in points(), or -1.
-  const cv::Mat& pointIndex() const { return point_index_; }
-  // CV_16S Sobel responses, 8 x grey levels per pixel.
+  // CV_16S Sobel responses, kGradientGain x grey levels per pixel, zero on
+  // the 1 px border.
   const cv::Mat& gradientX() const { return gradient_x_; }
   const cv::Mat& gradientY() const { return gradient_y_; }
 
  private:
-  void computeSquaredMagnitude();
-  void suppressNonMaxima();
+  void prepareBuffers(cv::Size size);
+  int32_t* squaredMagnitudeRow(int y);
+  int32_t* pointIndexRow(int y);
+  void startRow(int y);
+  void addPoints(int y);
+  void findNeighbours(int y);
 
   EdgeDetectorOptions options_;
   std::optional<GaussianSmoother> smoother_;
-  int64_t min_squared_sobel_;
-  cv::Mat smoothed_, gradient_x_, gradient_y_, squared_magnitude_, point_index_;
+  int32_t min_squared_sobel_;
+  cv::Mat smoothed_, gradient_x_, gradient_y_;
+  std::vector<int32_t> squared_magnitude_rows_;  // 3 rows, row y at y % 3
+  std::vector<int32_t> point_index_rows_;        // 3 rows of point indices or -1, row y at y % 3
+  std::vector<int32_t> first_point_of_row_;
+  EdgeRowMaxima maxima_;
   std::vector<EdgePoint> points_;
 };
 

@@ -1,16 +1,18 @@
 // Links edge points into chains of 8-connected neighbours (Persa & Jonker §3:
 // the edges that split-and-merge approximates by straight lines).
 //
-// From each unvisited point the chain grows both ways along the edge tangent
-// t = (-gy, gx) / |g|: the next point is the unvisited 8-neighbour whose step
-// s makes the smallest angle with the walking direction (s.t > 0 required)
-// and whose gradient turns by at most max_turn from the current one
-// (g1.g2 >= cos(max_turn) |g1| |g2|), so a chain stops at corners, at
-// polarity flips and at junctions. Chains shorter than min_points are dropped.
+// Every edge point p knows the nearest edge points ahead of and behind it
+// along its tangent (EdgePoint::ahead, ::behind). p and q are linked when q
+// is ahead of p, p is behind q, and the gradient turns by at most max_turn
+// between them (g1.g2 >= cos(max_turn) |g1| |g2|), as in the chaining of the
+// Canny/Devernay detector (von Gioi & Randall, IPOL 2017): a chain stops at
+// corners, at polarity flips and at junctions, and runs through both pixels
+// where non-maximum suppression leaves a staircase two pixels wide. Chains
+// follow the links from a point without predecessor (closed contours from any
+// point); chains shorter than min_points are dropped.
 #pragma once
 
 #include <cstdint>
-#include <opencv2/core.hpp>
 #include <vector>
 
 #include "robot/vision/edges/edge_detector.h"
@@ -34,23 +36,21 @@ class EdgeLinker {
   // Throws std::invalid_argument for a turn outside (0, pi) or min_points < 2.
   explicit EdgeLinker(const EdgeLinkerOptions& options);
 
-  // `point_index`: CV_32S map of pixel -> index in `points` or -1, with no
-  // point within 1 px of the border (as EdgeDetector makes it).
-  void link(const std::vector<EdgePoint>& points, const cv::Mat& point_index);
+  // `points` with their neighbours, as EdgeDetector finds them.
+  void link(const std::vector<EdgePoint>& points);
 
-  // Indices into `points`, chain after chain, each in walking order.
+  // Indices into `points`, chain after chain, each from its first point
+  // along +t.
   const std::vector<int32_t>& chainPoints() const { return chain_points_; }
   const std::vector<PointRange>& chains() const { return chains_; }
 
  private:
-  void walk(int32_t start, float direction_sign, std::vector<int32_t>& out);
+  void addChain(int32_t first);
 
   EdgeLinkerOptions options_;
   float cos_max_turn_;
-  const std::vector<EdgePoint>* points_ = nullptr;
-  const cv::Mat* point_index_ = nullptr;
+  std::vector<int32_t> next_, previous_;
   std::vector<uint8_t> visited_;
-  std::vector<int32_t> backward_;
   std::vector<int32_t> chain_points_;
   std::vector<PointRange> chains_;
 };

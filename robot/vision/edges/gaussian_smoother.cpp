@@ -5,14 +5,74 @@
 #include <numeric>
 #include <stdexcept>
 
+// foreach_target.h compiles this file once per instruction set; it must
+// come before highway.h.
+// clang-format off
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "robot/vision/edges/gaussian_smoother.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+// clang-format on
+
+#include "robot/vision/simd/for_each_span-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace lineloc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// t(x) = sum_k w_k row_k(x) for the lanes of d at x.
+template <class D>
+void sumColumnsAt(D d, const uint8_t* const* rows, const uint16_t* weights, int taps, int x,
+                  uint16_t* sums) {
+  const hn::Rebind<uint8_t, D> d8;
+  auto sum = hn::Zero(d);
+  for (int k = 0; k < taps; ++k) {
+    sum = sum + hn::Set(d, weights[k]) * hn::PromoteTo(d, hn::LoadU(d8, rows[k] + x));
+  }
+  hn::StoreU(sum, d, sums + x);
+}
+
+void SumColumns(const uint8_t* const* rows, const uint16_t* weights, int taps, int width,
+                uint16_t* sums) {
+  forEachSpan(hn::ScalableTag<uint16_t>(), 0, width,
+              [&](auto d, int x) { sumColumnsAt(d, rows, weights, taps, x, sums); });
+}
+
+// out(x) = (sum_k w_k t(x + k) + 2^11) >> 12 for the lanes of d at x; `sums`
+// starts `taps / 2` columns left of the image.
+template <class D>
+void smoothRowAt(D d, const uint16_t* sums, const uint16_t* weights, int taps, int x,
+                 uint16_t* out) {
+  const hn::Rebind<uint16_t, D> d16;
+  const hn::Rebind<int32_t, D> di;
+  auto total = hn::Set(d, 1u << 11);
+  for (int k = 0; k < taps; ++k) {
+    total = total + hn::Set(d, weights[k]) * hn::PromoteTo(d, hn::LoadU(d16, sums + x + k));
+  }
+  hn::StoreU(hn::DemoteTo(d16, hn::BitCast(di, hn::ShiftRight<12>(total))), d16, out + x);
+}
+
+void SmoothRow(const uint16_t* sums, const uint16_t* weights, int taps, int width, uint16_t* out) {
+  forEachSpan(hn::ScalableTag<uint32_t>(), 0, width,
+              [&](auto d, int x) { smoothRowAt(d, sums, weights, taps, x, out); });
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace lineloc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
 namespace lineloc {
 namespace {
 
-constexpr int kWeightBits = 10;
+constexpr int kWeightBits = 8;
 constexpr int kWeightSum = 1 << kWeightBits;
-constexpr uint32_t kRounding = 1u << (2 * kWeightBits - 1);
 
 }  // namespace
+
+HWY_EXPORT(SumColumns);
+HWY_EXPORT(SmoothRow);
 
 GaussianSmoother::GaussianSmoother(double sigma_px) {
   if (!(sigma_px > 0.0)) {
@@ -30,42 +90,27 @@ GaussianSmoother::GaussianSmoother(double sigma_px) {
   }
   const int sum = std::accumulate(weights_.begin(), weights_.end(), 0);
   weights_[radius_] = static_cast<uint16_t>(weights_[radius_] + kWeightSum - sum);
+  rows_.resize(weights_.size());
 }
 
 void GaussianSmoother::smooth(const cv::Mat& grey, cv::Mat& smoothed) {
-  smoothed.create(grey.size(), CV_8UC1);
+  smoothed.create(grey.size(), CV_16UC1);
   const int width = grey.cols;
   const int height = grey.rows;
+  const int taps = static_cast<int>(weights_.size());
   column_sums_.resize(static_cast<size_t>(width) + 2 * radius_);
-  row_totals_.resize(width);
-  uint32_t* sums = column_sums_.data() + radius_;
+  uint16_t* sums = column_sums_.data() + radius_;
   for (int y = 0; y < height; ++y) {
-    std::fill(column_sums_.begin(), column_sums_.end(), 0);
     for (int k = -radius_; k <= radius_; ++k) {
-      const uint8_t* row = grey.ptr<uint8_t>(std::clamp(y + k, 0, height - 1));
-      const uint16_t weight = weights_[k + radius_];
-      for (int x = 0; x < width; ++x) {
-        sums[x] = sums[x] + weight * row[x];
-      }
+      rows_[k + radius_] = grey.ptr<uint8_t>(std::clamp(y + k, 0, height - 1));
     }
-    for (int x = 1; x <= radius_; ++x) {
-      sums[-x] = sums[0];
-      sums[width - 1 + x] = sums[width - 1];
-    }
-    uint32_t* totals = row_totals_.data();
-    std::fill(row_totals_.begin(), row_totals_.end(), kRounding);
-    for (int k = -radius_; k <= radius_; ++k) {
-      const uint32_t weight = weights_[k + radius_];
-      const uint32_t* shifted = sums + k;
-      for (int x = 0; x < width; ++x) {
-        totals[x] += weight * shifted[x];
-      }
-    }
-    uint8_t* out = smoothed.ptr<uint8_t>(y);
-    for (int x = 0; x < width; ++x) {
-      out[x] = static_cast<uint8_t>(totals[x] >> (2 * kWeightBits));
-    }
+    HWY_DYNAMIC_DISPATCH(SumColumns)(rows_.data(), weights_.data(), taps, width, sums);
+    std::fill(column_sums_.begin(), column_sums_.begin() + radius_, sums[0]);
+    std::fill(column_sums_.end() - radius_, column_sums_.end(), sums[width - 1]);
+    HWY_DYNAMIC_DISPATCH(SmoothRow)
+    (column_sums_.data(), weights_.data(), taps, width, smoothed.ptr<uint16_t>(y));
   }
 }
 
 }  // namespace lineloc
+#endif  // HWY_ONCE

@@ -5,13 +5,6 @@
 #include <stdexcept>
 
 namespace lineloc {
-namespace {
-
-// Refit-and-trim rounds: the bent ends near a corner go in one or two.
-constexpr int kTrimPasses = 3;
-
-}  // namespace
-
 LineExtractor::LineExtractor(const LineExtractorOptions& options)
     : options_(options),
       split_and_merge_(options.split_distance_px, options.min_points),
@@ -75,22 +68,40 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
 
 void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
                              LineSegment& segment) const {
-  for (int pass = 0; pass < kTrimPasses && segment.fit.status == LineFitStatus::kOk; ++pass) {
-    const PointRange before = piece;
-    const auto off_line = [&](int i) {
-      return std::abs(segment.fit.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
-    };
-    while (piece.size() > 0 && off_line(piece.begin)) {
-      segment.moments.remove(polyline[piece.begin++]);
-    }
-    while (piece.size() > 0 && off_line(piece.end - 1)) {
-      segment.moments.remove(polyline[--piece.end]);
-    }
-    if (piece.begin == before.begin && piece.end == before.end) {
-      return;
-    }
+  if (segment.fit.status != LineFitStatus::kOk) {
+    return;
+  }
+  const LineFit core = coreLine(polyline, piece, segment.fit);
+  const auto off_line = [&](int i) {
+    return std::abs(core.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
+  };
+  const PointRange before = piece;
+  while (piece.size() > 0 && off_line(piece.begin)) {
+    segment.moments.remove(polyline[piece.begin++]);
+  }
+  while (piece.size() > 0 && off_line(piece.end - 1)) {
+    segment.moments.remove(polyline[--piece.end]);
+  }
+  if (piece.begin != before.begin || piece.end != before.end) {
     segment.fit = fitLine(segment.moments, options_.fit);
   }
+}
+
+LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
+                                const LineFit& fit) const {
+  const double first = fit.along(polyline[piece.begin].cast<double>());
+  const double last = fit.along(polyline[piece.end - 1].cast<double>());
+  const double low = std::min(first, last) + options_.trim_margin_px;
+  const double high = std::max(first, last) - options_.trim_margin_px;
+  PointMoments moments;
+  for (int i = piece.begin; i < piece.end; ++i) {
+    const double along = fit.along(polyline[i].cast<double>());
+    if (along >= low && along <= high) {
+      moments.add(polyline[i]);
+    }
+  }
+  const LineFit core = fitLine(moments, options_.fit);
+  return moments.n >= options_.min_points && core.status == LineFitStatus::kOk ? core : fit;
 }
 
 void LineExtractor::keepSignificant() {

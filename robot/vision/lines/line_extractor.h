@@ -21,7 +21,8 @@ namespace lineloc {
 
 struct LineExtractorOptions {
   double split_distance_px = 1.0;
-  double trim_distance_px = 0.25;  // end points farther from the refitted line are dropped
+  double trim_distance_px = 0.25;  // end points farther from the core line are dropped
+  double trim_margin_px = 3.0;     // the core line leaves out this much at each end
   int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;
   double min_contrast = 10.0;  // mean grey-level step
@@ -49,6 +50,8 @@ class LineExtractor {
                  PointRange chain);
   void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
                 LineSegment& segment) const;
+  LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
+                   const LineFit& fit) const;
   void keepSignificant();
 
   LineExtractorOptions options_;

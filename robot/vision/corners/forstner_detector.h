@@ -18,14 +18,12 @@
 // solved again without the pixels within core_radius of the first estimate,
 // leaving the straight edge flanks, whose lines pass through the corner.
 //
-// The tensor is summed exactly in integers (products g g^T rounded to 1/16 of
-// the gradient unit squared, box sums by running column sums), w and q in
-// floats, all SIMD through Highway, dispatched at run time to the best
+// The tensor is summed exactly in integers (products of the gradient in
+// units of 1/32 grey level per px, box sums by running column sums), w and q
+// in floats, all SIMD through Highway, dispatched at run time to the best
 // instruction set the processor has, down to plain scalar code. The
-// refinement needs one pass over its window: the sums
-// sum g g^T (1, p, p p^T) give x, and with them the residual
-// sum (g^T (x - p))^2 = x^T N x - 2 x^T sum g g^T p + sum p^T g g^T p;
-// the second solve subtracts the core's pixels. Buffers are reused.
+// refinement sums g g^T (1, p) over its window (SIMD), and the second solve
+// subtracts the core's sums. Buffers are reused.
 #pragma once
 
 #include <Eigen/Core>
@@ -75,26 +73,31 @@ class ForstnerDetector {
     int x, y;
     float weight;
   };
-  struct Offset {
-    int dx, dy;
-  };
 
   int weightRingRows() const;
+  float candidateFloor() const;
   float* weightRow(int y);
+  float* rowMaximumRow(int y);
   void suppressNonMaxima(int y);
   bool refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, const Candidate& candidate,
-              ForstnerCorner& corner) const;
+              ForstnerCorner& corner);
 
   ForstnerOptions options_;
   cv::Size size_;
   float gain_ = 1.0f;
-  std::vector<int32_t> column_sums_;  // a, b, c column sums over 2r + 1 rows
-  std::vector<float> weight_rows_;    // w of the last 2s + 1 rows, row y at y % (2s + 1)
-  double weight_sum_ = 0.0;
-  std::vector<Offset> neighbourhood_;  // the 2s (2s+1) neighbours in other rows, nearest first
-  std::vector<const float*> suppression_rows_;
+  double tensor_scale_ = 1.0;            // (grey levels / px)^2 per unit of the integer tensor
+  std::vector<int32_t> column_sums_;     // a, b, c column sums over 2r + 1 rows
+  std::vector<float> weight_rows_;       // w of the last 2s + 1 rows, row y at y % (2s + 1)
+  std::vector<float> row_maximum_rows_;  // their maxima over 2s + 1 columns
+  std::vector<float> row_peaks_;         // the largest w of each, 0 when below the floor
+  std::vector<float> zero_row_;
+  double weight_sum_ = 0.0;                     // of w in tensor units
+  std::vector<const float*> suppression_rows_;  // row maxima of the 2s + 1 rows, own row first
   std::vector<int32_t> row_candidates_;
   std::vector<Candidate> candidates_;
+  // The refinement window, row by row: pixel offsets and gradient (grey
+  // levels per px), padded to a whole number of vectors.
+  std::vector<float> window_u_, window_v_, window_gx_, window_gy_;
   std::vector<ForstnerCorner> corners_;
 };
 

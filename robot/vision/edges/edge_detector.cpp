@@ -22,22 +22,26 @@ namespace lineloc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Sobel gx, gy and gx^2 + gy^2 of row `row` (between `above` and `below`)
-// for x in [1, width - 1).
+// Sobel gx, gy and gx^2 + gy^2 of row `row` (between `above` and `below`,
+// values <= 2^12) for x in [1, width - 1): the Sobel sums fit 16 bits.
 void GradientRow(const uint16_t* above, const uint16_t* row, const uint16_t* below, int width,
                  int16_t* gradient_x, int16_t* gradient_y, int32_t* squared_magnitude) {
+  forEachSpan(hn::ScalableTag<int16_t>(), 1, width - 1, [&](auto d, int x) {
+    const hn::Rebind<uint16_t, decltype(d)> du;
+    const auto at = [&](const uint16_t* p) { return hn::BitCast(d, hn::LoadU(du, p)); };
+    const auto down = at(below + x) - at(above + x);
+    const auto down_left = at(below + x - 1) - at(above + x - 1);
+    const auto down_right = at(below + x + 1) - at(above + x + 1);
+    const auto right = at(row + x + 1) - at(row + x - 1);
+    const auto right_above = at(above + x + 1) - at(above + x - 1);
+    const auto right_below = at(below + x + 1) - at(below + x - 1);
+    hn::StoreU(right_above + right + right + right_below, d, gradient_x + x);
+    hn::StoreU(down_left + down + down + down_right, d, gradient_y + x);
+  });
   forEachSpan(hn::ScalableTag<int32_t>(), 1, width - 1, [&](auto d, int x) {
-    const hn::Rebind<uint16_t, decltype(d)> d8;
     const hn::Rebind<int16_t, decltype(d)> d16;
-    const auto at = [&](const uint16_t* p) { return hn::PromoteTo(d, hn::LoadU(d8, p)); };
-    const auto top = at(above + x - 1) + at(above + x) + at(above + x) + at(above + x + 1);
-    const auto bottom = at(below + x - 1) + at(below + x) + at(below + x) + at(below + x + 1);
-    const auto right = at(above + x + 1) + at(row + x + 1) + at(row + x + 1) + at(below + x + 1);
-    const auto left = at(above + x - 1) + at(row + x - 1) + at(row + x - 1) + at(below + x - 1);
-    const auto gx = right - left;
-    const auto gy = bottom - top;
-    hn::StoreU(hn::DemoteTo(d16, gx), d16, gradient_x + x);
-    hn::StoreU(hn::DemoteTo(d16, gy), d16, gradient_y + x);
+    const auto gx = hn::PromoteTo(d, hn::LoadU(d16, gradient_x + x));
+    const auto gy = hn::PromoteTo(d, hn::LoadU(d16, gradient_y + x));
     hn::StoreU(gx * gx + gy * gy, d, squared_magnitude + x);
   });
 }
@@ -127,6 +131,51 @@ void SubPixelRow(EdgeRowMaxima& maxima) {
   });
 }
 
+// For the edge points of the middle row of `rows` in columns [begin, end):
+// among the 8 neighbours that are edge points whose normal n' has
+// n.n' >= cos_max_turn, the nearest ahead ((q - p).t > 0, t = (-ny, nx)) and
+// the nearest behind, as point indices or -1, at `ahead` and `behind` [x].
+void NearestNeighbours(const EdgeNeighbourhood& rows, int begin, int end, float cos_max_turn,
+                       int32_t* ahead, int32_t* behind) {
+  constexpr int kSteps[8][2] = {{-1, 0}, {0, 0}, {1, 0}, {-1, 1}, {1, 1}, {-1, 2}, {0, 2}, {1, 2}};
+  forEachSpan(hn::ScalableTag<float>(), begin, end, [&](auto d, int x) {
+    const hn::Rebind<int32_t, decltype(d)> di;
+    const auto here = hn::LoadU(di, rows.index[1] + x);
+    if (hn::AllTrue(di, here < hn::Zero(di))) {
+      return;
+    }
+    const auto px = hn::LoadU(d, rows.x[1] + x);
+    const auto py = hn::LoadU(d, rows.y[1] + x);
+    const auto nx = hn::LoadU(d, rows.normal_x[1] + x);
+    const auto ny = hn::LoadU(d, rows.normal_y[1] + x);
+    const auto none = hn::Set(d, std::numeric_limits<float>::max());
+    auto ahead_distance = none, behind_distance = none;
+    auto nearest_ahead = hn::Set(di, -1), nearest_behind = nearest_ahead;
+    for (const auto& [dx, row] : kSteps) {
+      const int at = x + dx;
+      const auto index = hn::LoadU(di, rows.index[row] + at);
+      const auto ox = hn::LoadU(d, rows.x[row] + at) - px;
+      const auto oy = hn::LoadU(d, rows.y[row] + at) - py;
+      const auto turn =
+          hn::LoadU(d, rows.normal_x[row] + at) * nx + hn::LoadU(d, rows.normal_y[row] + at) * ny;
+      const auto usable = hn::AndNot(turn < hn::Set(d, cos_max_turn),
+                                     hn::RebindMask(d, hn::Not(index < hn::Zero(di))));
+      const auto distance = hn::IfThenElse(usable, ox * ox + oy * oy, none);
+      const auto is_ahead = oy * nx - ox * ny > hn::Zero(d);
+      const auto to_ahead = hn::IfThenElse(is_ahead, distance, none);
+      const auto to_behind = hn::IfThenElse(is_ahead, none, distance);
+      nearest_ahead =
+          hn::IfThenElse(hn::RebindMask(di, to_ahead < ahead_distance), index, nearest_ahead);
+      nearest_behind =
+          hn::IfThenElse(hn::RebindMask(di, to_behind < behind_distance), index, nearest_behind);
+      ahead_distance = hn::Min(ahead_distance, to_ahead);
+      behind_distance = hn::Min(behind_distance, to_behind);
+    }
+    hn::StoreU(nearest_ahead, di, ahead + x);
+    hn::StoreU(nearest_behind, di, behind + x);
+  });
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace lineloc
 HWY_AFTER_NAMESPACE();
@@ -135,7 +184,7 @@ HWY_AFTER_NAMESPACE();
 namespace lineloc {
 namespace {
 
-constexpr float kSmoothedGain = GaussianSmoother::kOutputGain;
+constexpr int kSmoothedGain = GaussianSmoother::kOutputGain;
 // Room for the step samples 3 px either side.
 constexpr int kStepSampleDistancePx = 3;
 constexpr int kBorderPx = kStepSampleDistancePx;
@@ -146,22 +195,28 @@ constexpr int kRingRows = 3;
 HWY_EXPORT(GradientRow);
 HWY_EXPORT(SuppressRow);
 HWY_EXPORT(SubPixelRow);
+HWY_EXPORT(NearestNeighbours);
 
 EdgeDetector::EdgeDetector(const EdgeDetectorOptions& options) : options_(options) {
-  if (!(options.smoothing_sigma_px >= 0.0) || !(options.min_gradient > 0.0f) ||
-      !(options.min_gradient <= 255.0f)) {
+  if (!(options.smoothing_sigma_px == 0.0 ||
+        options.smoothing_sigma_px >= GaussianSmoother::kMinSigmaPx) ||
+      !(options.min_gradient > 0.0f) || !(options.min_gradient <= 255.0f) ||
+      !(options.max_link_turn_rad > 0.0 && options.max_link_turn_rad < M_PI)) {
     throw std::invalid_argument(
-        "edge detector: smoothing_sigma_px must be >= 0 and min_gradient in (0, 255]");
+        "edge detector: smoothing_sigma_px must be 0 or >= 0.5, min_gradient in (0, 255], "
+        "max_link_turn_rad in (0, pi)");
   }
   if (options.smoothing_sigma_px > 0.0) {
     smoother_.emplace(options.smoothing_sigma_px);
   }
   const double min_sobel = options.min_gradient * EdgeDetector::kGradientGain;
+  cos_max_turn_ = static_cast<float>(std::cos(options.max_link_turn_rad));
   min_squared_sobel_ = static_cast<int32_t>(std::ceil(min_sobel * min_sobel));
 }
 
 void EdgeDetector::prepareBuffers(cv::Size size) {
   points_.clear();
+  smoothed_.create(size, CV_16U);
   for (cv::Mat* gradient : {&gradient_x_, &gradient_y_}) {
     gradient->create(size, CV_16S);
     std::fill_n(gradient->ptr<int16_t>(0), size.width, 0);
@@ -169,7 +224,15 @@ void EdgeDetector::prepareBuffers(cv::Size size) {
   }
   squared_magnitude_rows_.assign(static_cast<size_t>(kRingRows) * size.width, 0);
   point_index_rows_.assign(static_cast<size_t>(kRingRows) * size.width, -1);
+  for (std::vector<float>& plane : point_rows_) {
+    plane.assign(point_index_rows_.size(), 0.0f);
+  }
+  row_ahead_.resize(size.width);
+  row_behind_.resize(size.width);
   first_point_of_row_.assign(size.height + 1, 0);
+  for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
+    per_point->clear();
+  }
   const size_t room = size.width;
   for (std::vector<int32_t>* column : {&maxima_.x, &maxima_.here, &maxima_.before, &maxima_.after,
                                        &maxima_.direction_x, &maxima_.direction_y}) {
@@ -188,11 +251,6 @@ int32_t* EdgeDetector::pointIndexRow(int y) {
 }
 
 void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
-  if (smoother_) {
-    smoother_->smooth(grey, smoothed_);
-  } else {
-    grey.convertTo(smoothed_, CV_16U, kSmoothedGain);
-  }
   const int width = grey.cols;
   const int height = grey.rows;
   prepareBuffers(grey.size());
@@ -201,10 +259,18 @@ void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
       listener->gradientRow(y, gradient_x_, gradient_y_);
     }
   };
+  // Smoothed rows are made as the rows 3 px below need them (step samples).
+  int smoothed_rows = 0;
+  const auto smooth_through = [&](int last) {
+    for (; smoothed_rows <= std::min(last, height - 1); ++smoothed_rows) {
+      smoothRow(grey, smoothed_rows);
+    }
+  };
   tell(0);
   const int first_row = kBorderPx;
   const int last_row = height - kBorderPx - 1;
   for (int y = 1; y < height - 1; ++y) {
+    smooth_through(y + kStepSampleDistancePx - 1);
     int16_t* gx = gradient_x_.ptr<int16_t>(y);
     int16_t* gy = gradient_y_.ptr<int16_t>(y);
     HWY_DYNAMIC_DISPATCH(GradientRow)
@@ -225,6 +291,17 @@ void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
     }
   }
   tell(height - 1);
+}
+
+void EdgeDetector::smoothRow(const cv::Mat& grey, int y) {
+  uint16_t* out = smoothed_.ptr<uint16_t>(y);
+  if (smoother_) {
+    smoother_->smoothRow(grey, y, out);
+    return;
+  }
+  const uint8_t* in = grey.ptr<uint8_t>(y);
+  std::transform(in, in + grey.cols, out,
+                 [](uint8_t value) { return static_cast<uint16_t>(value * kSmoothedGain); });
 }
 
 // Row y takes the index ring's slot from row y - 3.
@@ -262,40 +339,60 @@ void EdgeDetector::addPoints(int y) {
                       static_cast<float>(y) + delta * static_cast<float>(dy)};
     point.gradient = sobel / EdgeDetector::kGradientGain;
     point.normal = sobel * maxima_.inverse_magnitude[i];
-    point.step =
-        (static_cast<float>(grey[x + step_offset]) - grey[x - step_offset]) / kSmoothedGain;
+    point.step = static_cast<float>(grey[x + step_offset] - grey[x - step_offset]) / kSmoothedGain;
     point.pixel_x = x;
     point.pixel_y = y;
     index[x] = static_cast<int32_t>(points_.size());
+    const size_t at = static_cast<size_t>(y % kRingRows) * smoothed_.cols + x;
+    point_rows_[0][at] = point.position.x();
+    point_rows_[1][at] = point.position.y();
+    point_rows_[2][at] = point.normal.x();
+    point_rows_[3][at] = point.normal.y();
     points_.push_back(point);
+  }
+  for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
+    per_point->resize(points_.size(), -1);
   }
   first_point_of_row_[y + 1] = static_cast<int32_t>(points_.size());
 }
 
-// The nearest same-polarity 8-neighbours ahead and behind of row y's points,
-// while rows y - 1 .. y + 1 are in the index ring.
+// The nearest 8-neighbours ahead and behind of row y's points whose gradient
+// turns by at most max_link_turn,
+// while rows y - 1 .. y + 1 are in the index ring; then the links of row y's
+// points to points searched before them (rows above, earlier in the row)
+// where the choice is mutual.
 void EdgeDetector::findNeighbours(int y) {
-  const int32_t* rows[3] = {pointIndexRow(y - 1), pointIndexRow(y), pointIndexRow(y + 1)};
-  for (int32_t p = first_point_of_row_[y]; p < first_point_of_row_[y + 1]; ++p) {
-    EdgePoint& here = points_[p];
-    const Eigen::Vector2f tangent(-here.normal.y(), here.normal.x());
-    float ahead_distance = std::numeric_limits<float>::max();
-    float behind_distance = ahead_distance;
-    for (const int32_t* row : rows) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int32_t candidate = row[here.pixel_x + dx];
-        if (candidate < 0 || candidate == p || points_[candidate].normal.dot(here.normal) <= 0.0f) {
-          continue;
-        }
-        const Eigen::Vector2f offset = points_[candidate].position - here.position;
-        const float distance = offset.squaredNorm();
-        const bool ahead = offset.dot(tangent) > 0.0f;
-        float& nearest = ahead ? ahead_distance : behind_distance;
-        if (distance < nearest) {
-          nearest = distance;
-          (ahead ? here.ahead : here.behind) = candidate;
-        }
-      }
+  const int32_t first = first_point_of_row_[y];
+  const int32_t end = first_point_of_row_[y + 1];
+  if (first == end) {
+    return;
+  }
+  EdgeNeighbourhood rows;
+  for (int k = 0; k < 3; ++k) {
+    const size_t offset = static_cast<size_t>((y - 1 + k) % kRingRows) * smoothed_.cols;
+    rows.index[k] = point_index_rows_.data() + offset;
+    rows.x[k] = point_rows_[0].data() + offset;
+    rows.y[k] = point_rows_[1].data() + offset;
+    rows.normal_x[k] = point_rows_[2].data() + offset;
+    rows.normal_y[k] = point_rows_[3].data() + offset;
+  }
+  HWY_DYNAMIC_DISPATCH(NearestNeighbours)
+  (rows, points_[first].pixel_x, points_[end - 1].pixel_x + 1, cos_max_turn_, row_ahead_.data(),
+   row_behind_.data());
+  for (int32_t p = first; p < end; ++p) {
+    nearest_ahead_[p] = row_ahead_[points_[p].pixel_x];
+    nearest_behind_[p] = row_behind_[points_[p].pixel_x];
+  }
+  for (int32_t p = first; p < end; ++p) {
+    const int32_t behind = nearest_behind_[p];
+    if (behind >= 0 && behind < p && nearest_ahead_[behind] == p) {
+      next_[behind] = p;
+      previous_[p] = behind;
+    }
+    const int32_t ahead = nearest_ahead_[p];
+    if (ahead >= 0 && ahead < p && nearest_behind_[ahead] == p) {
+      next_[p] = ahead;
+      previous_[ahead] = p;
     }
   }
 }

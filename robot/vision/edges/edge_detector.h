@@ -15,8 +15,15 @@
 // I(p + 3d) - I(p - 3d) in the smoothed image, d pointing dark -> bright: for
 // a step of height h blurred to sigma s in all, h erf(3 / (sqrt(2) s)).
 //
-// Each point also records its nearest neighbours along the edge, ahead and
-// behind (for EdgeLinker), found while their rows are at hand.
+// Each point is also linked to its neighbours along the edge (next(),
+// previous(), for EdgeLinker), found while their rows are at hand: among the 8-neighbours
+// whose gradient turns by at most max_link_turn (g1.g2 >= cos(max_link_turn)
+// |g1| |g2|), the nearest by sub-pixel position ahead of it along the tangent
+// t = (-gy, gx) / |g| and the nearest behind it; p -> q is a link when q is
+// p's nearest ahead and p is q's nearest behind, as in the chaining of the
+// Canny/Devernay detector (von Gioi & Randall, IPOL 2017), so links run
+// through both pixels where non-maximum suppression leaves a staircase two
+// pixels wide, and stop at corners, at polarity flips and at junctions.
 //
 // One pass over the rows computes the gradient, |g|^2, the suppression and
 // the neighbours together (three rows of |g|^2 and of point indices in
@@ -42,15 +49,12 @@ struct EdgePoint {
   Eigen::Vector2f normal;    // gradient / |gradient|
   float step;                // grey-level step across the edge (bright - dark)
   int pixel_x, pixel_y;      // the pixel it was found at
-  // The nearest edge points among the 8 neighbours with the gradient on the
-  // same side (g.g' > 0), ahead of and behind this one along the tangent
-  // t = (-gy, gx) / |g| (by sub-pixel position), or -1.
-  int32_t ahead = -1, behind = -1;
 };
 
 struct EdgeDetectorOptions {
-  double smoothing_sigma_px = 1.0;  // Gaussian pre-smoothing; 0 disables it
+  double smoothing_sigma_px = 1.0;  // Gaussian pre-smoothing, >= 0.5; 0 disables it
   float min_gradient = 8.0f;        // grey levels per pixel
+  double max_link_turn_rad = 0.3;   // largest gradient turn between linked neighbours
 };
 
 // Working storage of EdgeDetector's SIMD passes: the pixels of one row that
@@ -72,13 +76,25 @@ class GradientRowListener {
   virtual void gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) = 0;
 };
 
+// Working storage of EdgeDetector's neighbour search: three consecutive rows
+// (above, this one, below) of the planes that hold, per pixel, the index of
+// its edge point or -1, and that point's position and normal.
+struct EdgeNeighbourhood {
+  const int32_t* index[3];
+  const float* x[3];
+  const float* y[3];
+  const float* normal_x[3];
+  const float* normal_y[3];
+};
+
 class EdgeDetector {
  public:
   // gradientX(), gradientY() hold gain x grey levels per px: Sobel (8 x the
   // slope) of the smoothed image kept with 4 fractional bits.
   static constexpr float kGradientGain = 128.0f;
 
-  // Throws std::invalid_argument for a negative sigma or a non-positive threshold.
+  // Throws std::invalid_argument for a sigma in (0, 0.5) or below 0, a
+  // threshold outside (0, 255] or a turn outside (0, pi).
   explicit EdgeDetector(const EdgeDetectorOptions& options);
 
   // `grey`: CV_8UC1, at least 7 x 7 (checked by the caller). Edge points are
@@ -88,6 +104,9 @@ class EdgeDetector {
 
   // In raster order of their pixels.
   const std::vector<EdgePoint>& points() const { return points_; }
+  // For each point, the linked neighbour along +t and along -t (see above), or -1.
+  const std::vector<int32_t>& next() const { return next_; }
+  const std::vector<int32_t>& previous() const { return previous_; }
   // CV_16S Sobel responses, kGradientGain x grey levels per pixel, zero on
   // the 1 px border.
   const cv::Mat& gradientX() const { return gradient_x_; }
@@ -95,6 +114,7 @@ class EdgeDetector {
 
  private:
   void prepareBuffers(cv::Size size);
+  void smoothRow(const cv::Mat& grey, int y);
   int32_t* squaredMagnitudeRow(int y);
   int32_t* pointIndexRow(int y);
   void startRow(int y);
@@ -104,10 +124,15 @@ class EdgeDetector {
   EdgeDetectorOptions options_;
   std::optional<GaussianSmoother> smoother_;
   int32_t min_squared_sobel_;
+  float cos_max_turn_;
   cv::Mat smoothed_, gradient_x_, gradient_y_;
   std::vector<int32_t> squared_magnitude_rows_;  // 3 rows, row y at y % 3
   std::vector<int32_t> point_index_rows_;        // 3 rows of point indices or -1, row y at y % 3
+  std::vector<float> point_rows_[4];             // their x, y, normal x, normal y
+  std::vector<int32_t> row_ahead_, row_behind_;  // per pixel of a row: nearest point or -1
   std::vector<int32_t> first_point_of_row_;
+  std::vector<int32_t> nearest_ahead_, nearest_behind_;  // per point, or -1
+  std::vector<int32_t> next_, previous_;
   EdgeRowMaxima maxima_;
   std::vector<EdgePoint> points_;
 };

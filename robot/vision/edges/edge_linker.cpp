@@ -1,49 +1,39 @@
 #include "robot/vision/edges/edge_linker.h"
 
-#include <cmath>
 #include <stdexcept>
 
 namespace lineloc {
-EdgeLinker::EdgeLinker(const EdgeLinkerOptions& options)
-    : options_(options), cos_max_turn_(static_cast<float>(std::cos(options.max_turn_rad))) {
-  if (!(options.max_turn_rad > 0.0 && options.max_turn_rad < M_PI) || options.min_points < 2) {
-    throw std::invalid_argument("edge linker: max_turn_rad must be in (0, pi), min_points >= 2");
+EdgeLinker::EdgeLinker(const EdgeLinkerOptions& options) : options_(options) {
+  if (options.min_points < 2) {
+    throw std::invalid_argument("edge linker: min_points must be >= 2");
   }
 }
 
-void EdgeLinker::link(const std::vector<EdgePoint>& points) {
-  const int32_t count = static_cast<int32_t>(points.size());
-  next_.assign(count, -1);
-  previous_.assign(count, -1);
-  for (int32_t p = 0; p < count; ++p) {
-    const int32_t q = points[p].ahead;
-    if (q >= 0 && points[q].behind == p &&
-        points[q].normal.dot(points[p].normal) >= cos_max_turn_) {
-      next_[p] = q;
-      previous_[q] = p;
-    }
-  }
+void EdgeLinker::link(const std::vector<int32_t>& next, const std::vector<int32_t>& previous) {
+  const int32_t count = static_cast<int32_t>(next.size());
   visited_.assign(count, 0);
   chain_points_.clear();
   chains_.clear();
   for (int32_t p = 0; p < count; ++p) {
-    if (previous_[p] < 0) {
-      addChain(p);
+    if (previous[p] < 0) {
+      addChain(next, p);
     }
   }
   for (int32_t p = 0; p < count; ++p) {
     if (!visited_[p]) {
-      addChain(p);
+      addChain(next, p);
     }
   }
 }
 
-void EdgeLinker::addChain(int32_t first) {
+void EdgeLinker::addChain(const std::vector<int32_t>& next, int32_t first) {
   const int begin = static_cast<int>(chain_points_.size());
-  for (int32_t p = first; p >= 0 && !visited_[p]; p = next_[p]) {
+  int32_t p = first;
+  do {
     visited_[p] = 1;
     chain_points_.push_back(p);
-  }
+    p = next[p] >= 0 && !visited_[next[p]] ? next[p] : -1;
+  } while (p >= 0);
   const PointRange chain{begin, static_cast<int>(chain_points_.size())};
   if (chain.size() >= options_.min_points) {
     chains_.push_back(chain);

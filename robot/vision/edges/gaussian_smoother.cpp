@@ -39,23 +39,16 @@ void SumColumns(const uint8_t* const* rows, const uint16_t* weights, int taps, i
               [&](auto d, int x) { sumColumnsAt(d, rows, weights, taps, x, sums); });
 }
 
-// out(x) = (sum_k w_k t(x + k) + 2^11) >> 12 for the lanes of d at x; `sums`
-// starts `taps / 2` columns left of the image.
-template <class D>
-void smoothRowAt(D d, const uint16_t* sums, const uint16_t* weights, int taps, int x,
-                 uint16_t* out) {
-  const hn::Rebind<uint16_t, D> d16;
-  const hn::Rebind<int32_t, D> di;
-  auto total = hn::Set(d, 1u << 11);
-  for (int k = 0; k < taps; ++k) {
-    total = total + hn::Set(d, weights[k]) * hn::PromoteTo(d, hn::LoadU(d16, sums + x + k));
-  }
-  hn::StoreU(hn::DemoteTo(d16, hn::BitCast(di, hn::ShiftRight<12>(total))), d16, out + x);
-}
-
+// out(x) = (sum_k floor(t(x + k) w_k / 2^8) + 2^3) >> 4; `sums` starts
+// `taps / 2` columns left of the image.
 void SmoothRow(const uint16_t* sums, const uint16_t* weights, int taps, int width, uint16_t* out) {
-  forEachSpan(hn::ScalableTag<uint32_t>(), 0, width,
-              [&](auto d, int x) { smoothRowAt(d, sums, weights, taps, x, out); });
+  forEachSpan(hn::ScalableTag<uint16_t>(), 0, width, [&](auto d, int x) {
+    auto total = hn::Set(d, uint16_t{1 << 3});
+    for (int k = 0; k < taps; ++k) {
+      total = total + hn::MulHigh(hn::LoadU(d, sums + x + k), hn::Set(d, weights[k] << 8));
+    }
+    hn::StoreU(hn::ShiftRight<4>(total), d, out + x);
+  });
 }
 
 }  // namespace HWY_NAMESPACE
@@ -75,8 +68,8 @@ HWY_EXPORT(SumColumns);
 HWY_EXPORT(SmoothRow);
 
 GaussianSmoother::GaussianSmoother(double sigma_px) {
-  if (!(sigma_px > 0.0)) {
-    throw std::invalid_argument("Gaussian smoothing: sigma_px must be positive");
+  if (!(sigma_px >= kMinSigmaPx)) {
+    throw std::invalid_argument("Gaussian smoothing: sigma_px must be at least 0.5");
   }
   radius_ = static_cast<int>(std::ceil(2.0 * sigma_px));
   std::vector<double> gaussian(2 * radius_ + 1);
@@ -93,23 +86,19 @@ GaussianSmoother::GaussianSmoother(double sigma_px) {
   rows_.resize(weights_.size());
 }
 
-void GaussianSmoother::smooth(const cv::Mat& grey, cv::Mat& smoothed) {
-  smoothed.create(grey.size(), CV_16UC1);
+void GaussianSmoother::smoothRow(const cv::Mat& grey, int y, uint16_t* out) {
   const int width = grey.cols;
   const int height = grey.rows;
   const int taps = static_cast<int>(weights_.size());
   column_sums_.resize(static_cast<size_t>(width) + 2 * radius_);
   uint16_t* sums = column_sums_.data() + radius_;
-  for (int y = 0; y < height; ++y) {
-    for (int k = -radius_; k <= radius_; ++k) {
-      rows_[k + radius_] = grey.ptr<uint8_t>(std::clamp(y + k, 0, height - 1));
-    }
-    HWY_DYNAMIC_DISPATCH(SumColumns)(rows_.data(), weights_.data(), taps, width, sums);
-    std::fill(column_sums_.begin(), column_sums_.begin() + radius_, sums[0]);
-    std::fill(column_sums_.end() - radius_, column_sums_.end(), sums[width - 1]);
-    HWY_DYNAMIC_DISPATCH(SmoothRow)
-    (column_sums_.data(), weights_.data(), taps, width, smoothed.ptr<uint16_t>(y));
+  for (int k = -radius_; k <= radius_; ++k) {
+    rows_[k + radius_] = grey.ptr<uint8_t>(std::clamp(y + k, 0, height - 1));
   }
+  HWY_DYNAMIC_DISPATCH(SumColumns)(rows_.data(), weights_.data(), taps, width, sums);
+  std::fill(column_sums_.begin(), column_sums_.begin() + radius_, sums[0]);
+  std::fill(column_sums_.end() - radius_, column_sums_.end(), sums[width - 1]);
+  HWY_DYNAMIC_DISPATCH(SmoothRow)(column_sums_.data(), weights_.data(), taps, width, out);
 }
 
 }  // namespace lineloc

@@ -76,7 +76,7 @@ const FrameFeatures& FeatureExtractor::extract(const cv::Mat& image) {
     corner_detector_.begin(grey.size(), EdgeDetector::kGradientGain);
   }
   edge_detector_.detect(grey, options_.detect_corners ? this : nullptr);
-  linker_.link(edge_detector_.points());
+  linker_.link(edge_detector_.next(), edge_detector_.previous());
   line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
   exportSegments();
   features_.corners.clear();

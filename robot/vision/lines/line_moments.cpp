@@ -55,8 +55,11 @@ LineFit fitLine(const PointMoments& moments, const LineFitOptions& options) {
     fit.status = LineFitStatus::kDegenerate;
     return fit;
   }
-  const double theta = 0.5 * std::atan2(2.0 * b, a - c);
-  fit.direction = {std::cos(theta), std::sin(theta)};
+  // Major eigenvector of [a b; b c] from the larger row of S - lambda_max I
+  // (zero only for an isotropic scatter, whose axis is arbitrary).
+  const Eigen::Vector2d major =
+      a >= c ? Eigen::Vector2d(lambda_max - c, b) : Eigen::Vector2d(b, lambda_max - a);
+  fit.direction = major.squaredNorm() > 0.0 ? major.normalized() : Eigen::Vector2d::UnitX();
   if (fit.direction.y() < 0.0 || (fit.direction.y() == 0.0 && fit.direction.x() < 0.0)) {
     fit.direction = -fit.direction;
   }

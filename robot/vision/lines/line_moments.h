@@ -4,7 +4,7 @@
 //
 // With centroid c and scatter S = (1/n) sum (p - c)(p - c)^T of eigenvalues
 // lambda_min <= lambda_max, the line passes through c along the major axis
-// d = (cos theta, sin theta), theta = atan2(2 Sxy, Sxx - Syy) / 2, and the
+// d (the eigenvector of lambda_max, at theta = atan2(2 Sxy, Sxx - Syy) / 2), and the
 // residual sum of squares is n lambda_min. With sigma^2 = n lambda_min / (n - 2)
 // and n_eff = n / points_per_sample independent points (neighbouring edge
 // points share the smoothing kernel, so their errors are correlated):

@@ -1,7 +1,8 @@
 // Runs a SIMD row kernel over a column range: whole vectors of the target's
-// width, then the remainder one lane at a time through the same code (a
-// one-lane tag), so every kernel has exactly one body for all instruction
-// sets and no out-of-range access.
+// width, then the remainder in vectors of half, quarter, ... the width down
+// to one lane, through the same code, so every kernel has exactly one body
+// for all instruction sets and no out-of-range access, and a remainder costs
+// at most log2(lanes) steps.
 //
 // Include after <hwy/highway.h> (re-included per target by
 // hwy/foreach_target.h).
@@ -21,17 +22,16 @@ namespace lineloc {
 namespace HWY_NAMESPACE {
 
 // Calls span(tag, x) for x in [begin, end): tag `d` while a whole vector
-// fits, then a one-lane tag of the same lane type.
+// fits, then tags of half as many lanes.
 template <class D, class Span>
 void forEachSpan(D d, int begin, int end, Span span) {
-  const hwy::HWY_NAMESPACE::CappedTag<hwy::HWY_NAMESPACE::TFromD<D>, 1> d1;
   const int lanes = static_cast<int>(hwy::HWY_NAMESPACE::Lanes(d));
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
     span(d, x);
   }
-  for (; x < end; ++x) {
-    span(d1, x);
+  if constexpr (hwy::HWY_NAMESPACE::MaxLanes(D()) > 1) {
+    forEachSpan(hwy::HWY_NAMESPACE::Half<D>(), x, end, span);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 // foreach_target.h compiles this file once per instruction set; it must
@@ -14,6 +15,7 @@
 #include <hwy/highway.h>
 // clang-format on
 
+#include "robot/vision/simd/append_selected-inl.h"
 #include "robot/vision/simd/for_each_span-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -114,9 +116,9 @@ void HorizontalMaximum(const float* weight, int width, int radius, float* maximu
 
 // The columns x in [begin, end) where weight >= threshold and no weight in
 // the window whose rows' horizontal maxima are `row_maxima` (the weight's own
-// row first) is larger; returns their number.
-int LocalMaxima(const float* weight, const float* const* row_maxima, int rows, int begin, int end,
-                float threshold, int32_t* xs) {
+// row first) is larger; returns their number (`xs` has kCompressSlack to spare).
+int LocalMaxima(const float* weight, const float* const* row_maxima, int rows,
+                const int32_t* columns, int begin, int end, float threshold, int32_t* xs) {
   size_t count = 0;
   forEachSpan(hn::ScalableTag<float>(), begin, end, [&](auto d, int x) {
     const auto here = hn::LoadU(d, weight + x);
@@ -129,7 +131,8 @@ int LocalMaxima(const float* weight, const float* const* row_maxima, int rows, i
       maximum = hn::AndNot(here < hn::LoadU(d, row_maxima[row] + x), maximum);
     }
     const hn::Rebind<int32_t, decltype(d)> di;
-    count += hn::CompressBlendedStore(hn::Iota(di, x), hn::RebindMask(di, maximum), di, xs + count);
+    count +=
+        appendSelected(di, hn::LoadU(di, columns + x), hn::RebindMask(di, maximum), xs + count);
   });
   return static_cast<int>(count);
 }
@@ -191,6 +194,8 @@ namespace {
 // The tensor sums (g / 4)(g / 4)^T.
 constexpr double kGradientStep = 4.0;
 constexpr int kMaxWindowRadiusPx = 5;
+// w is evaluated on every kRowStep-th row.
+constexpr int kRowStep = 2;
 
 // The window lanes: a multiple of any target's vector length; the padding
 // lanes have no gradient and lie outside every disc.
@@ -263,7 +268,9 @@ void ForstnerDetector::begin(cv::Size size, float gain) {
   row_maximum_rows_.assign(weight_rows_.size(), 0.0f);
   row_peaks_.assign(weightRingRows(), 0.0f);
   zero_row_.assign(size.width, 0.0f);
-  row_candidates_.resize(size.width);
+  row_candidates_.resize(static_cast<size_t>(size.width) + kCompressSlack);
+  column_numbers_.resize(size.width);
+  std::iota(column_numbers_.begin(), column_numbers_.end(), 0);
   weight_sum_ = 0.0;
   candidates_.clear();
   corners_.clear();
@@ -283,10 +290,15 @@ void ForstnerDetector::addRow(int y, const cv::Mat& gradient_x, const cv::Mat& g
   if (centre < r) {
     return;
   }
+  float& peak = row_peaks_[centre % weightRingRows()];
+  if (centre % kRowStep != 0) {
+    peak = 0.0f;
+    suppressNonMaxima(centre - options_.suppression_radius_px);
+    return;
+  }
   float* w = weightRow(centre);
   std::fill_n(w, r, 0.0f);
   std::fill_n(w + size_.width - r, r, 0.0f);
-  float& peak = row_peaks_[centre % weightRingRows()];
   weight_sum_ += HWY_DYNAMIC_DISPATCH(WeightRow)(
       column_sums_.data(), size_.width, r, static_cast<float>(options_.min_roundness), w, &peak);
   // A row without a candidate can stand in as zeros for the row maxima.
@@ -341,7 +353,8 @@ float* ForstnerDetector::rowMaximumRow(int y) {
 // whole image with w = 0 in the rows still to come: a lower bound of the
 // final threshold until the last row is in, and the threshold then.
 float ForstnerDetector::candidateFloor() const {
-  const double mean_weight = weight_sum_ / (static_cast<double>(size_.width) * size_.height);
+  const int sampled_rows = (size_.height + kRowStep - 1) / kRowStep;
+  const double mean_weight = weight_sum_ / (static_cast<double>(size_.width) * sampled_rows);
   return static_cast<float>(
       std::max(options_.min_weight / tensor_scale_, options_.weight_factor * mean_weight));
 }
@@ -367,8 +380,8 @@ void ForstnerDetector::suppressNonMaxima(int y) {
   }
   const float* w = weightRow(y);
   const int count = HWY_DYNAMIC_DISPATCH(LocalMaxima)(
-      w, suppression_rows_.data(), static_cast<int>(suppression_rows_.size()), margin,
-      size_.width - margin, floor, row_candidates_.data());
+      w, suppression_rows_.data(), static_cast<int>(suppression_rows_.size()),
+      column_numbers_.data(), margin, size_.width - margin, floor, row_candidates_.data());
   for (int i = 0; i < count; ++i) {
     const int x = row_candidates_[i];
     candidates_.push_back({x, y, w[x]});

@@ -93,7 +93,8 @@ class ForstnerDetector {
   std::vector<float> zero_row_;
   double weight_sum_ = 0.0;                     // of w in tensor units
   std::vector<const float*> suppression_rows_;  // row maxima of the 2s + 1 rows, own row first
-  std::vector<int32_t> row_candidates_;
+  std::vector<int32_t> column_numbers_;         // 0, 1, ..., width - 1
+  std::vector<int32_t> row_candidates_;         // kCompressSlack to spare
   std::vector<Candidate> candidates_;
   // The refinement window, row by row: pixel offsets and gradient (grey
   // levels per px), padded to a whole number of vectors.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 // foreach_target.h compiles this file once per instruction set; it must
@@ -15,6 +16,7 @@
 #include <hwy/contrib/math/math-inl.h>
 // clang-format on
 
+#include "robot/vision/simd/append_selected-inl.h"
 #include "robot/vision/simd/for_each_span-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -52,8 +54,8 @@ void GradientRow(const uint16_t* above, const uint16_t* row, const uint16_t* bel
 // gradient's octant, negated when it points against the gradient. Returns the
 // number of survivors.
 int SuppressRow(const int32_t* up, const int32_t* mid, const int32_t* down,
-                const int16_t* gradient_x, const int16_t* gradient_y, int begin, int end,
-                int32_t min_squared_magnitude, EdgeRowMaxima& maxima) {
+                const int16_t* gradient_x, const int16_t* gradient_y, const int32_t* columns,
+                int begin, int end, int32_t min_squared_magnitude, EdgeRowMaxima& maxima) {
   size_t count = 0;
   forEachSpan(hn::ScalableTag<int32_t>(), begin, end, [&](auto d, int x) {
     const auto m = hn::LoadU(d, mid + x);
@@ -96,9 +98,9 @@ int SuppressRow(const int32_t* up, const int32_t* mid, const int32_t* down,
       return;
     }
     const auto keep = [&](decltype(m) v, std::vector<int32_t>& out) {
-      return hn::CompressBlendedStore(v, maximum, d, out.data() + count);
+      return appendSelected(d, v, maximum, out.data() + count);
     };
-    keep(hn::Iota(d, x), maxima.x);
+    keep(hn::LoadU(d, columns + x), maxima.x);
     keep(m, maxima.here);
     keep(m_before, maxima.before);
     keep(m_after, maxima.after);
@@ -131,48 +133,29 @@ void SubPixelRow(EdgeRowMaxima& maxima) {
   });
 }
 
-// For the edge points of the middle row of `rows` in columns [begin, end):
-// among the 8 neighbours that are edge points whose normal n' has
-// n.n' >= cos_max_turn, the nearest ahead ((q - p).t > 0, t = (-ny, nx)) and
-// the nearest behind, as point indices or -1, at `ahead` and `behind` [x].
-void NearestNeighbours(const EdgeNeighbourhood& rows, int begin, int end, float cos_max_turn,
-                       int32_t* ahead, int32_t* behind) {
-  constexpr int kSteps[8][2] = {{-1, 0}, {0, 0}, {1, 0}, {-1, 1}, {1, 1}, {-1, 2}, {0, 2}, {1, 2}};
+// For x in [begin, end) of the middle row of `normal_x`, `normal_y` (three
+// rows of the points' normals per pixel, (0, 0) where there is none): bit k
+// of masks[x] is set when neighbour kNeighbourSteps[k] is a point whose
+// normal n' has n.n' >= cos_max_turn (> 0, so never a vacant pixel).
+void NeighbourMasks(const float* const* normal_x, const float* const* normal_y, int begin, int end,
+                    float cos_max_turn, int32_t* masks) {
   forEachSpan(hn::ScalableTag<float>(), begin, end, [&](auto d, int x) {
     const hn::Rebind<int32_t, decltype(d)> di;
-    const auto here = hn::LoadU(di, rows.index[1] + x);
-    if (hn::AllTrue(di, here < hn::Zero(di))) {
+    const auto nx = hn::LoadU(d, normal_x[1] + x);
+    const auto ny = hn::LoadU(d, normal_y[1] + x);
+    if (hn::AllTrue(d, hn::And(nx == hn::Zero(d), ny == hn::Zero(d)))) {
       return;
     }
-    const auto px = hn::LoadU(d, rows.x[1] + x);
-    const auto py = hn::LoadU(d, rows.y[1] + x);
-    const auto nx = hn::LoadU(d, rows.normal_x[1] + x);
-    const auto ny = hn::LoadU(d, rows.normal_y[1] + x);
-    const auto none = hn::Set(d, std::numeric_limits<float>::max());
-    auto ahead_distance = none, behind_distance = none;
-    auto nearest_ahead = hn::Set(di, -1), nearest_behind = nearest_ahead;
-    for (const auto& [dx, row] : kSteps) {
-      const int at = x + dx;
-      const auto index = hn::LoadU(di, rows.index[row] + at);
-      const auto ox = hn::LoadU(d, rows.x[row] + at) - px;
-      const auto oy = hn::LoadU(d, rows.y[row] + at) - py;
-      const auto turn =
-          hn::LoadU(d, rows.normal_x[row] + at) * nx + hn::LoadU(d, rows.normal_y[row] + at) * ny;
-      const auto usable = hn::AndNot(turn < hn::Set(d, cos_max_turn),
-                                     hn::RebindMask(d, hn::Not(index < hn::Zero(di))));
-      const auto distance = hn::IfThenElse(usable, ox * ox + oy * oy, none);
-      const auto is_ahead = oy * nx - ox * ny > hn::Zero(d);
-      const auto to_ahead = hn::IfThenElse(is_ahead, distance, none);
-      const auto to_behind = hn::IfThenElse(is_ahead, none, distance);
-      nearest_ahead =
-          hn::IfThenElse(hn::RebindMask(di, to_ahead < ahead_distance), index, nearest_ahead);
-      nearest_behind =
-          hn::IfThenElse(hn::RebindMask(di, to_behind < behind_distance), index, nearest_behind);
-      ahead_distance = hn::Min(ahead_distance, to_ahead);
-      behind_distance = hn::Min(behind_distance, to_behind);
+    auto mask = hn::Zero(di);
+    for (int k = 0; k < 8; ++k) {
+      const NeighbourStep& step = kNeighbourSteps[k];
+      const int at = x + step.dx;
+      const auto turn = hn::MulAdd(hn::LoadU(d, normal_x[step.dy + 1] + at), nx,
+                                   hn::LoadU(d, normal_y[step.dy + 1] + at) * ny);
+      const auto usable = hn::RebindMask(di, hn::Not(turn < hn::Set(d, cos_max_turn)));
+      mask = hn::Or(mask, hn::IfThenElseZero(usable, hn::Set(di, 1 << k)));
     }
-    hn::StoreU(nearest_ahead, di, ahead + x);
-    hn::StoreU(nearest_behind, di, behind + x);
+    hn::StoreU(mask, di, masks + x);
   });
 }
 
@@ -195,16 +178,16 @@ constexpr int kRingRows = 3;
 HWY_EXPORT(GradientRow);
 HWY_EXPORT(SuppressRow);
 HWY_EXPORT(SubPixelRow);
-HWY_EXPORT(NearestNeighbours);
+HWY_EXPORT(NeighbourMasks);
 
 EdgeDetector::EdgeDetector(const EdgeDetectorOptions& options) : options_(options) {
   if (!(options.smoothing_sigma_px == 0.0 ||
         options.smoothing_sigma_px >= GaussianSmoother::kMinSigmaPx) ||
       !(options.min_gradient > 0.0f) || !(options.min_gradient <= 255.0f) ||
-      !(options.max_link_turn_rad > 0.0 && options.max_link_turn_rad < M_PI)) {
+      !(options.max_link_turn_rad > 0.0 && options.max_link_turn_rad < M_PI_2)) {
     throw std::invalid_argument(
         "edge detector: smoothing_sigma_px must be 0 or >= 0.5, min_gradient in (0, 255], "
-        "max_link_turn_rad in (0, pi)");
+        "max_link_turn_rad in (0, pi/2)");
   }
   if (options.smoothing_sigma_px > 0.0) {
     smoother_.emplace(options.smoothing_sigma_px);
@@ -224,16 +207,17 @@ void EdgeDetector::prepareBuffers(cv::Size size) {
   }
   squared_magnitude_rows_.assign(static_cast<size_t>(kRingRows) * size.width, 0);
   point_index_rows_.assign(static_cast<size_t>(kRingRows) * size.width, -1);
-  for (std::vector<float>& plane : point_rows_) {
-    plane.assign(point_index_rows_.size(), 0.0f);
-  }
-  row_ahead_.resize(size.width);
-  row_behind_.resize(size.width);
+  no_points_.assign(size.width, -1);
+  normal_x_rows_.assign(point_index_rows_.size(), 0.0f);
+  normal_y_rows_.assign(point_index_rows_.size(), 0.0f);
+  neighbour_masks_.resize(size.width);
   first_point_of_row_.assign(size.height + 1, 0);
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
     per_point->clear();
   }
-  const size_t room = size.width;
+  column_numbers_.resize(size.width);
+  std::iota(column_numbers_.begin(), column_numbers_.end(), 0);
+  const size_t room = static_cast<size_t>(size.width) + kCompressSlack;
   for (std::vector<int32_t>* column : {&maxima_.x, &maxima_.here, &maxima_.before, &maxima_.after,
                                        &maxima_.direction_x, &maxima_.direction_y}) {
     column->resize(room);
@@ -248,6 +232,10 @@ int32_t* EdgeDetector::squaredMagnitudeRow(int y) {
 
 int32_t* EdgeDetector::pointIndexRow(int y) {
   return point_index_rows_.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
+}
+
+float* EdgeDetector::normalRow(std::vector<float>& rows, int y) {
+  return rows.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
 }
 
 void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
@@ -307,9 +295,13 @@ void EdgeDetector::smoothRow(const cv::Mat& grey, int y) {
 // Row y takes the index ring's slot from row y - 3.
 void EdgeDetector::startRow(int y) {
   int32_t* index = pointIndexRow(y);
+  float* normal_x = normalRow(normal_x_rows_, y);
+  float* normal_y = normalRow(normal_y_rows_, y);
   if (y - kRingRows >= 0) {
     for (int32_t i = first_point_of_row_[y - kRingRows]; i < first_point_of_row_[y - 2]; ++i) {
-      index[points_[i].pixel_x] = -1;
+      const int x = points_[i].pixel_x;
+      index[x] = -1;
+      normal_x[x] = normal_y[x] = 0.0f;
     }
   }
   first_point_of_row_[y] = static_cast<int32_t>(points_.size());
@@ -319,36 +311,37 @@ void EdgeDetector::startRow(int y) {
 void EdgeDetector::addPoints(int y) {
   maxima_.count = HWY_DYNAMIC_DISPATCH(SuppressRow)(
       squaredMagnitudeRow(y - 1), squaredMagnitudeRow(y), squaredMagnitudeRow(y + 1),
-      gradient_x_.ptr<int16_t>(y), gradient_y_.ptr<int16_t>(y), kBorderPx,
+      gradient_x_.ptr<int16_t>(y), gradient_y_.ptr<int16_t>(y), column_numbers_.data(), kBorderPx,
       smoothed_.cols - kBorderPx, min_squared_sobel_, maxima_);
   HWY_DYNAMIC_DISPATCH(SubPixelRow)(maxima_);
   const int16_t* gx = gradient_x_.ptr<int16_t>(y);
   const int16_t* gy = gradient_y_.ptr<int16_t>(y);
   int32_t* index = pointIndexRow(y);
+  float* normal_x = normalRow(normal_x_rows_, y);
+  float* normal_y = normalRow(normal_y_rows_, y);
   const int smoothed_stride = static_cast<int>(smoothed_.step1());
   const uint16_t* grey = smoothed_.ptr<uint16_t>(y);
-  for (int i = 0; i < maxima_.count; ++i) {
+  const size_t first = points_.size();
+  points_.resize(first + maxima_.count);
+  EdgePoint* point = points_.data() + first;
+  for (int i = 0; i < maxima_.count; ++i, ++point) {
     const int x = maxima_.x[i];
     const int dx = maxima_.direction_x[i];
     const int dy = maxima_.direction_y[i];
     const float delta = maxima_.offset[i];
     const int step_offset = kStepSampleDistancePx * (dy * smoothed_stride + dx);
     const Eigen::Vector2f sobel(gx[x], gy[x]);
-    EdgePoint point;
-    point.position = {static_cast<float>(x) + delta * static_cast<float>(dx),
-                      static_cast<float>(y) + delta * static_cast<float>(dy)};
-    point.gradient = sobel / EdgeDetector::kGradientGain;
-    point.normal = sobel * maxima_.inverse_magnitude[i];
-    point.step = static_cast<float>(grey[x + step_offset] - grey[x - step_offset]) / kSmoothedGain;
-    point.pixel_x = x;
-    point.pixel_y = y;
-    index[x] = static_cast<int32_t>(points_.size());
-    const size_t at = static_cast<size_t>(y % kRingRows) * smoothed_.cols + x;
-    point_rows_[0][at] = point.position.x();
-    point_rows_[1][at] = point.position.y();
-    point_rows_[2][at] = point.normal.x();
-    point_rows_[3][at] = point.normal.y();
-    points_.push_back(point);
+    point->position = {static_cast<float>(x) + delta * static_cast<float>(dx),
+                       static_cast<float>(y) + delta * static_cast<float>(dy)};
+    point->gradient = sobel * (1.0f / EdgeDetector::kGradientGain);
+    point->normal = sobel * maxima_.inverse_magnitude[i];
+    point->step =
+        static_cast<float>(grey[x + step_offset] - grey[x - step_offset]) * (1.0f / kSmoothedGain);
+    point->pixel_x = x;
+    point->pixel_y = y;
+    index[x] = static_cast<int32_t>(first + i);
+    normal_x[x] = point->normal.x();
+    normal_y[x] = point->normal.y();
   }
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
     per_point->resize(points_.size(), -1);
@@ -367,33 +360,42 @@ void EdgeDetector::findNeighbours(int y) {
   if (first == end) {
     return;
   }
-  EdgeNeighbourhood rows;
-  for (int k = 0; k < 3; ++k) {
-    const size_t offset = static_cast<size_t>((y - 1 + k) % kRingRows) * smoothed_.cols;
-    rows.index[k] = point_index_rows_.data() + offset;
-    rows.x[k] = point_rows_[0].data() + offset;
-    rows.y[k] = point_rows_[1].data() + offset;
-    rows.normal_x[k] = point_rows_[2].data() + offset;
-    rows.normal_y[k] = point_rows_[3].data() + offset;
+  const float* normal_x[3] = {normalRow(normal_x_rows_, y - 1), normalRow(normal_x_rows_, y),
+                              normalRow(normal_x_rows_, y + 1)};
+  const float* normal_y[3] = {normalRow(normal_y_rows_, y - 1), normalRow(normal_y_rows_, y),
+                              normalRow(normal_y_rows_, y + 1)};
+  HWY_DYNAMIC_DISPATCH(NeighbourMasks)
+  (normal_x, normal_y, points_[first].pixel_x, points_[end - 1].pixel_x + 1, cos_max_turn_,
+   neighbour_masks_.data());
+  // The index row of each neighbour step shifted by dx + 1, to be read at
+  // x - 1; [kNone]: a row without points.
+  const int32_t* at_step[NeighbourSteps::kNone + 1];
+  for (int k = 0; k < 8; ++k) {
+    const NeighbourStep& step = kNeighbourSteps[k];
+    at_step[k] = pointIndexRow(y + step.dy) + step.dx + 1;
   }
-  HWY_DYNAMIC_DISPATCH(NearestNeighbours)
-  (rows, points_[first].pixel_x, points_[end - 1].pixel_x + 1, cos_max_turn_, row_ahead_.data(),
-   row_behind_.data());
+  at_step[NeighbourSteps::kNone] = no_points_.data();
   for (int32_t p = first; p < end; ++p) {
-    nearest_ahead_[p] = row_ahead_[points_[p].pixel_x];
-    nearest_behind_[p] = row_behind_[points_[p].pixel_x];
+    const EdgePoint& here = points_[p];
+    const int x = here.pixel_x;
+    const NeighbourSteps::Choice choice =
+        neighbour_steps_.choose(-here.normal.y(), here.normal.x(), neighbour_masks_[x]);
+    nearest_ahead_[p] = at_step[choice.ahead][x - 1];
+    nearest_behind_[p] = at_step[choice.behind][x - 1];
   }
+  // Links to points searched before: selects and a dummy target instead of
+  // branches, whose outcome is as good as random.
+  int32_t unlinked;
   for (int32_t p = first; p < end; ++p) {
     const int32_t behind = nearest_behind_[p];
-    if (behind >= 0 && behind < p && nearest_ahead_[behind] == p) {
-      next_[behind] = p;
-      previous_[p] = behind;
-    }
+    const bool from_behind =
+        (behind >= 0) & (behind < p) & (nearest_ahead_[std::max(behind, 0)] == p);
+    *(from_behind ? &next_[behind] : &unlinked) = p;
+    previous_[p] = from_behind ? behind : previous_[p];
     const int32_t ahead = nearest_ahead_[p];
-    if (ahead >= 0 && ahead < p && nearest_behind_[ahead] == p) {
-      next_[p] = ahead;
-      previous_[ahead] = p;
-    }
+    const bool to_ahead = (ahead >= 0) & (ahead < p) & (nearest_behind_[std::max(ahead, 0)] == p);
+    *(to_ahead ? &previous_[ahead] : &unlinked) = p;
+    next_[p] = to_ahead ? ahead : next_[p];
   }
 }
 

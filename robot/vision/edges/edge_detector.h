@@ -16,14 +16,14 @@
 // a step of height h blurred to sigma s in all, h erf(3 / (sqrt(2) s)).
 //
 // Each point is also linked to its neighbours along the edge (next(),
-// previous(), for EdgeLinker), found while their rows are at hand: among the 8-neighbours
-// whose gradient turns by at most max_link_turn (g1.g2 >= cos(max_link_turn)
-// |g1| |g2|), the nearest by sub-pixel position ahead of it along the tangent
-// t = (-gy, gx) / |g| and the nearest behind it; p -> q is a link when q is
-// p's nearest ahead and p is q's nearest behind, as in the chaining of the
-// Canny/Devernay detector (von Gioi & Randall, IPOL 2017), so links run
-// through both pixels where non-maximum suppression leaves a staircase two
-// pixels wide, and stop at corners, at polarity flips and at junctions.
+// previous(), for EdgeLinker), found while their rows are at hand: among the
+// 8-neighbours whose gradient turns by at most max_link_turn
+// (g1.g2 >= cos(max_link_turn) |g1| |g2|), the nearest ahead of it along the
+// tangent t = (-gy, gx) / |g| and the nearest behind it (neighbour_steps.h);
+// p -> q is a link when q is p's neighbour ahead and p is q's neighbour
+// behind, as in the chaining of the Canny/Devernay detector (von Gioi &
+// Randall, IPOL 2017), so links stop at corners, at polarity flips and at
+// junctions.
 //
 // One pass over the rows computes the gradient, |g|^2, the suppression and
 // the neighbours together (three rows of |g|^2 and of point indices in
@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "robot/vision/edges/gaussian_smoother.h"
+#include "robot/vision/edges/neighbour_steps.h"
 
 namespace lineloc {
 
@@ -54,12 +55,13 @@ struct EdgePoint {
 struct EdgeDetectorOptions {
   double smoothing_sigma_px = 1.0;  // Gaussian pre-smoothing, >= 0.5; 0 disables it
   float min_gradient = 8.0f;        // grey levels per pixel
-  double max_link_turn_rad = 0.3;   // largest gradient turn between linked neighbours
+  double max_link_turn_rad = 0.3;   // largest gradient turn between linked neighbours, < pi/2
 };
 
 // Working storage of EdgeDetector's SIMD passes: the pixels of one row that
 // survive non-maximum suppression (column, |g|^2 there and behind and ahead
-// along d, d) and their sub-pixel offset along d and 1 / |g|.
+// along d, d) and their sub-pixel offset along d and 1 / |g|; each array
+// has kCompressSlack elements to spare (simd/compress_slack.h).
 struct EdgeRowMaxima {
   std::vector<int32_t> x, here, before, after, direction_x, direction_y;
   std::vector<float> offset, inverse_magnitude;
@@ -76,17 +78,6 @@ class GradientRowListener {
   virtual void gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) = 0;
 };
 
-// Working storage of EdgeDetector's neighbour search: three consecutive rows
-// (above, this one, below) of the planes that hold, per pixel, the index of
-// its edge point or -1, and that point's position and normal.
-struct EdgeNeighbourhood {
-  const int32_t* index[3];
-  const float* x[3];
-  const float* y[3];
-  const float* normal_x[3];
-  const float* normal_y[3];
-};
-
 class EdgeDetector {
  public:
   // gradientX(), gradientY() hold gain x grey levels per px: Sobel (8 x the
@@ -94,7 +85,7 @@ class EdgeDetector {
   static constexpr float kGradientGain = 128.0f;
 
   // Throws std::invalid_argument for a sigma in (0, 0.5) or below 0, a
-  // threshold outside (0, 255] or a turn outside (0, pi).
+  // threshold outside (0, 255] or a turn outside (0, pi/2).
   explicit EdgeDetector(const EdgeDetectorOptions& options);
 
   // `grey`: CV_8UC1, at least 7 x 7 (checked by the caller). Edge points are
@@ -117,6 +108,7 @@ class EdgeDetector {
   void smoothRow(const cv::Mat& grey, int y);
   int32_t* squaredMagnitudeRow(int y);
   int32_t* pointIndexRow(int y);
+  float* normalRow(std::vector<float>& rows, int y);
   void startRow(int y);
   void addPoints(int y);
   void findNeighbours(int y);
@@ -125,14 +117,17 @@ class EdgeDetector {
   std::optional<GaussianSmoother> smoother_;
   int32_t min_squared_sobel_;
   float cos_max_turn_;
+  NeighbourSteps neighbour_steps_;
   cv::Mat smoothed_, gradient_x_, gradient_y_;
   std::vector<int32_t> squared_magnitude_rows_;  // 3 rows, row y at y % 3
   std::vector<int32_t> point_index_rows_;        // 3 rows of point indices or -1, row y at y % 3
-  std::vector<float> point_rows_[4];             // their x, y, normal x, normal y
-  std::vector<int32_t> row_ahead_, row_behind_;  // per pixel of a row: nearest point or -1
+  std::vector<int32_t> no_points_;               // a row of -1
+  std::vector<float> normal_x_rows_, normal_y_rows_;  // the same 3 rows: normals, or (0, 0)
+  std::vector<int32_t> neighbour_masks_;              // per pixel of a row, see NeighbourMasks
   std::vector<int32_t> first_point_of_row_;
   std::vector<int32_t> nearest_ahead_, nearest_behind_;  // per point, or -1
   std::vector<int32_t> next_, previous_;
+  std::vector<int32_t> column_numbers_;  // 0, 1, ..., width - 1
   EdgeRowMaxima maxima_;
   std::vector<EdgePoint> points_;
 };

@@ -23,8 +23,14 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
                             const UndistortionTable& undistortion) {
   const std::vector<int32_t>& chain_points = chains.chainPoints();
   undistorted_.resize(chain_points.size());
-  for (size_t i = 0; i < chain_points.size(); ++i) {
-    undistorted_[i] = undistortion.undistort(points[chain_points[i]].position);
+  if (undistortion.isIdentity()) {
+    for (size_t i = 0; i < chain_points.size(); ++i) {
+      undistorted_[i] = points[chain_points[i]].position;
+    }
+  } else {
+    for (size_t i = 0; i < chain_points.size(); ++i) {
+      undistorted_[i] = undistortion.undistort(points[chain_points[i]].position);
+    }
   }
   segments_.clear();
   for (const PointRange& chain : chains.chains()) {
@@ -45,12 +51,11 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
   const std::span<const Eigen::Vector2f> polyline(undistorted_.data() + chain.begin,
                                                   static_cast<size_t>(chain.size()));
   pieces_.clear();
-  split_and_merge_.approximate(polyline, pieces_);
+  cumulativeMoments(polyline, prefix_);
+  split_and_merge_.approximate(polyline, prefix_, pieces_);
   for (PointRange piece : pieces_) {
     LineSegment segment;
-    for (int i = piece.begin; i < piece.end; ++i) {
-      segment.moments.add(polyline[i]);
-    }
+    segment.moments = momentsOf(piece);
     segment.fit = fitLine(segment.moments, options_.fit);
     trimEnds(polyline, piece, segment);
     if (segment.fit.status != LineFitStatus::kOk) {
@@ -77,31 +82,45 @@ void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRan
   };
   const PointRange before = piece;
   while (piece.size() > 0 && off_line(piece.begin)) {
-    segment.moments.remove(polyline[piece.begin++]);
+    ++piece.begin;
   }
   while (piece.size() > 0 && off_line(piece.end - 1)) {
-    segment.moments.remove(polyline[--piece.end]);
+    --piece.end;
   }
   if (piece.begin != before.begin || piece.end != before.end) {
+    segment.moments = momentsOf(piece);
     segment.fit = fitLine(segment.moments, options_.fit);
   }
 }
 
+// The points of the piece at least trim_margin from both ends along the fit
+// (the run of them between the first and the last that are).
 LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
                                 const LineFit& fit) const {
   const double first = fit.along(polyline[piece.begin].cast<double>());
   const double last = fit.along(polyline[piece.end - 1].cast<double>());
   const double low = std::min(first, last) + options_.trim_margin_px;
   const double high = std::max(first, last) - options_.trim_margin_px;
-  PointMoments moments;
-  for (int i = piece.begin; i < piece.end; ++i) {
+  const auto inside = [&](int i) {
     const double along = fit.along(polyline[i].cast<double>());
-    if (along >= low && along <= high) {
-      moments.add(polyline[i]);
-    }
+    return along >= low && along <= high;
+  };
+  PointRange core = piece;
+  while (core.size() > 0 && !inside(core.begin)) {
+    ++core.begin;
   }
-  const LineFit core = fitLine(moments, options_.fit);
-  return moments.n >= options_.min_points && core.status == LineFitStatus::kOk ? core : fit;
+  while (core.size() > 0 && !inside(core.end - 1)) {
+    --core.end;
+  }
+  if (core.size() < options_.min_points) {
+    return fit;
+  }
+  const LineFit core_fit = fitLine(momentsOf(core), options_.fit);
+  return core_fit.status == LineFitStatus::kOk ? core_fit : fit;
+}
+
+PointMoments LineExtractor::momentsOf(PointRange run) const {
+  return prefix_[run.end] - prefix_[run.begin];
 }
 
 void LineExtractor::keepSignificant() {

@@ -52,6 +52,8 @@ class LineExtractor {
                 LineSegment& segment) const;
   LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
                    const LineFit& fit) const;
+  // Moments of a run of the current chain's points.
+  PointMoments momentsOf(PointRange run) const;
   void keepSignificant();
 
   LineExtractorOptions options_;
@@ -60,6 +62,7 @@ class LineExtractor {
   EndpointSnapper snapper_;
   std::vector<Eigen::Vector2f> undistorted_;
   std::vector<PointRange> pieces_;
+  std::vector<PointMoments> prefix_;  // cumulativeMoments of the current chain
   std::vector<LineSegment> segments_;
 };
 

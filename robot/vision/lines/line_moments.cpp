@@ -5,28 +5,6 @@
 
 namespace lineloc {
 
-void PointMoments::add(const Eigen::Vector2f& p) {
-  const double x = p.x();
-  const double y = p.y();
-  n += 1.0;
-  sx += x;
-  sy += y;
-  sxx += x * x;
-  sxy += x * y;
-  syy += y * y;
-}
-
-void PointMoments::remove(const Eigen::Vector2f& p) {
-  const double x = p.x();
-  const double y = p.y();
-  n -= 1.0;
-  sx -= x;
-  sy -= y;
-  sxx -= x * x;
-  sxy -= x * y;
-  syy -= y * y;
-}
-
 PointMoments& PointMoments::operator+=(const PointMoments& other) {
   n += other.n;
   sx += other.sx;
@@ -35,6 +13,21 @@ PointMoments& PointMoments::operator+=(const PointMoments& other) {
   sxy += other.sxy;
   syy += other.syy;
   return *this;
+}
+
+PointMoments PointMoments::operator-(const PointMoments& other) const {
+  return {n - other.n,     sx - other.sx,   sy - other.sy,
+          sxx - other.sxx, sxy - other.sxy, syy - other.syy};
+}
+
+void cumulativeMoments(std::span<const Eigen::Vector2f> points, std::vector<PointMoments>& prefix) {
+  prefix.resize(points.size() + 1);
+  PointMoments running;
+  prefix[0] = running;
+  for (size_t i = 0; i < points.size(); ++i) {
+    running.add(points[i]);
+    prefix[i + 1] = running;
+  }
 }
 
 LineFit fitLine(const PointMoments& moments, const LineFitOptions& options) {
@@ -48,7 +41,8 @@ LineFit fitLine(const PointMoments& moments, const LineFitOptions& options) {
   const double b = moments.sxy / n - fit.centroid.x() * fit.centroid.y();
   const double c = moments.syy / n - fit.centroid.y() * fit.centroid.y();
   const double half_trace = 0.5 * (a + c);
-  const double radius = std::hypot(0.5 * (a - c), b);
+  const double half_difference = 0.5 * (a - c);
+  const double radius = std::sqrt(half_difference * half_difference + b * b);
   const double lambda_max = half_trace + radius;
   const double lambda_min = std::max(0.0, half_trace - radius);
   if (!(lambda_max > 0.0)) {

@@ -37,8 +37,28 @@ TEST(LineMoments, FitsAndReportsTooFewPointsOrDegenerateInput) {
   ASSERT_EQ(fit.status, LineFitStatus::kOk);
   EXPECT_NEAR(std::abs(fit.direction.dot(Eigen::Vector2d(1, 1).normalized())), 1.0, 1e-9);
   EXPECT_NEAR(fit.distance({3.0, 4.0}), 0.0, 1e-9);
-  moments.remove({5.0f, 6.0f});
-  EXPECT_EQ(fitLine(moments, {}).status, LineFitStatus::kTooFewPoints);
+  PointMoments last;
+  last.add({5.0f, 6.0f});
+  EXPECT_EQ(fitLine(moments - last, {}).status, LineFitStatus::kTooFewPoints);
+}
+
+TEST(LineMoments, RunningSumsGiveTheMomentsOfAnyRun) {
+  std::mt19937 random(5);
+  const std::vector<Eigen::Vector2f> points = pointsOnLine({3, 4}, {200, 90}, 50, 0.3f, random);
+  std::vector<PointMoments> prefix;
+  cumulativeMoments(points, prefix);
+  ASSERT_EQ(prefix.size(), points.size() + 1);
+  PointMoments run;
+  for (int i = 7; i < 31; ++i) {
+    run.add(points[i]);
+  }
+  const PointMoments from_prefix = prefix[31] - prefix[7];
+  EXPECT_EQ(from_prefix.n, run.n);
+  EXPECT_NEAR(from_prefix.sxx, run.sxx, 1e-9 * run.sxx);
+  EXPECT_NEAR(from_prefix.sxy, run.sxy, 1e-9 * run.sxy);
+  const LineFit a = fitLine(from_prefix, {}), b = fitLine(run, {});
+  EXPECT_NEAR(a.direction.dot(b.direction), 1.0, 1e-12);
+  EXPECT_NEAR(a.distance(b.centroid), 0.0, 1e-9);
 }
 
 // With independent points (points_per_sample = 1) the reported sigmas are

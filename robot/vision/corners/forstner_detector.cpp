@@ -137,6 +137,17 @@ int LocalMaxima(const float* weight, const float* const* row_maxima, int rows,
   return static_cast<int>(count);
 }
 
+// `count` gradient values, scaled by `scale`, into floats.
+void ScaleToFloat(const int16_t* gradient, int count, float scale, float* out) {
+  forEachSpan(hn::ScalableTag<float>(), 0, count, [&](auto d, int i) {
+    const hn::Rebind<int16_t, decltype(d)> d16;
+    const hn::Rebind<int32_t, decltype(d)> di;
+    hn::StoreU(
+        hn::ConvertTo(d, hn::PromoteTo(di, hn::LoadU(d16, gradient + i))) * hn::Set(d, scale), d,
+        out + i);
+  });
+}
+
 // Over the lanes i of a refinement window with (u_i - cx)^2 + (v_i - cy)^2 <
 // radius2: sums of g g^T and g g^T p, p = (u, v), into `sums` = (a, b, c,
 // au, bu, bv, cv); returns how many lanes that is.
@@ -223,6 +234,7 @@ HWY_EXPORT(UpdateColumns);
 HWY_EXPORT(WeightRow);
 HWY_EXPORT(HorizontalMaximum);
 HWY_EXPORT(LocalMaxima);
+HWY_EXPORT(ScaleToFloat);
 HWY_EXPORT(WindowMoments);
 HWY_EXPORT(WindowResidual);
 
@@ -264,8 +276,10 @@ void ForstnerDetector::begin(cv::Size size, float gain) {
   gain_ = gain;
   tensor_scale_ = kGradientStep * kGradientStep / (static_cast<double>(gain) * gain);
   column_sums_.assign(3 * static_cast<size_t>(size.width), 0);
-  weight_rows_.assign(static_cast<size_t>(weightRingRows()) * size.width, 0.0f);
-  row_maximum_rows_.assign(weight_rows_.size(), 0.0f);
+  // Every ring row is written before it is read (rows of w below the floor
+  // stand in as zero_row_ for their maxima).
+  weight_rows_.resize(static_cast<size_t>(weightRingRows()) * size.width);
+  row_maximum_rows_.resize(weight_rows_.size());
   row_peaks_.assign(weightRingRows(), 0.0f);
   zero_row_.assign(size.width, 0.0f);
   row_candidates_.resize(static_cast<size_t>(size.width) + kCompressSlack);
@@ -394,12 +408,13 @@ bool ForstnerDetector::refine(const cv::Mat& gradient_x, const cv::Mat& gradient
   const int side = 2 * r + 1;
   const float inverse_gain = 1.0f / gain_;
   for (int v = -r; v <= r; ++v) {
-    const int16_t* gx = gradient_x.ptr<int16_t>(candidate.y + v) + candidate.x - r;
-    const int16_t* gy = gradient_y.ptr<int16_t>(candidate.y + v) + candidate.x - r;
-    for (int u = 0; u < side; ++u) {
-      window_gx_[(v + r) * side + u] = gx[u] * inverse_gain;
-      window_gy_[(v + r) * side + u] = gy[u] * inverse_gain;
-    }
+    const size_t row = static_cast<size_t>(v + r) * side;
+    HWY_DYNAMIC_DISPATCH(ScaleToFloat)
+    (gradient_x.ptr<int16_t>(candidate.y + v) + candidate.x - r, side, inverse_gain,
+     window_gx_.data() + row);
+    HWY_DYNAMIC_DISPATCH(ScaleToFloat)
+    (gradient_y.ptr<int16_t>(candidate.y + v) + candidate.x - r, side, inverse_gain,
+     window_gy_.data() + row);
   }
   const int lanes = static_cast<int>(window_u_.size());
   const auto moments = [&](const Eigen::Vector2d& centre, double radius) {

@@ -1,6 +1,7 @@
 #include "robot/vision/edges/edge_detector.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -116,46 +117,20 @@ int SuppressRow(const int32_t* up, const int32_t* mid, const int32_t* down,
 void SubPixelRow(EdgeRowMaxima& maxima) {
   forEachSpan(hn::ScalableTag<float>(), 0, maxima.count, [&](auto d, int i) {
     const hn::Rebind<int32_t, decltype(d)> di;
-    const auto log2_of = [&](const std::vector<int32_t>& m) {
-      return hn::Log2(d, hn::ConvertTo(d, hn::Max(hn::LoadU(di, m.data() + i), hn::Set(di, 1))));
+    const auto magnitude_of = [&](const std::vector<int32_t>& m) {
+      return hn::ConvertTo(d, hn::Max(hn::LoadU(di, m.data() + i), hn::Set(di, 1)));
     };
-    const auto l_before = log2_of(maxima.before);
-    const auto l_here = log2_of(maxima.here);
-    const auto l_after = log2_of(maxima.after);
-    const auto curvature = l_before - l_here - l_here + l_after;
+    // l- - l0 and l+ - l0 as logs of ratios: two logarithms instead of three.
+    const auto here = magnitude_of(maxima.here);
+    const auto below_before = hn::Log2(d, magnitude_of(maxima.before) / here);
+    const auto below_after = hn::Log2(d, magnitude_of(maxima.after) / here);
+    const auto curvature = below_before + below_after;
     const auto half = hn::Set(d, 0.5f);
-    const auto delta = hn::Set(d, 0.5f) * (l_before - l_after) / curvature;
+    const auto delta = half * (below_before - below_after) / curvature;
     const auto bends = curvature < hn::Zero(d);
     hn::StoreU(hn::IfThenElseZero(bends, hn::Clamp(delta, hn::Neg(half), half)), d,
                maxima.offset.data() + i);
-    const auto magnitude = hn::Sqrt(hn::ConvertTo(d, hn::LoadU(di, maxima.here.data() + i)));
-    hn::StoreU(hn::Set(d, 1.0f) / magnitude, d, maxima.inverse_magnitude.data() + i);
-  });
-}
-
-// For x in [begin, end) of the middle row of `normal_x`, `normal_y` (three
-// rows of the points' normals per pixel, (0, 0) where there is none): bit k
-// of masks[x] is set when neighbour kNeighbourSteps[k] is a point whose
-// normal n' has n.n' >= cos_max_turn (> 0, so never a vacant pixel).
-void NeighbourMasks(const float* const* normal_x, const float* const* normal_y, int begin, int end,
-                    float cos_max_turn, int32_t* masks) {
-  forEachSpan(hn::ScalableTag<float>(), begin, end, [&](auto d, int x) {
-    const hn::Rebind<int32_t, decltype(d)> di;
-    const auto nx = hn::LoadU(d, normal_x[1] + x);
-    const auto ny = hn::LoadU(d, normal_y[1] + x);
-    if (hn::AllTrue(d, hn::And(nx == hn::Zero(d), ny == hn::Zero(d)))) {
-      return;
-    }
-    auto mask = hn::Zero(di);
-    for (int k = 0; k < 8; ++k) {
-      const NeighbourStep& step = kNeighbourSteps[k];
-      const int at = x + step.dx;
-      const auto turn = hn::MulAdd(hn::LoadU(d, normal_x[step.dy + 1] + at), nx,
-                                   hn::LoadU(d, normal_y[step.dy + 1] + at) * ny);
-      const auto usable = hn::RebindMask(di, hn::Not(turn < hn::Set(d, cos_max_turn)));
-      mask = hn::Or(mask, hn::IfThenElseZero(usable, hn::Set(di, 1 << k)));
-    }
-    hn::StoreU(mask, di, masks + x);
+    hn::StoreU(hn::Set(d, 1.0f) / hn::Sqrt(here), d, maxima.inverse_magnitude.data() + i);
   });
 }
 
@@ -178,7 +153,6 @@ constexpr int kRingRows = 3;
 HWY_EXPORT(GradientRow);
 HWY_EXPORT(SuppressRow);
 HWY_EXPORT(SubPixelRow);
-HWY_EXPORT(NeighbourMasks);
 
 EdgeDetector::EdgeDetector(const EdgeDetectorOptions& options) : options_(options) {
   if (!(options.smoothing_sigma_px == 0.0 ||
@@ -208,9 +182,7 @@ void EdgeDetector::prepareBuffers(cv::Size size) {
   squared_magnitude_rows_.assign(static_cast<size_t>(kRingRows) * size.width, 0);
   point_index_rows_.assign(static_cast<size_t>(kRingRows) * size.width, -1);
   no_points_.assign(size.width, -1);
-  normal_x_rows_.assign(point_index_rows_.size(), 0.0f);
-  normal_y_rows_.assign(point_index_rows_.size(), 0.0f);
-  neighbour_masks_.resize(size.width);
+  occupancy_rows_.assign(static_cast<size_t>(kRingRows) * (size.width / 8 + 2), 0);
   first_point_of_row_.assign(size.height + 1, 0);
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
     per_point->clear();
@@ -234,8 +206,12 @@ int32_t* EdgeDetector::pointIndexRow(int y) {
   return point_index_rows_.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
 }
 
-float* EdgeDetector::normalRow(std::vector<float>& rows, int y) {
-  return rows.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
+int EdgeDetector::occupancyRowBytes() const {
+  return smoothed_.cols / 8 + 2;
+}
+
+uint8_t* EdgeDetector::occupancyRow(int y) {
+  return occupancy_rows_.data() + static_cast<size_t>(y % kRingRows) * occupancyRowBytes();
 }
 
 void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
@@ -295,13 +271,10 @@ void EdgeDetector::smoothRow(const cv::Mat& grey, int y) {
 // Row y takes the index ring's slot from row y - 3.
 void EdgeDetector::startRow(int y) {
   int32_t* index = pointIndexRow(y);
-  float* normal_x = normalRow(normal_x_rows_, y);
-  float* normal_y = normalRow(normal_y_rows_, y);
+  std::fill_n(occupancyRow(y), occupancyRowBytes(), 0);
   if (y - kRingRows >= 0) {
     for (int32_t i = first_point_of_row_[y - kRingRows]; i < first_point_of_row_[y - 2]; ++i) {
-      const int x = points_[i].pixel_x;
-      index[x] = -1;
-      normal_x[x] = normal_y[x] = 0.0f;
+      index[points_[i].pixel_x] = -1;
     }
   }
   first_point_of_row_[y] = static_cast<int32_t>(points_.size());
@@ -317,31 +290,28 @@ void EdgeDetector::addPoints(int y) {
   const int16_t* gx = gradient_x_.ptr<int16_t>(y);
   const int16_t* gy = gradient_y_.ptr<int16_t>(y);
   int32_t* index = pointIndexRow(y);
-  float* normal_x = normalRow(normal_x_rows_, y);
-  float* normal_y = normalRow(normal_y_rows_, y);
+  uint8_t* occupied = occupancyRow(y);
   const int smoothed_stride = static_cast<int>(smoothed_.step1());
   const uint16_t* grey = smoothed_.ptr<uint16_t>(y);
-  const size_t first = points_.size();
-  points_.resize(first + maxima_.count);
-  EdgePoint* point = points_.data() + first;
-  for (int i = 0; i < maxima_.count; ++i, ++point) {
+  for (int i = 0; i < maxima_.count; ++i) {
     const int x = maxima_.x[i];
     const int dx = maxima_.direction_x[i];
     const int dy = maxima_.direction_y[i];
     const float delta = maxima_.offset[i];
     const int step_offset = kStepSampleDistancePx * (dy * smoothed_stride + dx);
     const Eigen::Vector2f sobel(gx[x], gy[x]);
-    point->position = {static_cast<float>(x) + delta * static_cast<float>(dx),
-                       static_cast<float>(y) + delta * static_cast<float>(dy)};
-    point->gradient = sobel * (1.0f / EdgeDetector::kGradientGain);
-    point->normal = sobel * maxima_.inverse_magnitude[i];
-    point->step =
+    EdgePoint point;
+    point.position = {static_cast<float>(x) + delta * static_cast<float>(dx),
+                      static_cast<float>(y) + delta * static_cast<float>(dy)};
+    point.gradient = sobel * (1.0f / EdgeDetector::kGradientGain);
+    point.normal = sobel * maxima_.inverse_magnitude[i];
+    point.step =
         static_cast<float>(grey[x + step_offset] - grey[x - step_offset]) * (1.0f / kSmoothedGain);
-    point->pixel_x = x;
-    point->pixel_y = y;
-    index[x] = static_cast<int32_t>(first + i);
-    normal_x[x] = point->normal.x();
-    normal_y[x] = point->normal.y();
+    point.pixel_x = x;
+    point.pixel_y = y;
+    index[x] = static_cast<int32_t>(points_.size());
+    occupied[x >> 3] = static_cast<uint8_t>(occupied[x >> 3] | 1u << (x & 7));
+    points_.push_back(point);
   }
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
     per_point->resize(points_.size(), -1);
@@ -357,16 +327,6 @@ void EdgeDetector::addPoints(int y) {
 void EdgeDetector::findNeighbours(int y) {
   const int32_t first = first_point_of_row_[y];
   const int32_t end = first_point_of_row_[y + 1];
-  if (first == end) {
-    return;
-  }
-  const float* normal_x[3] = {normalRow(normal_x_rows_, y - 1), normalRow(normal_x_rows_, y),
-                              normalRow(normal_x_rows_, y + 1)};
-  const float* normal_y[3] = {normalRow(normal_y_rows_, y - 1), normalRow(normal_y_rows_, y),
-                              normalRow(normal_y_rows_, y + 1)};
-  HWY_DYNAMIC_DISPATCH(NeighbourMasks)
-  (normal_x, normal_y, points_[first].pixel_x, points_[end - 1].pixel_x + 1, cos_max_turn_,
-   neighbour_masks_.data());
   // The index row of each neighbour step shifted by dx + 1, to be read at
   // x - 1; [kNone]: a row without points.
   const int32_t* at_step[NeighbourSteps::kNone + 1];
@@ -375,11 +335,28 @@ void EdgeDetector::findNeighbours(int y) {
     at_step[k] = pointIndexRow(y + step.dy) + step.dx + 1;
   }
   at_step[NeighbourSteps::kNone] = no_points_.data();
+  const uint8_t* occupied_rows[3] = {occupancyRow(y - 1), occupancyRow(y), occupancyRow(y + 1)};
   for (int32_t p = first; p < end; ++p) {
     const EdgePoint& here = points_[p];
     const int x = here.pixel_x;
+    // Bits x - 1 .. x + 1 of each row's occupancy, in kNeighbourSteps order.
+    const int byte = (x - 1) >> 3;
+    const int bit = (x - 1) & 7;
+    const auto three = [&](const uint8_t* bits) {
+      return ((bits[byte] | bits[byte + 1] << 8) >> bit) & 7u;
+    };
+    const unsigned middle = three(occupied_rows[1]);
+    const unsigned occupied = three(occupied_rows[0]) | (middle & 1u) << 3 | (middle & 4u) << 2 |
+                              three(occupied_rows[2]) << 5;
+    // Only neighbours whose gradient turns by at most max_link_turn count.
+    unsigned usable = 0;
+    for (unsigned left = occupied; left != 0; left &= left - 1) {
+      const int k = std::countr_zero(left);
+      const EdgePoint& there = points_[at_step[k][x - 1]];
+      usable |= static_cast<unsigned>(there.normal.dot(here.normal) >= cos_max_turn_) << k;
+    }
     const NeighbourSteps::Choice choice =
-        neighbour_steps_.choose(-here.normal.y(), here.normal.x(), neighbour_masks_[x]);
+        neighbour_steps_.choose(-here.normal.y(), here.normal.x(), usable);
     nearest_ahead_[p] = at_step[choice.ahead][x - 1];
     nearest_behind_[p] = at_step[choice.behind][x - 1];
   }

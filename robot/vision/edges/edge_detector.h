@@ -108,7 +108,8 @@ class EdgeDetector {
   void smoothRow(const cv::Mat& grey, int y);
   int32_t* squaredMagnitudeRow(int y);
   int32_t* pointIndexRow(int y);
-  float* normalRow(std::vector<float>& rows, int y);
+  int occupancyRowBytes() const;
+  uint8_t* occupancyRow(int y);
   void startRow(int y);
   void addPoints(int y);
   void findNeighbours(int y);
@@ -122,8 +123,7 @@ class EdgeDetector {
   std::vector<int32_t> squared_magnitude_rows_;  // 3 rows, row y at y % 3
   std::vector<int32_t> point_index_rows_;        // 3 rows of point indices or -1, row y at y % 3
   std::vector<int32_t> no_points_;               // a row of -1
-  std::vector<float> normal_x_rows_, normal_y_rows_;  // the same 3 rows: normals, or (0, 0)
-  std::vector<int32_t> neighbour_masks_;              // per pixel of a row, see NeighbourMasks
+  std::vector<uint8_t> occupancy_rows_;          // the same 3 rows, 1 bit per pixel: a point?
   std::vector<int32_t> first_point_of_row_;
   std::vector<int32_t> nearest_ahead_, nearest_behind_;  // per point, or -1
   std::vector<int32_t> next_, previous_;

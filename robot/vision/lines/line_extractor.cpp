@@ -54,10 +54,10 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
   cumulativeMoments(polyline, prefix_);
   split_and_merge_.approximate(polyline, prefix_, pieces_);
   for (PointRange piece : pieces_) {
+    trimEnds(polyline, piece);
     LineSegment segment;
     segment.moments = momentsOf(piece);
     segment.fit = fitLine(segment.moments, options_.fit);
-    trimEnds(polyline, piece, segment);
     if (segment.fit.status != LineFitStatus::kOk) {
       continue;
     }
@@ -71,39 +71,33 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
   }
 }
 
-void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
-                             LineSegment& segment) const {
-  if (segment.fit.status != LineFitStatus::kOk) {
+void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece) const {
+  const LineFit core = coreLine(polyline, piece);
+  if (core.status != LineFitStatus::kOk) {
     return;
   }
-  const LineFit core = coreLine(polyline, piece, segment.fit);
   const auto off_line = [&](int i) {
     return std::abs(core.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
   };
-  const PointRange before = piece;
   while (piece.size() > 0 && off_line(piece.begin)) {
     ++piece.begin;
   }
   while (piece.size() > 0 && off_line(piece.end - 1)) {
     --piece.end;
   }
-  if (piece.begin != before.begin || piece.end != before.end) {
-    segment.moments = momentsOf(piece);
-    segment.fit = fitLine(segment.moments, options_.fit);
-  }
 }
 
-// The points of the piece at least trim_margin from both ends along the fit
-// (the run of them between the first and the last that are).
-LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
-                                const LineFit& fit) const {
-  const double first = fit.along(polyline[piece.begin].cast<double>());
-  const double last = fit.along(polyline[piece.end - 1].cast<double>());
-  const double low = std::min(first, last) + options_.trim_margin_px;
-  const double high = std::max(first, last) - options_.trim_margin_px;
+// The line through the points of the piece at least trim_margin from both
+// ends along its chord (the run of them between the first and the last that
+// are); through all of them when fewer than min_points are.
+LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece) const {
+  const Eigen::Vector2d first = polyline[piece.begin].cast<double>();
+  const Eigen::Vector2d chord = polyline[piece.end - 1].cast<double>() - first;
+  const double length = chord.norm();
   const auto inside = [&](int i) {
-    const double along = fit.along(polyline[i].cast<double>());
-    return along >= low && along <= high;
+    const double along = chord.dot(polyline[i].cast<double>() - first);
+    return along >= options_.trim_margin_px * length &&
+           along <= (length - options_.trim_margin_px) * length;
   };
   PointRange core = piece;
   while (core.size() > 0 && !inside(core.begin)) {
@@ -112,11 +106,7 @@ LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, Point
   while (core.size() > 0 && !inside(core.end - 1)) {
     --core.end;
   }
-  if (core.size() < options_.min_points) {
-    return fit;
-  }
-  const LineFit core_fit = fitLine(momentsOf(core), options_.fit);
-  return core_fit.status == LineFitStatus::kOk ? core_fit : fit;
+  return fitLine(momentsOf(core.size() >= options_.min_points ? core : piece), options_.fit);
 }
 
 PointMoments LineExtractor::momentsOf(PointRange run) const {

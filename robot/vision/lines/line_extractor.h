@@ -1,9 +1,11 @@
 // Straight line segments from edge chains (Persa & Jonker §3): edge points
 // undistorted through the lookup table, split-and-merge of every chain, a
-// total-least-squares refit of every piece (after trimming end points that
-// bend away near a corner: farther than trim_distance from the line), collinear pieces merged
-// across small gaps, weak and short segments dropped, and endpoints that meet at a corner snapped
-// to the intersection of their lines.
+// total-least-squares refit of every piece after trimming the end points that
+// bend away near a corner (farther than trim_distance from the line through
+// the piece's core, its points more than trim_margin from its ends, which
+// the bend does not reach), collinear pieces merged across small gaps, weak
+// and short segments dropped, and endpoints that meet at a corner snapped to
+// the intersection of their lines.
 #pragma once
 
 #include <span>
@@ -21,8 +23,8 @@ namespace lineloc {
 
 struct LineExtractorOptions {
   double split_distance_px = 1.0;
-  double trim_distance_px = 0.25;  // end points farther from the core line are dropped
-  double trim_margin_px = 3.0;     // the core line leaves out this much at each end
+  double trim_distance_px = 0.25;  // end points farther from the core's line are dropped
+  double trim_margin_px = 3.0;     // the core leaves out this much at each end
   int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;
   double min_contrast = 10.0;  // mean grey-level step
@@ -48,10 +50,8 @@ class LineExtractor {
  private:
   void fitPieces(const std::vector<EdgePoint>& points, const std::vector<int32_t>& chain_points,
                  PointRange chain);
-  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
-                LineSegment& segment) const;
-  LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece,
-                   const LineFit& fit) const;
+  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece) const;
+  LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece) const;
   // Moments of a run of the current chain's points.
   PointMoments momentsOf(PointRange run) const;
   void keepSignificant();

@@ -56,8 +56,9 @@ void UpdateColumns(const int16_t* entering_x, const int16_t* entering_y, const i
 // kept where q = 4 det / tr^2 >= min_roundness (w >= min_roundness tr / 4)
 // and 0 elsewhere. Returns the sum of w over the row before the roundness
 // test; `peak` is the largest w kept.
-double WeightRow(const int32_t* sums, int width, int radius, float min_roundness, float* weight,
-                 float* peak) {
+template <int radius>
+double WeightRowOfRadius(const int32_t* sums, int width, float min_roundness, float* weight,
+                         float* peak) {
   // Stores the lanes of d at x; w before the roundness test and as kept.
   const auto weights_at = [&](auto d, int x, auto& kept) {
     const hn::Rebind<int32_t, decltype(d)> di;
@@ -101,6 +102,23 @@ double WeightRow(const int32_t* sums, int width, int radius, float min_roundness
   }
   *peak = top;
   return sum;
+}
+
+// WeightRowOfRadius with the radius a constant, so that the box sums unroll.
+double WeightRow(const int32_t* sums, int width, int radius, float min_roundness, float* weight,
+                 float* peak) {
+  switch (radius) {
+    case 1:
+      return WeightRowOfRadius<1>(sums, width, min_roundness, weight, peak);
+    case 2:
+      return WeightRowOfRadius<2>(sums, width, min_roundness, weight, peak);
+    case 3:
+      return WeightRowOfRadius<3>(sums, width, min_roundness, weight, peak);
+    case 4:
+      return WeightRowOfRadius<4>(sums, width, min_roundness, weight, peak);
+    default:
+      return WeightRowOfRadius<5>(sums, width, min_roundness, weight, peak);
+  }
 }
 
 // The largest weight within `radius` columns: for x in [radius, width - radius).

@@ -183,6 +183,7 @@ void EdgeDetector::prepareBuffers(cv::Size size) {
   point_index_rows_.assign(static_cast<size_t>(kRingRows) * size.width, -1);
   no_points_.assign(size.width, -1);
   occupancy_rows_.assign(static_cast<size_t>(kRingRows) * (size.width / 8 + 2), 0);
+  normal_rows_.assign(static_cast<size_t>(kRingRows) * size.width, Eigen::Vector2f::Zero());
   first_point_of_row_.assign(size.height + 1, 0);
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
     per_point->clear();
@@ -212,6 +213,10 @@ int EdgeDetector::occupancyRowBytes() const {
 
 uint8_t* EdgeDetector::occupancyRow(int y) {
   return occupancy_rows_.data() + static_cast<size_t>(y % kRingRows) * occupancyRowBytes();
+}
+
+Eigen::Vector2f* EdgeDetector::normalRow(int y) {
+  return normal_rows_.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
 }
 
 void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
@@ -291,6 +296,7 @@ void EdgeDetector::addPoints(int y) {
   const int16_t* gy = gradient_y_.ptr<int16_t>(y);
   int32_t* index = pointIndexRow(y);
   uint8_t* occupied = occupancyRow(y);
+  Eigen::Vector2f* normal = normalRow(y);
   const int smoothed_stride = static_cast<int>(smoothed_.step1());
   const uint16_t* grey = smoothed_.ptr<uint16_t>(y);
   for (int i = 0; i < maxima_.count; ++i) {
@@ -311,6 +317,7 @@ void EdgeDetector::addPoints(int y) {
     point.pixel_y = y;
     index[x] = static_cast<int32_t>(points_.size());
     occupied[x >> 3] = static_cast<uint8_t>(occupied[x >> 3] | 1u << (x & 7));
+    normal[x] = point.normal;
     points_.push_back(point);
   }
   for (std::vector<int32_t>* per_point : {&nearest_ahead_, &nearest_behind_, &next_, &previous_}) {
@@ -330,9 +337,12 @@ void EdgeDetector::findNeighbours(int y) {
   // The index row of each neighbour step shifted by dx + 1, to be read at
   // x - 1; [kNone]: a row without points.
   const int32_t* at_step[NeighbourSteps::kNone + 1];
+  // The normal row of each neighbour step shifted by dx, to be read at x.
+  const Eigen::Vector2f* normal_at_step[8];
   for (int k = 0; k < 8; ++k) {
     const NeighbourStep& step = kNeighbourSteps[k];
     at_step[k] = pointIndexRow(y + step.dy) + step.dx + 1;
+    normal_at_step[k] = normalRow(y + step.dy) + step.dx;
   }
   at_step[NeighbourSteps::kNone] = no_points_.data();
   const uint8_t* occupied_rows[3] = {occupancyRow(y - 1), occupancyRow(y), occupancyRow(y + 1)};
@@ -348,13 +358,14 @@ void EdgeDetector::findNeighbours(int y) {
     const unsigned middle = three(occupied_rows[1]);
     const unsigned occupied = three(occupied_rows[0]) | (middle & 1u) << 3 | (middle & 4u) << 2 |
                               three(occupied_rows[2]) << 5;
-    // Only neighbours whose gradient turns by at most max_link_turn count.
-    unsigned usable = 0;
-    for (unsigned left = occupied; left != 0; left &= left - 1) {
-      const int k = std::countr_zero(left);
-      const EdgePoint& there = points_[at_step[k][x - 1]];
-      usable |= static_cast<unsigned>(there.normal.dot(here.normal) >= cos_max_turn_) << k;
+    // Only neighbours whose gradient turns by at most max_link_turn count:
+    // all 8 tested without branches, the pixels without a point masked out.
+    unsigned turns_little = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector2f& there = normal_at_step[k][x];
+      turns_little |= static_cast<unsigned>(there.dot(here.normal) >= cos_max_turn_) << k;
     }
+    const unsigned usable = turns_little & occupied;
     const NeighbourSteps::Choice choice =
         neighbour_steps_.choose(-here.normal.y(), here.normal.x(), usable);
     nearest_ahead_[p] = at_step[choice.ahead][x - 1];

@@ -110,6 +110,7 @@ class EdgeDetector {
   int32_t* pointIndexRow(int y);
   int occupancyRowBytes() const;
   uint8_t* occupancyRow(int y);
+  Eigen::Vector2f* normalRow(int y);
   void startRow(int y);
   void addPoints(int y);
   void findNeighbours(int y);
@@ -124,6 +125,7 @@ class EdgeDetector {
   std::vector<int32_t> point_index_rows_;        // 3 rows of point indices or -1, row y at y % 3
   std::vector<int32_t> no_points_;               // a row of -1
   std::vector<uint8_t> occupancy_rows_;          // the same 3 rows, 1 bit per pixel: a point?
+  std::vector<Eigen::Vector2f> normal_rows_;     // the same 3 rows, the points' normals
   std::vector<int32_t> first_point_of_row_;
   std::vector<int32_t> nearest_ahead_, nearest_behind_;  // per point, or -1
   std::vector<int32_t> next_, previous_;

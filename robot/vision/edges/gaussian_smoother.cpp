@@ -21,34 +21,59 @@ namespace lineloc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// t(x) = sum_k w_k row_k(x) for the lanes of d at x.
-template <class D>
-void sumColumnsAt(D d, const uint8_t* const* rows, const uint16_t* weights, int taps, int x,
+// t(x) = sum_k w_k row_k(x) for x in [0, width). kTaps: the number of taps
+// as a constant, so that the sum unrolls, or 0 to take `taps`.
+template <int kTaps>
+void SumColumnsOf(const uint8_t* const* rows, const uint16_t* weights, int taps, int width,
                   uint16_t* sums) {
-  const hn::Rebind<uint8_t, D> d8;
-  auto sum = hn::Zero(d);
-  for (int k = 0; k < taps; ++k) {
-    sum = sum + hn::Set(d, weights[k]) * hn::PromoteTo(d, hn::LoadU(d8, rows[k] + x));
-  }
-  hn::StoreU(sum, d, sums + x);
-}
-
-void SumColumns(const uint8_t* const* rows, const uint16_t* weights, int taps, int width,
-                uint16_t* sums) {
-  forEachSpan(hn::ScalableTag<uint16_t>(), 0, width,
-              [&](auto d, int x) { sumColumnsAt(d, rows, weights, taps, x, sums); });
+  const int n = kTaps > 0 ? kTaps : taps;
+  forEachSpan(hn::ScalableTag<uint16_t>(), 0, width, [&](auto d, int x) {
+    const hn::Rebind<uint8_t, decltype(d)> d8;
+    auto sum = hn::Zero(d);
+    for (int k = 0; k < n; ++k) {
+      sum = sum + hn::Set(d, weights[k]) * hn::PromoteTo(d, hn::LoadU(d8, rows[k] + x));
+    }
+    hn::StoreU(sum, d, sums + x);
+  });
 }
 
 // out(x) = (sum_k floor(t(x + k) w_k / 2^8) + 2^3) >> 4; `sums` starts
-// `taps / 2` columns left of the image.
-void SmoothRow(const uint16_t* sums, const uint16_t* weights, int taps, int width, uint16_t* out) {
+// `taps / 2` columns left of the image. kTaps as for SumColumnsOf.
+template <int kTaps>
+void SmoothRowOf(const uint16_t* sums, const uint16_t* weights, int taps, int width,
+                 uint16_t* out) {
+  const int n = kTaps > 0 ? kTaps : taps;
   forEachSpan(hn::ScalableTag<uint16_t>(), 0, width, [&](auto d, int x) {
     auto total = hn::Set(d, uint16_t{1 << 3});
-    for (int k = 0; k < taps; ++k) {
+    for (int k = 0; k < n; ++k) {
       total = total + hn::MulHigh(hn::LoadU(d, sums + x + k), hn::Set(d, weights[k] << 8));
     }
     hn::StoreU(hn::ShiftRight<4>(total), d, out + x);
   });
+}
+
+// The two passes with the tap counts of sigma <= 1 px as constants.
+void SumColumns(const uint8_t* const* rows, const uint16_t* weights, int taps, int width,
+                uint16_t* sums) {
+  switch (taps) {
+    case 3:
+      return SumColumnsOf<3>(rows, weights, taps, width, sums);
+    case 5:
+      return SumColumnsOf<5>(rows, weights, taps, width, sums);
+    default:
+      return SumColumnsOf<0>(rows, weights, taps, width, sums);
+  }
+}
+
+void SmoothRow(const uint16_t* sums, const uint16_t* weights, int taps, int width, uint16_t* out) {
+  switch (taps) {
+    case 3:
+      return SmoothRowOf<3>(sums, weights, taps, width, out);
+    case 5:
+      return SmoothRowOf<5>(sums, weights, taps, width, out);
+    default:
+      return SmoothRowOf<0>(sums, weights, taps, width, out);
+  }
 }
 
 }  // namespace HWY_NAMESPACE

@@ -11,11 +11,12 @@ LineExtractor::LineExtractor(const LineExtractorOptions& options)
       merger_(options.merge),
       snapper_(options.snap) {
   if (!(options.min_length_px >= 0.0) || !(options.min_contrast >= 0.0) ||
-      options.max_segments < 0 || !(options.fit.points_per_sample >= 1.0) ||
-      !(options.fit.min_sigma_px > 0.0)) {
+      options.max_segments < 0 || !(options.trim_distance_px >= 0.0) ||
+      !(options.trim_sigmas >= 0.0) || !(options.trim_margin_px >= 0.0) ||
+      !(options.fit.points_per_sample >= 1.0) || !(options.fit.min_sigma_px > 0.0)) {
     throw std::invalid_argument(
-        "line extractor: min_length_px, min_contrast, max_segments must be >= 0, "
-        "points_per_sample >= 1, min_sigma_px > 0");
+        "line extractor: min_length_px, min_contrast, max_segments, trim_distance_px, "
+        "trim_sigmas, trim_margin_px must be >= 0, points_per_sample >= 1, min_sigma_px > 0");
   }
 }
 
@@ -76,8 +77,10 @@ void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRan
   if (core.status != LineFitStatus::kOk) {
     return;
   }
+  const double trim_distance =
+      std::max(options_.trim_distance_px, options_.trim_sigmas * core.residual_sigma_px);
   const auto off_line = [&](int i) {
-    return std::abs(core.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
+    return std::abs(core.distance(polyline[i].cast<double>())) > trim_distance;
   };
   while (piece.size() > 0 && off_line(piece.begin)) {
     ++piece.begin;

@@ -23,7 +23,8 @@ namespace lineloc {
 
 struct LineExtractorOptions {
   double split_distance_px = 1.0;
-  double trim_distance_px = 0.25;  // end points farther from the core's line are dropped
+  double trim_distance_px = 0.25;  // end points farther from the core's line are dropped,
+  double trim_sigmas = 3.0;        // or farther than this many of its residual sigmas
   double trim_margin_px = 3.0;     // the core leaves out this much at each end
   int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;

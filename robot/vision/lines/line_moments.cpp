@@ -58,11 +58,11 @@ LineFit fitLine(const PointMoments& moments, const LineFitOptions& options) {
     fit.direction = -fit.direction;
   }
   fit.normal = {-fit.direction.y(), fit.direction.x()};
-  const double sigma =
+  fit.residual_sigma_px =
       std::max(options.min_sigma_px, std::sqrt(n * lambda_min / std::max(1.0, n - 2.0)));
   const double effective_n = std::max(1.0, n / options.points_per_sample);
-  fit.sigma_offset_px = sigma / std::sqrt(effective_n);
-  fit.sigma_angle_rad = sigma / std::sqrt(effective_n * lambda_max);
+  fit.sigma_offset_px = fit.residual_sigma_px / std::sqrt(effective_n);
+  fit.sigma_angle_rad = fit.residual_sigma_px / std::sqrt(effective_n * lambda_max);
   fit.status = LineFitStatus::kOk;
   return fit;
 }

@@ -52,6 +52,7 @@ struct LineFit {
   // Unit direction with y >= 0 (angle in [0, pi)) and normal (-d.y, d.x).
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
   Eigen::Vector2d normal = Eigen::Vector2d::UnitY();
+  double residual_sigma_px = 0.0;  // of one point's distance from the line
   double sigma_offset_px = 0.0;
   double sigma_angle_rad = 0.0;
 

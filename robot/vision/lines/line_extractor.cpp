@@ -38,8 +38,10 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
     fitPieces(points, chain_points, chain);
   }
   merger_.merge(segments_, options_.fit);
-  keepSignificant();
-  snapper_.snap(segments_);
+  // Snapping lengthens a segment by at most the snap radius at each end.
+  keepSignificant(options_.min_length_px - 2.0 * options_.snap.radius_px);
+  snapEndpoints();
+  keepSignificant(options_.min_length_px);
   std::sort(segments_.begin(), segments_.end(),
             [](const LineSegment& a, const LineSegment& b) { return a.length() > b.length(); });
   if (static_cast<int>(segments_.size()) > options_.max_segments) {
@@ -112,13 +114,29 @@ LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, Point
   return fitLine(momentsOf(core.size() >= options_.min_points ? core : piece), options_.fit);
 }
 
+void LineExtractor::snapEndpoints() {
+  unsnapped_.assign(segments_.begin(), segments_.end());
+  snapper_.snap(segments_);
+  // Segments still too short when snapped take no part: a fragment near a
+  // corner must not hold the endpoints of the lines that meet there.
+  size_t kept = 0;
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    if (segments_[i].length() >= options_.min_length_px) {
+      unsnapped_[kept++] = unsnapped_[i];
+    }
+  }
+  unsnapped_.resize(kept);
+  segments_.assign(unsnapped_.begin(), unsnapped_.end());
+  snapper_.snap(segments_);
+}
+
 PointMoments LineExtractor::momentsOf(PointRange run) const {
   return prefix_[run.end] - prefix_[run.begin];
 }
 
-void LineExtractor::keepSignificant() {
-  std::erase_if(segments_, [this](const LineSegment& segment) {
-    return segment.length() < options_.min_length_px || segment.contrast() < options_.min_contrast;
+void LineExtractor::keepSignificant(double min_length_px) {
+  std::erase_if(segments_, [&](const LineSegment& segment) {
+    return segment.length() < min_length_px || segment.contrast() < options_.min_contrast;
   });
 }
 

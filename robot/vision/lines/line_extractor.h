@@ -4,8 +4,9 @@
 // bend away near a corner (farther than trim_distance from the line through
 // the piece's core, its points more than trim_margin from its ends, which
 // the bend does not reach), collinear pieces merged across small gaps, weak
-// and short segments dropped, and endpoints that meet at a corner snapped to
-// the intersection of their lines.
+// segments dropped, endpoints that meet at a corner snapped to the
+// intersection of their lines, and then short segments dropped (a segment cut
+// short by the blur at a corner counts with the length it has when snapped).
 #pragma once
 
 #include <span>
@@ -55,7 +56,10 @@ class LineExtractor {
   LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece) const;
   // Moments of a run of the current chain's points.
   PointMoments momentsOf(PointRange run) const;
-  void keepSignificant();
+  // Drops segments shorter than min_length_px or weaker than min_contrast.
+  void keepSignificant(double min_length_px);
+  // Snaps endpoints at corners among the segments long enough once snapped.
+  void snapEndpoints();
 
   LineExtractorOptions options_;
   SplitAndMerge split_and_merge_;
@@ -65,6 +69,7 @@ class LineExtractor {
   std::vector<PointRange> pieces_;
   std::vector<PointMoments> prefix_;  // cumulativeMoments of the current chain
   std::vector<LineSegment> segments_;
+  std::vector<LineSegment> unsnapped_;  // segments_ before the first snap
 };
 
 }  // namespace lineloc

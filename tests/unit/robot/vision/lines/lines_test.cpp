@@ -4,6 +4,7 @@
 #include <random>
 
 #include "robot/vision/lines/collinear_merger.h"
+#include "robot/vision/lines/endpoint_snapper.h"
 #include "robot/vision/lines/line_moments.h"
 #include "robot/vision/lines/split_and_merge.h"
 
@@ -140,6 +141,24 @@ TEST(CollinearMerger, BridgesAnOccluderButNotARowOfWindows) {
   flipped[1].gradient_sum = -flipped[1].gradient_sum;
   merger.merge(flipped, {});
   EXPECT_EQ(flipped.size(), 2u);
+}
+
+// Two lines end near the corner of a third: its end point snaps to the one
+// whose end is closest to the intersection, though the other comes first in x.
+TEST(EndpointSnapper, SnapsTheClosestPairFirst) {
+  std::mt19937 random(7);
+  std::vector<LineSegment> segments = {
+      segmentOf(pointsOnLine({0, 50}, {97, 50}, 98, 0.0f, random)),   // ends 3 px short
+      segmentOf(pointsOnLine({95, 0}, {95, 44}, 45, 0.0f, random)),   // 5 px from x = (95, 50)
+      segmentOf(pointsOnLine({101, 48}, {101, 0}, 49, 0.0f, random))  // 2 px from (101, 50)
+  };
+  EndpointSnapper snapper({});
+  snapper.snap(segments);
+  ASSERT_EQ(snapper.junctions().size(), 1u);
+  EXPECT_LT((snapper.junctions()[0].position - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[0].end() - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[2].end() - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[1].end() - Eigen::Vector2d(95.0, 44.0)).norm(), 1e-6);
 }
 
 }  // namespace

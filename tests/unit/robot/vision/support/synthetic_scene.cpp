@@ -66,15 +66,16 @@ SyntheticScene renderPolygons(const SceneOptions& options, double background_gre
   return scene;
 }
 
-SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed) {
+SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed,
+                                const SideRange& sides) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   constexpr double kMarginPx = 8.0;
   std::vector<ScenePolygon> polygons;
   std::vector<std::pair<Eigen::Vector2d, double>> discs;
   for (int attempt = 0; attempt < 2000 && static_cast<int>(polygons.size()) < count; ++attempt) {
-    const double width = 40.0 + 70.0 * unit(random);
-    const double height = 40.0 + 70.0 * unit(random);
+    const double width = sides.min_px + (sides.max_px - sides.min_px) * unit(random);
+    const double height = sides.min_px + (sides.max_px - sides.min_px) * unit(random);
     const double radius = 0.5 * std::hypot(width, height);
     const Eigen::Vector2d centre(
         radius + kMarginPx + unit(random) * (options.size.width - 2 * (radius + kMarginPx)),

@@ -55,8 +55,4 @@ struct SideRange {
 SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed,
                                 const SideRange& sides = {});
 
-// A street-like view: sky, two façades with rows of windows and doors, a
-// pavement edge and a pole occluding one façade.
-SyntheticScene renderStreetView(const SceneOptions& options, uint32_t seed);
-
 }  // namespace lineloc::testing

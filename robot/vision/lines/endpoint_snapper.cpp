@@ -47,7 +47,9 @@ void EndpointSnapper::snap(std::vector<LineSegment>& segments) {
   for (int32_t i = 0; i < count; ++i) {
     for (int32_t j = i + 1;
          j < count && endpoints_[j].position.x() - endpoints_[i].position.x() <= window_px; ++j) {
-      addCandidate(segments, i, j);
+      if (std::abs(endpoints_[j].position.y() - endpoints_[i].position.y()) <= window_px) {
+        addCandidate(segments, i, j);
+      }
     }
   }
   std::sort(candidates_.begin(), candidates_.end(),

@@ -11,12 +11,14 @@ LineExtractor::LineExtractor(const LineExtractorOptions& options)
       merger_(options.merge),
       snapper_(options.snap) {
   if (!(options.min_length_px >= 0.0) || !(options.min_contrast >= 0.0) ||
-      options.max_segments < 0 || !(options.trim_distance_px >= 0.0) ||
-      !(options.trim_sigmas >= 0.0) || !(options.trim_margin_px >= 0.0) ||
-      !(options.fit.points_per_sample >= 1.0) || !(options.fit.min_sigma_px > 0.0)) {
+      !(options.min_snap_length_px >= 0.0) || options.max_segments < 0 ||
+      !(options.trim_distance_px >= 0.0) || !(options.trim_sigmas >= 0.0) ||
+      !(options.trim_margin_px >= 0.0) || !(options.fit.points_per_sample >= 1.0) ||
+      !(options.fit.min_sigma_px > 0.0)) {
     throw std::invalid_argument(
-        "line extractor: min_length_px, min_contrast, max_segments, trim_distance_px, "
-        "trim_sigmas, trim_margin_px must be >= 0, points_per_sample >= 1, min_sigma_px > 0");
+        "line extractor: min_length_px, min_snap_length_px, min_contrast, max_segments, "
+        "trim_distance_px, trim_sigmas, trim_margin_px must be >= 0, points_per_sample >= 1, "
+        "min_sigma_px > 0");
   }
 }
 
@@ -38,8 +40,7 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
     fitPieces(points, chain_points, chain);
   }
   merger_.merge(segments_, options_.fit);
-  // Snapping lengthens a segment by at most the snap radius at each end.
-  keepSignificant(options_.min_length_px - 2.0 * options_.snap.radius_px);
+  keepSignificant(std::min(options_.min_snap_length_px, options_.min_length_px));
   snapEndpoints();
   keepSignificant(options_.min_length_px);
   std::sort(segments_.begin(), segments_.end(),

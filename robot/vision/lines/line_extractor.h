@@ -29,6 +29,9 @@ struct LineExtractorOptions {
   double trim_margin_px = 3.0;     // the core leaves out this much at each end
   int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;
+  // Shorter pieces take no part in snapping; longer ones may reach
+  // min_length_px by it: a side blurred short at both corners (2..4 px each).
+  double min_snap_length_px = 12.0;
   double min_contrast = 10.0;  // mean grey-level step
   int max_segments = 1024;     // the longest are kept
   LineFitOptions fit;

@@ -6,7 +6,9 @@
 // The criterion asserted is coverage (see segment_precision_recall.h):
 // within 3 px and 5 degrees of a labelled segment, segments of >= 20 px in
 // the labelled region. The labels are good to about 1.5 px, and 3 px leaves
-// room for that plus a detector's own offset on a blurred edge. Coverage does
+// room for that plus a detector's own offset on a blurred edge; two label
+// endpoints 1.5 px off in opposite directions turn a 35 px label by
+// atan(3 / 35) = 4.9 degrees (the labels average 64 px). Coverage does
 // not depend on where a long edge is cut: the labels cut the floor slabs'
 // shadow edges where they bend at a window column, which is a labeller's
 // choice, not something a detector can know. The endpoint criterion, which

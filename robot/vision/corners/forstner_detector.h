@@ -17,17 +17,24 @@
 // normals and pull x along the bisector by a fraction of the blur; so x is
 // solved again without the pixels within core_radius of the first estimate,
 // leaving the straight edge flanks, whose lines pass through the corner.
-// Tensor sums are running sums in loops the compiler vectorises; buffers are reused.
+//
+// The tensor is summed exactly in integers (products of the gradient in
+// units of 1/32 grey level per px, box sums by running column sums), w and q
+// in floats, all SIMD through Highway, dispatched at run time to the best
+// instruction set the processor has, down to plain scalar code. The
+// refinement sums g g^T (1, p) over its window (SIMD), and the second solve
+// subtracts the core's sums. Buffers are reused.
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
 namespace lineloc {
 
 struct ForstnerOptions {
-  int window_radius_px = 2;       // r: the tensor window is (2r+1)^2
+  int window_radius_px = 2;       // r: the tensor window is (2r+1)^2, r in [1, 5]
   int suppression_radius_px = 3;  // s
   int refine_radius_px = 5;       // window of the sub-pixel intersection
   double core_radius_px = 2.5;    // left out around the first estimate
@@ -48,31 +55,50 @@ class ForstnerDetector {
   // Throws std::invalid_argument for out-of-range options.
   explicit ForstnerDetector(const ForstnerOptions& options);
 
-  // `gradient_x`, `gradient_y`: CV_16S Sobel responses (8 x grey levels / px),
-  // as EdgeDetector makes them. Corners come strongest first.
-  void detect(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
+  // `gradient_x`, `gradient_y`: CV_16S gradient images, `gain` x grey levels
+  // per px, |g| <= 2^14 (EdgeDetector's). Corners come strongest first.
+  void detect(const cv::Mat& gradient_x, const cv::Mat& gradient_y, float gain);
+
+  // The same, row by row while the gradient is being computed (its rows still
+  // in cache): begin(), addRow(y) for y = 0, 1, ... once rows 0..y of the
+  // gradient are complete, finish() after the last.
+  void begin(cv::Size size, float gain);
+  void addRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y);
+  void finish(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
 
   const std::vector<ForstnerCorner>& corners() const { return corners_; }
 
  private:
-  void computeProducts(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
-  float computeWeights(const cv::Mat& gradient_x, const cv::Mat& gradient_y);
-  void addRow(int y, float sign, size_t plane, int width);
-  void collectCandidates(float min_weight);
-  bool isLocalMaximum(int x, int y) const;
-  bool refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, int x, int y,
-              ForstnerCorner& corner) const;
-
   struct Candidate {
     int x, y;
     float weight;
   };
 
+  int weightRingRows() const;
+  float candidateFloor() const;
+  float* weightRow(int y);
+  float* rowMaximumRow(int y);
+  void suppressNonMaxima(int y);
+  bool refine(const cv::Mat& gradient_x, const cv::Mat& gradient_y, const Candidate& candidate,
+              ForstnerCorner& corner);
+
   ForstnerOptions options_;
+  cv::Size size_;
+  float gain_ = 1.0f;
+  double tensor_scale_ = 1.0;            // (grey levels / px)^2 per unit of the integer tensor
+  std::vector<int32_t> column_sums_;     // a, b, c column sums over 2r + 1 rows
+  std::vector<float> weight_rows_;       // w of the last 2s + 1 rows, row y at y % (2s + 1)
+  std::vector<float> row_maximum_rows_;  // their maxima over 2s + 1 columns
+  std::vector<float> row_peaks_;         // the largest w of each, 0 when below the floor
+  std::vector<float> zero_row_;
+  double weight_sum_ = 0.0;                     // of w in tensor units
+  std::vector<const float*> suppression_rows_;  // row maxima of the 2s + 1 rows, own row first
+  std::vector<int32_t> column_numbers_;         // 0, 1, ..., width - 1
+  std::vector<int32_t> row_candidates_;         // kCompressSlack to spare
   std::vector<Candidate> candidates_;
-  std::vector<float> products_;  // gx^2, gx gy, gy^2 planes
-  std::vector<float> column_sums_, tensor_row_;
-  cv::Mat weight_;
+  // The refinement window, row by row: pixel offsets and gradient (grey
+  // levels per px), padded to a whole number of vectors.
+  std::vector<float> window_u_, window_v_, window_gx_, window_gy_;
   std::vector<ForstnerCorner> corners_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
@@ -71,16 +72,23 @@ const cv::Mat& FeatureExtractor::toGrey(const cv::Mat& image) {
 
 const FrameFeatures& FeatureExtractor::extract(const cv::Mat& image) {
   const cv::Mat& grey = toGrey(image);
-  edge_detector_.detect(grey);
-  linker_.link(edge_detector_.points(), edge_detector_.pointIndex());
+  if (options_.detect_corners) {
+    corner_detector_.begin(grey.size(), EdgeDetector::kGradientGain);
+  }
+  edge_detector_.detect(grey, options_.detect_corners ? this : nullptr);
+  linker_.link(edge_detector_.next(), edge_detector_.previous());
   line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
   exportSegments();
   features_.corners.clear();
   if (options_.detect_corners) {
-    corner_detector_.detect(edge_detector_.gradientX(), edge_detector_.gradientY());
+    corner_detector_.finish(edge_detector_.gradientX(), edge_detector_.gradientY());
     exportCorners();
   }
   return features_;
+}
+
+void FeatureExtractor::gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
+  corner_detector_.addRow(y, gradient_x, gradient_y);
 }
 
 void FeatureExtractor::exportSegments() {
@@ -102,6 +110,9 @@ void FeatureExtractor::exportSegments() {
 }
 
 void FeatureExtractor::exportCorners() {
+  junctions_by_x_.assign(line_extractor_.junctions().begin(), line_extractor_.junctions().end());
+  std::sort(junctions_by_x_.begin(), junctions_by_x_.end(),
+            [](const Junction& a, const Junction& b) { return a.position.x() < b.position.x(); });
   for (const ForstnerCorner& found : corner_detector_.corners()) {
     const Eigen::Matrix2f J = undistortion_.jacobian(found.position);
     ImageCorner corner;
@@ -117,12 +128,18 @@ void FeatureExtractor::exportCorners() {
 }
 
 const Junction* FeatureExtractor::nearestJunction(const Eigen::Vector2f& position) const {
+  const Eigen::Vector2d here = position.cast<double>();
+  const double radius = options_.junction_radius_px;
+  auto junction =
+      std::lower_bound(junctions_by_x_.begin(), junctions_by_x_.end(), here.x() - radius,
+                       [](const Junction& j, double x) { return j.position.x() < x; });
   const Junction* nearest = nullptr;
-  double nearest_distance = options_.junction_radius_px;
-  for (const Junction& junction : line_extractor_.junctions()) {
-    const double distance = (junction.position - position.cast<double>()).norm();
+  double nearest_distance = radius;
+  for (; junction != junctions_by_x_.end() && junction->position.x() <= here.x() + radius;
+       ++junction) {
+    const double distance = (junction->position - here).norm();
     if (distance <= nearest_distance) {
-      nearest = &junction;
+      nearest = &*junction;
       nearest_distance = distance;
     }
   }

@@ -50,7 +50,7 @@ struct FrameFeatures {
   std::vector<ImageCorner> corners;                // undistorted pixels, strongest first
 };
 
-class FeatureExtractor {
+class FeatureExtractor : private GradientRowListener {
  public:
   static constexpr int kMinImageSidePx = 16;
   static constexpr int kMaxImageSidePx = 8192;
@@ -66,6 +66,8 @@ class FeatureExtractor {
   const FrameFeatures& extract(const cv::Mat& image);
 
  private:
+  // The Förstner operator runs on each gradient row as it comes.
+  void gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) override;
   const cv::Mat& toGrey(const cv::Mat& image);
   void exportSegments();
   void exportCorners();
@@ -79,6 +81,7 @@ class FeatureExtractor {
   LineExtractor line_extractor_;
   ForstnerDetector corner_detector_;
   cv::Mat grey_;
+  std::vector<Junction> junctions_by_x_;  // the line extractor's, sorted by x
   FrameFeatures features_;
 };
 

@@ -58,7 +58,7 @@ void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
               "camera calibration (OpenCV YAML layout); empty: an ideal camera of the image size");
   options.add("out", config.out, "overlay image to write; empty: none");
   options.add("smoothing_sigma_px", edges.smoothing_sigma_px,
-              "Gaussian pre-smoothing (px), 0: none");
+              "Gaussian pre-smoothing (px), >= 0.5; 0: none");
   options.add("min_gradient", edges.min_gradient, "edge threshold (grey levels per px)");
   options.add("split_distance_px", lines.split_distance_px, "split-and-merge tolerance (px)");
   options.add("min_length_px", lines.min_length_px, "shortest segment kept (px)");

@@ -15,19 +15,21 @@ CollinearMerger::CollinearMerger(const CollinearMergeOptions& options) : options
   }
 }
 
-bool CollinearMerger::joinable(const LineSegment& a, const LineSegment& b) const {
-  if (a.gradient_sum.dot(b.gradient_sum) <= 0.0) {
-    return false;
-  }
+// Most pairs in an angle window lie on other lines: that test goes first, as
+// it almost always fails the same way.
+bool CollinearMerger::joinable(const Extent& a, const Extent& b) const {
   const double d = options_.max_distance_px;
-  if (std::abs(a.fit.distance(b.start())) > d || std::abs(a.fit.distance(b.end())) > d ||
-      std::abs(b.fit.distance(a.start())) > d || std::abs(b.fit.distance(a.end())) > d) {
+  const auto off = [d](const Extent& line, const Eigen::Vector2d& p) {
+    return std::abs(line.normal.dot(p - line.centroid)) > d;
+  };
+  if (off(a, b.start) || off(a, b.end) || off(b, a.start) || off(b, a.end) ||
+      a.gradient_sum.dot(b.gradient_sum) <= 0.0) {
     return false;
   }
-  const double b0 = a.fit.along(b.start());
-  const double b1 = a.fit.along(b.end());
+  const double b0 = a.direction.dot(b.start - a.centroid);
+  const double b1 = a.direction.dot(b.end - a.centroid);
   const double gap = std::max(std::min(b0, b1) - a.end_along, a.start_along - std::max(b0, b1));
-  const double shorter = std::min(a.length(), b.length());
+  const double shorter = std::min(a.end_along - a.start_along, b.end_along - b.start_along);
   return gap <= std::min(options_.max_gap_px, options_.max_gap_ratio * shorter);
 }
 
@@ -39,28 +41,38 @@ int32_t CollinearMerger::root(int32_t i) {
   return i;
 }
 
+// Pairs within max_angle of each other by a sweep over the segments sorted
+// by angle (wrapping at pi), compact copies in that order.
 void CollinearMerger::findGroups(const std::vector<LineSegment>& segments) {
   const int32_t count = static_cast<int32_t>(segments.size());
-  angle_.resize(count);
+  by_angle_.resize(count);
   for (int32_t i = 0; i < count; ++i) {
-    angle_[i] = std::atan2(segments[i].fit.direction.y(), segments[i].fit.direction.x());
+    const LineSegment& s = segments[i];
+    by_angle_[i] = {std::atan2(s.fit.direction.y(), s.fit.direction.x()),
+                    s.fit.centroid,
+                    s.fit.direction,
+                    s.fit.normal,
+                    s.start(),
+                    s.end(),
+                    s.gradient_sum,
+                    s.start_along,
+                    s.end_along,
+                    i};
   }
-  order_.resize(count);
-  std::iota(order_.begin(), order_.end(), 0);
-  std::sort(order_.begin(), order_.end(),
-            [&](int32_t a, int32_t b) { return angle_[a] < angle_[b]; });
+  std::sort(by_angle_.begin(), by_angle_.end(),
+            [](const Extent& a, const Extent& b) { return a.angle < b.angle; });
   parent_.resize(count);
   std::iota(parent_.begin(), parent_.end(), 0);
   for (int32_t k = 0; k < count; ++k) {
-    const int32_t i = order_[k];
+    const Extent& a = by_angle_[k];
     for (int32_t step = 1; step < count; ++step) {
-      const int32_t j = order_[(k + step) % count];
+      const Extent& b = by_angle_[(k + step) % count];
       const double wrap = (k + step >= count) ? M_PI : 0.0;
-      if (angle_[j] + wrap - angle_[i] > options_.max_angle_rad) {
+      if (b.angle + wrap - a.angle > options_.max_angle_rad) {
         break;
       }
-      if (joinable(segments[i], segments[j])) {
-        parent_[root(j)] = root(i);
+      if (joinable(a, b)) {
+        parent_[root(b.segment)] = root(a.segment);
       }
     }
   }

@@ -32,13 +32,20 @@ class CollinearMerger {
   void merge(std::vector<LineSegment>& segments, const LineFitOptions& fit_options);
 
  private:
-  bool joinable(const LineSegment& a, const LineSegment& b) const;
+  // A segment as joinable() needs it.
+  struct Extent {
+    double angle;  // of the direction, in [0, pi)
+    Eigen::Vector2d centroid, direction, normal, start, end, gradient_sum;
+    double start_along, end_along;
+    int32_t segment;
+  };
+
+  bool joinable(const Extent& a, const Extent& b) const;
   int32_t root(int32_t i);
   void findGroups(const std::vector<LineSegment>& segments);
 
   CollinearMergeOptions options_;
-  std::vector<double> angle_;
-  std::vector<int32_t> order_;
+  std::vector<Extent> by_angle_;
   std::vector<int32_t> parent_;
   std::vector<LineSegment> originals_;
 };

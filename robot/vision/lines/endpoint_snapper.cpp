@@ -34,6 +34,7 @@ EndpointSnapper::EndpointSnapper(const EndpointSnapOptions& options)
 
 void EndpointSnapper::snap(std::vector<LineSegment>& segments) {
   endpoints_.clear();
+  candidates_.clear();
   junctions_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(segments.size()); ++i) {
     endpoints_.push_back({segments[i].start(), i, true, false});
@@ -42,42 +43,60 @@ void EndpointSnapper::snap(std::vector<LineSegment>& segments) {
   std::sort(endpoints_.begin(), endpoints_.end(),
             [](const Endpoint& a, const Endpoint& b) { return a.position.x() < b.position.x(); });
   const double window_px = 2.0 * options_.radius_px;
-  for (size_t i = 0; i < endpoints_.size(); ++i) {
-    for (size_t j = i + 1; j < endpoints_.size() && !endpoints_[i].snapped; ++j) {
-      if (endpoints_[j].position.x() - endpoints_[i].position.x() > window_px) {
-        break;
+  const auto count = static_cast<int32_t>(endpoints_.size());
+  for (int32_t i = 0; i < count; ++i) {
+    for (int32_t j = i + 1;
+         j < count && endpoints_[j].position.x() - endpoints_[i].position.x() <= window_px; ++j) {
+      if (std::abs(endpoints_[j].position.y() - endpoints_[i].position.y()) <= window_px) {
+        addCandidate(segments, i, j);
       }
-      if (!endpoints_[j].snapped) {
-        trySnap(segments, endpoints_[i], endpoints_[j]);
-      }
+    }
+  }
+  std::sort(candidates_.begin(), candidates_.end(),
+            [](const Candidate& a, const Candidate& b) { return a.distance_px < b.distance_px; });
+  for (const Candidate& candidate : candidates_) {
+    if (!endpoints_[candidate.a].snapped && !endpoints_[candidate.b].snapped) {
+      apply(segments, candidate);
     }
   }
 }
 
-bool EndpointSnapper::trySnap(std::vector<LineSegment>& segments, Endpoint& a, Endpoint& b) {
-  if (a.segment == b.segment) {
-    return false;
+void EndpointSnapper::addCandidate(const std::vector<LineSegment>& segments, int32_t a, int32_t b) {
+  const Endpoint& end_a = endpoints_[a];
+  const Endpoint& end_b = endpoints_[b];
+  if (end_a.segment == end_b.segment) {
+    return;
   }
-  LineSegment& line_a = segments[a.segment];
-  LineSegment& line_b = segments[b.segment];
+  const LineSegment& line_a = segments[end_a.segment];
+  const LineSegment& line_b = segments[end_b.segment];
   const double sin_angle = cross(line_a.fit.direction, line_b.fit.direction);
   if (std::abs(sin_angle) < min_sin_angle_) {
-    return false;
+    return;
   }
   // c_a + s d_a = c_b + u d_b.
   const Eigen::Vector2d offset = line_b.fit.centroid - line_a.fit.centroid;
   const double s = cross(offset, line_b.fit.direction) / sin_angle;
   const double u = cross(offset, line_a.fit.direction) / sin_angle;
   const Eigen::Vector2d x = line_a.fit.centroid + s * line_a.fit.direction;
-  if ((x - a.position).norm() > options_.radius_px ||
-      (x - b.position).norm() > options_.radius_px) {
-    return false;
+  const double distance_px = std::max((x - end_a.position).norm(), (x - end_b.position).norm());
+  if (distance_px > options_.radius_px) {
+    return;
   }
-  const double new_length_a = a.is_start ? line_a.end_along - s : s - line_a.start_along;
-  const double new_length_b = b.is_start ? line_b.end_along - u : u - line_b.start_along;
-  if (new_length_a <= 0.0 || new_length_b <= 0.0) {
-    return false;
+  const double new_length_a = end_a.is_start ? line_a.end_along - s : s - line_a.start_along;
+  const double new_length_b = end_b.is_start ? line_b.end_along - u : u - line_b.start_along;
+  if (new_length_a > 0.0 && new_length_b > 0.0) {
+    candidates_.push_back({a, b, s, u, distance_px});
   }
+}
+
+void EndpointSnapper::apply(std::vector<LineSegment>& segments, const Candidate& candidate) {
+  Endpoint& a = endpoints_[candidate.a];
+  Endpoint& b = endpoints_[candidate.b];
+  LineSegment& line_a = segments[a.segment];
+  LineSegment& line_b = segments[b.segment];
+  const double s = candidate.s;
+  const double u = candidate.u;
+  const double sin_angle = cross(line_a.fit.direction, line_b.fit.direction);
   moveEndpoint(line_a, a.is_start, s,
                std::sqrt(line_b.fit.normalVariance(u)) / std::abs(sin_angle));
   moveEndpoint(line_b, b.is_start, u,
@@ -86,10 +105,10 @@ bool EndpointSnapper::trySnap(std::vector<LineSegment>& segments, Endpoint& a, E
   normals << line_a.fit.normal.transpose(), line_b.fit.normal.transpose();
   const Eigen::Matrix2d inverse = normals.inverse();
   const Eigen::Vector2d normal_variance(line_a.fit.normalVariance(s), line_b.fit.normalVariance(u));
+  const Eigen::Vector2d x = line_a.fit.centroid + s * line_a.fit.direction;
   junctions_.push_back({x, inverse * normal_variance.asDiagonal() * inverse.transpose()});
   a.snapped = true;
   b.snapped = true;
-  return true;
 }
 
 }  // namespace lineloc

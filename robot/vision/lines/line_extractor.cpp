@@ -5,24 +5,20 @@
 #include <stdexcept>
 
 namespace lineloc {
-namespace {
-
-// Refit-and-trim rounds: the bent ends near a corner go in one or two.
-constexpr int kTrimPasses = 3;
-
-}  // namespace
-
 LineExtractor::LineExtractor(const LineExtractorOptions& options)
     : options_(options),
       split_and_merge_(options.split_distance_px, options.min_points),
       merger_(options.merge),
       snapper_(options.snap) {
   if (!(options.min_length_px >= 0.0) || !(options.min_contrast >= 0.0) ||
-      options.max_segments < 0 || !(options.fit.points_per_sample >= 1.0) ||
+      !(options.min_snap_length_px >= 0.0) || options.max_segments < 0 ||
+      !(options.trim_distance_px >= 0.0) || !(options.trim_sigmas >= 0.0) ||
+      !(options.trim_margin_px >= 0.0) || !(options.fit.points_per_sample >= 1.0) ||
       !(options.fit.min_sigma_px > 0.0)) {
     throw std::invalid_argument(
-        "line extractor: min_length_px, min_contrast, max_segments must be >= 0, "
-        "points_per_sample >= 1, min_sigma_px > 0");
+        "line extractor: min_length_px, min_snap_length_px, min_contrast, max_segments, "
+        "trim_distance_px, trim_sigmas, trim_margin_px must be >= 0, points_per_sample >= 1, "
+        "min_sigma_px > 0");
   }
 }
 
@@ -30,16 +26,23 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
                             const UndistortionTable& undistortion) {
   const std::vector<int32_t>& chain_points = chains.chainPoints();
   undistorted_.resize(chain_points.size());
-  for (size_t i = 0; i < chain_points.size(); ++i) {
-    undistorted_[i] = undistortion.undistort(points[chain_points[i]].position);
+  if (undistortion.isIdentity()) {
+    for (size_t i = 0; i < chain_points.size(); ++i) {
+      undistorted_[i] = points[chain_points[i]].position;
+    }
+  } else {
+    for (size_t i = 0; i < chain_points.size(); ++i) {
+      undistorted_[i] = undistortion.undistort(points[chain_points[i]].position);
+    }
   }
   segments_.clear();
   for (const PointRange& chain : chains.chains()) {
     fitPieces(points, chain_points, chain);
   }
   merger_.merge(segments_, options_.fit);
-  keepSignificant();
-  snapper_.snap(segments_);
+  keepSignificant(std::min(options_.min_snap_length_px, options_.min_length_px));
+  snapEndpoints();
+  keepSignificant(options_.min_length_px);
   std::sort(segments_.begin(), segments_.end(),
             [](const LineSegment& a, const LineSegment& b) { return a.length() > b.length(); });
   if (static_cast<int>(segments_.size()) > options_.max_segments) {
@@ -52,14 +55,13 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
   const std::span<const Eigen::Vector2f> polyline(undistorted_.data() + chain.begin,
                                                   static_cast<size_t>(chain.size()));
   pieces_.clear();
-  split_and_merge_.approximate(polyline, pieces_);
+  cumulativeMoments(polyline, prefix_);
+  split_and_merge_.approximate(polyline, prefix_, pieces_);
   for (PointRange piece : pieces_) {
+    trimEnds(polyline, piece);
     LineSegment segment;
-    for (int i = piece.begin; i < piece.end; ++i) {
-      segment.moments.add(polyline[i]);
-    }
+    segment.moments = momentsOf(piece);
     segment.fit = fitLine(segment.moments, options_.fit);
-    trimEnds(polyline, piece, segment);
     if (segment.fit.status != LineFitStatus::kOk) {
       continue;
     }
@@ -73,29 +75,69 @@ void LineExtractor::fitPieces(const std::vector<EdgePoint>& points,
   }
 }
 
-void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
-                             LineSegment& segment) const {
-  for (int pass = 0; pass < kTrimPasses && segment.fit.status == LineFitStatus::kOk; ++pass) {
-    const PointRange before = piece;
-    const auto off_line = [&](int i) {
-      return std::abs(segment.fit.distance(polyline[i].cast<double>())) > options_.trim_distance_px;
-    };
-    while (piece.size() > 0 && off_line(piece.begin)) {
-      segment.moments.remove(polyline[piece.begin++]);
-    }
-    while (piece.size() > 0 && off_line(piece.end - 1)) {
-      segment.moments.remove(polyline[--piece.end]);
-    }
-    if (piece.begin == before.begin && piece.end == before.end) {
-      return;
-    }
-    segment.fit = fitLine(segment.moments, options_.fit);
+void LineExtractor::trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece) const {
+  const LineFit core = coreLine(polyline, piece);
+  if (core.status != LineFitStatus::kOk) {
+    return;
+  }
+  const double trim_distance =
+      std::max(options_.trim_distance_px, options_.trim_sigmas * core.residual_sigma_px);
+  const auto off_line = [&](int i) {
+    return std::abs(core.distance(polyline[i].cast<double>())) > trim_distance;
+  };
+  while (piece.size() > 0 && off_line(piece.begin)) {
+    ++piece.begin;
+  }
+  while (piece.size() > 0 && off_line(piece.end - 1)) {
+    --piece.end;
   }
 }
 
-void LineExtractor::keepSignificant() {
-  std::erase_if(segments_, [this](const LineSegment& segment) {
-    return segment.length() < options_.min_length_px || segment.contrast() < options_.min_contrast;
+// The line through the points of the piece at least trim_margin from both
+// ends along its chord (the run of them between the first and the last that
+// are); through all of them when fewer than min_points are.
+LineFit LineExtractor::coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece) const {
+  const Eigen::Vector2d first = polyline[piece.begin].cast<double>();
+  const Eigen::Vector2d chord = polyline[piece.end - 1].cast<double>() - first;
+  const double length = chord.norm();
+  const auto inside = [&](int i) {
+    const double along = chord.dot(polyline[i].cast<double>() - first);
+    return along >= options_.trim_margin_px * length &&
+           along <= (length - options_.trim_margin_px) * length;
+  };
+  PointRange core = piece;
+  while (core.size() > 0 && !inside(core.begin)) {
+    ++core.begin;
+  }
+  while (core.size() > 0 && !inside(core.end - 1)) {
+    --core.end;
+  }
+  return fitLine(momentsOf(core.size() >= options_.min_points ? core : piece), options_.fit);
+}
+
+void LineExtractor::snapEndpoints() {
+  unsnapped_.assign(segments_.begin(), segments_.end());
+  snapper_.snap(segments_);
+  // Segments still too short when snapped take no part: a fragment near a
+  // corner must not hold the endpoints of the lines that meet there.
+  size_t kept = 0;
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    if (segments_[i].length() >= options_.min_length_px) {
+      unsnapped_[kept++] = unsnapped_[i];
+    }
+  }
+  unsnapped_.resize(kept);
+  segments_.assign(unsnapped_.begin(), unsnapped_.end());
+  snapper_.snap(segments_);
+}
+
+PointMoments LineExtractor::momentsOf(PointRange run) const {
+  return prefix_[run.end] - prefix_[run.begin];
+}
+
+void LineExtractor::keepSignificant(double min_length_px) {
+  std::erase_if(segments_, [&](const LineSegment& segment) {
+    return segment.length() < min_length_px || segment.contrast() < options_.min_contrast;
   });
 }
 

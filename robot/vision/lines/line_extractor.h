@@ -1,9 +1,12 @@
 // Straight line segments from edge chains (Persa & Jonker §3): edge points
 // undistorted through the lookup table, split-and-merge of every chain, a
-// total-least-squares refit of every piece (after trimming end points that
-// bend away near a corner: farther than trim_distance from the line), collinear pieces merged
-// across small gaps, weak and short segments dropped, and endpoints that meet at a corner snapped
-// to the intersection of their lines.
+// total-least-squares refit of every piece after trimming the end points that
+// bend away near a corner (farther than trim_distance from the line through
+// the piece's core, its points more than trim_margin from its ends, which
+// the bend does not reach), collinear pieces merged across small gaps, weak
+// segments dropped, endpoints that meet at a corner snapped to the
+// intersection of their lines, and then short segments dropped (a segment cut
+// short by the blur at a corner counts with the length it has when snapped).
 #pragma once
 
 #include <span>
@@ -21,9 +24,14 @@ namespace lineloc {
 
 struct LineExtractorOptions {
   double split_distance_px = 1.0;
-  double trim_distance_px = 0.25;  // end points farther from the refitted line are dropped
+  double trim_distance_px = 0.25;  // end points farther from the core's line are dropped,
+  double trim_sigmas = 3.0;        // or farther than this many of its residual sigmas
+  double trim_margin_px = 3.0;     // the core leaves out this much at each end
   int min_points = 6;              // edge points per split-and-merge piece
   double min_length_px = 20.0;
+  // Shorter pieces take no part in snapping; longer ones may reach
+  // min_length_px by it: a side blurred short at both corners (2..4 px each).
+  double min_snap_length_px = 12.0;
   double min_contrast = 10.0;  // mean grey-level step
   int max_segments = 1024;     // the longest are kept
   LineFitOptions fit;
@@ -47,9 +55,14 @@ class LineExtractor {
  private:
   void fitPieces(const std::vector<EdgePoint>& points, const std::vector<int32_t>& chain_points,
                  PointRange chain);
-  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece,
-                LineSegment& segment) const;
-  void keepSignificant();
+  void trimEnds(std::span<const Eigen::Vector2f> polyline, PointRange& piece) const;
+  LineFit coreLine(std::span<const Eigen::Vector2f> polyline, PointRange piece) const;
+  // Moments of a run of the current chain's points.
+  PointMoments momentsOf(PointRange run) const;
+  // Drops segments shorter than min_length_px or weaker than min_contrast.
+  void keepSignificant(double min_length_px);
+  // Snaps endpoints at corners among the segments long enough once snapped.
+  void snapEndpoints();
 
   LineExtractorOptions options_;
   SplitAndMerge split_and_merge_;
@@ -57,7 +70,9 @@ class LineExtractor {
   EndpointSnapper snapper_;
   std::vector<Eigen::Vector2f> undistorted_;
   std::vector<PointRange> pieces_;
+  std::vector<PointMoments> prefix_;  // cumulativeMoments of the current chain
   std::vector<LineSegment> segments_;
+  std::vector<LineSegment> unsnapped_;  // segments_ before the first snap
 };
 
 }  // namespace lineloc

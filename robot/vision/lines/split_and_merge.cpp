@@ -41,9 +41,16 @@ SplitAndMerge::SplitAndMerge(double split_distance_px, int min_points)
 
 void SplitAndMerge::approximate(std::span<const Eigen::Vector2f> points,
                                 std::vector<PointRange>& pieces) {
+  cumulativeMoments(points, prefix_);
+  approximate(points, prefix_, pieces);
+}
+
+void SplitAndMerge::approximate(std::span<const Eigen::Vector2f> points,
+                                std::span<const PointMoments> prefix,
+                                std::vector<PointRange>& pieces) {
   pieces_.clear();
   split(points);
-  merge(points);
+  merge(points, prefix);
   for (const PointRange& piece : pieces_) {
     if (piece.size() >= min_points_) {
       pieces.push_back(piece);
@@ -68,11 +75,12 @@ void SplitAndMerge::split(std::span<const Eigen::Vector2f> points) {
   }
 }
 
-void SplitAndMerge::merge(std::span<const Eigen::Vector2f> points) {
+void SplitAndMerge::merge(std::span<const Eigen::Vector2f> points,
+                          std::span<const PointMoments> prefix) {
   size_t i = 0;
   while (i + 1 < pieces_.size()) {
     const PointRange joined{pieces_[i].begin, pieces_[i + 1].end};
-    if (fitsOneLine(points, joined)) {
+    if (fitsOneLine(points, prefix, joined)) {
       pieces_[i] = joined;
       pieces_.erase(pieces_.begin() + static_cast<std::ptrdiff_t>(i) + 1);
     } else {
@@ -81,12 +89,9 @@ void SplitAndMerge::merge(std::span<const Eigen::Vector2f> points) {
   }
 }
 
-bool SplitAndMerge::fitsOneLine(std::span<const Eigen::Vector2f> points, PointRange range) const {
-  PointMoments moments;
-  for (int i = range.begin; i < range.end; ++i) {
-    moments.add(points[i]);
-  }
-  const LineFit fit = fitLine(moments, LineFitOptions{});
+bool SplitAndMerge::fitsOneLine(std::span<const Eigen::Vector2f> points,
+                                std::span<const PointMoments> prefix, PointRange range) const {
+  const LineFit fit = fitLine(prefix[range.end] - prefix[range.begin], LineFitOptions{});
   if (fit.status != LineFitStatus::kOk) {
     return false;
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "robot/vision/edges/edge_linker.h"
+#include "robot/vision/lines/line_moments.h"
 
 namespace lineloc {
 
@@ -24,16 +25,21 @@ class SplitAndMerge {
   // Appends to `pieces` the straight pieces of the polyline `points`, as index
   // ranges into it; pieces of fewer than min_points points are dropped.
   void approximate(std::span<const Eigen::Vector2f> points, std::vector<PointRange>& pieces);
+  // The same with the polyline's cumulativeMoments at hand.
+  void approximate(std::span<const Eigen::Vector2f> points, std::span<const PointMoments> prefix,
+                   std::vector<PointRange>& pieces);
 
  private:
   void split(std::span<const Eigen::Vector2f> points);
-  void merge(std::span<const Eigen::Vector2f> points);
-  bool fitsOneLine(std::span<const Eigen::Vector2f> points, PointRange range) const;
+  void merge(std::span<const Eigen::Vector2f> points, std::span<const PointMoments> prefix);
+  bool fitsOneLine(std::span<const Eigen::Vector2f> points, std::span<const PointMoments> prefix,
+                   PointRange range) const;
 
   double split_distance_px_;
   int min_points_;
   std::vector<PointRange> stack_;
   std::vector<PointRange> pieces_;
+  std::vector<PointMoments> prefix_;  // for the overload without
 };
 
 }  // namespace lineloc

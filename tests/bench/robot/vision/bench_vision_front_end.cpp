@@ -1,77 +1,98 @@
 // The robot's vision front end (lines + Förstner corners) against the line
 // detectors a user would pick instead: OpenCV's LSD, ximgproc's
 // FastLineDetector and EdgeDrawing (EDLines), on the same 640x480 images:
-// building.jpg from opencv-doc (resized) and a synthetic street view rendered
-// here (no simulator images exist yet). One core; medians of repetitions;
-// a summary prints each detector's median time and segment count, and its
-// time ratio to lineloc.
+// building.jpg from opencv-doc (resized) and a street view of Delft rendered
+// by the project's simulator (OpenCV's sample lens, barrel distortion;
+// lineloc undistorts its edge points with that calibration, the others take
+// the image as it is). One core; medians of repetitions; a summary prints
+// each detector's median time and segment count, and its time ratio to
+// lineloc lines + corners.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <map>
 #include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "robot/input/image_sequence.h"
 #include "robot/vision/features/feature_extractor.h"
-#include "synthetic_scene.h"
+#include "sim/dataset/drive_simulation.h"
+#include "tests/unit/robot/vision/sample_images.h"
 
 namespace {
+
+namespace fs = std::filesystem;
 
 const cv::Size kImageSize(640, 480);
 constexpr int kRepetitions = 9;
 
-cv::Mat buildingImage() {
-  const std::string path = std::string(LINELOC_OPENCV_EXAMPLES_DATA) + "/building.jpg";
-  const cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (image.empty()) {
-    throw std::runtime_error("cannot read " + path + " (install opencv-doc)");
-  }
-  cv::Mat resized;
-  cv::resize(image, resized, kImageSize, 0.0, 0.0, cv::INTER_AREA);
-  return resized;
-}
-
-cv::Mat streetImage() {
-  lineloc::testing::SceneOptions options;
-  options.size = kImageSize;
-  options.supersampling = 8;
-  return lineloc::testing::renderStreetView(options, 7).image;
-}
-
-const cv::Mat& image(int which) {
-  static const cv::Mat building = buildingImage();
-  static const cv::Mat street = streetImage();
-  return which == 0 ? building : street;
-}
-
-const char* imageName(int which) {
-  return which == 0 ? "building" : "street";
-}
-
-lineloc::CameraCalibration idealCamera() {
+struct BenchImage {
+  const char* name;
+  cv::Mat grey;
   lineloc::CameraCalibration calibration;
-  calibration.camera = {500.0, 500.0, 319.5, 239.5, 0.0, kImageSize.width, kImageSize.height};
-  return calibration;
+};
+
+BenchImage buildingImage() {
+  BenchImage building{"building", {}, {}};
+  cv::resize(lineloc::readSampleImage("building.jpg", cv::IMREAD_GRAYSCALE), building.grey,
+             kImageSize, 0.0, 0.0, cv::INTER_AREA);
+  building.calibration.camera = {
+      500.0, 500.0, 319.5, 239.5, 0.0, kImageSize.width, kImageSize.height};
+  return building;
+}
+
+// The simulator's frame 0.5 s into a drive through Delft (the 3D city model
+// of the shared data), with its camera's calibration.
+BenchImage streetImage() {
+  const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+  if (!fs::exists(city)) {
+    throw std::runtime_error("shared data missing: " + city.string());
+  }
+  const fs::path folder =
+      fs::temp_directory_path() / fmt::format("lineloc-bench-vision-{}", ::getpid());
+  lineloc::DriveSimulationConfig config;
+  config.city_model = city.string();
+  config.output = folder.string();
+  config.duration_s = 0.6;
+  config.camera_rate_hz = 2.0;
+  lineloc::simulateDrive(config);
+  const std::vector<lineloc::FrameRef> frames =
+      lineloc::listImageSequence((folder / "cam0").string());
+  BenchImage street{
+      "street", lineloc::readGreyImage(frames.back().path),
+      lineloc::readCameraCalibration((folder / "cam0" / "calibration.yaml").string())};
+  fs::remove_all(folder);
+  if (street.grey.size() != kImageSize) {
+    throw std::runtime_error("the simulator's camera is not 640x480");
+  }
+  return street;
+}
+
+const BenchImage& image(int which) {
+  static const BenchImage building = buildingImage();
+  static const BenchImage street = streetImage();
+  return which == 0 ? building : street;
 }
 
 template <typename Detect>
 void run(benchmark::State& state, Detect detect) {
-  const cv::Mat& grey = image(static_cast<int>(state.range(0)));
+  const BenchImage& input = image(static_cast<int>(state.range(0)));
   size_t segments = 0;
   for (auto _ : state) {
-    segments = detect(grey);
+    segments = detect(input.grey);
     benchmark::ClobberMemory();
   }
   state.counters["segments"] = static_cast<double>(segments);
-  state.SetLabel(imageName(static_cast<int>(state.range(0))));
+  state.SetLabel(input.name);
 }
 
 void BM_LinelocLinesAndCorners(benchmark::State& state) {
-  lineloc::FeatureExtractor extractor(idealCamera());
+  lineloc::FeatureExtractor extractor(image(static_cast<int>(state.range(0))).calibration);
   size_t corners = 0;
   run(state, [&](const cv::Mat& grey) {
     const lineloc::FrameFeatures& features = extractor.extract(grey);
@@ -84,7 +105,7 @@ void BM_LinelocLinesAndCorners(benchmark::State& state) {
 void BM_LinelocLinesOnly(benchmark::State& state) {
   lineloc::FeatureExtractorOptions options;
   options.detect_corners = false;
-  lineloc::FeatureExtractor extractor(idealCamera(), options);
+  lineloc::FeatureExtractor extractor(image(static_cast<int>(state.range(0))).calibration, options);
   run(state, [&](const cv::Mat& grey) { return extractor.extract(grey).segments.size(); });
 }
 

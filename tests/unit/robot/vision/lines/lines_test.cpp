@@ -4,6 +4,7 @@
 #include <random>
 
 #include "robot/vision/lines/collinear_merger.h"
+#include "robot/vision/lines/endpoint_snapper.h"
 #include "robot/vision/lines/line_moments.h"
 #include "robot/vision/lines/split_and_merge.h"
 
@@ -37,8 +38,28 @@ TEST(LineMoments, FitsAndReportsTooFewPointsOrDegenerateInput) {
   ASSERT_EQ(fit.status, LineFitStatus::kOk);
   EXPECT_NEAR(std::abs(fit.direction.dot(Eigen::Vector2d(1, 1).normalized())), 1.0, 1e-9);
   EXPECT_NEAR(fit.distance({3.0, 4.0}), 0.0, 1e-9);
-  moments.remove({5.0f, 6.0f});
-  EXPECT_EQ(fitLine(moments, {}).status, LineFitStatus::kTooFewPoints);
+  PointMoments last;
+  last.add({5.0f, 6.0f});
+  EXPECT_EQ(fitLine(moments - last, {}).status, LineFitStatus::kTooFewPoints);
+}
+
+TEST(LineMoments, RunningSumsGiveTheMomentsOfAnyRun) {
+  std::mt19937 random(5);
+  const std::vector<Eigen::Vector2f> points = pointsOnLine({3, 4}, {200, 90}, 50, 0.3f, random);
+  std::vector<PointMoments> prefix;
+  cumulativeMoments(points, prefix);
+  ASSERT_EQ(prefix.size(), points.size() + 1);
+  PointMoments run;
+  for (int i = 7; i < 31; ++i) {
+    run.add(points[i]);
+  }
+  const PointMoments from_prefix = prefix[31] - prefix[7];
+  EXPECT_EQ(from_prefix.n, run.n);
+  EXPECT_NEAR(from_prefix.sxx, run.sxx, 1e-9 * run.sxx);
+  EXPECT_NEAR(from_prefix.sxy, run.sxy, 1e-9 * run.sxy);
+  const LineFit a = fitLine(from_prefix, {}), b = fitLine(run, {});
+  EXPECT_NEAR(a.direction.dot(b.direction), 1.0, 1e-12);
+  EXPECT_NEAR(a.distance(b.centroid), 0.0, 1e-9);
 }
 
 // With independent points (points_per_sample = 1) the reported sigmas are
@@ -120,6 +141,24 @@ TEST(CollinearMerger, BridgesAnOccluderButNotARowOfWindows) {
   flipped[1].gradient_sum = -flipped[1].gradient_sum;
   merger.merge(flipped, {});
   EXPECT_EQ(flipped.size(), 2u);
+}
+
+// Two lines end near the corner of a third: its end point snaps to the one
+// whose end is closest to the intersection, though the other comes first in x.
+TEST(EndpointSnapper, SnapsTheClosestPairFirst) {
+  std::mt19937 random(7);
+  std::vector<LineSegment> segments = {
+      segmentOf(pointsOnLine({0, 50}, {97, 50}, 98, 0.0f, random)),   // ends 3 px short
+      segmentOf(pointsOnLine({95, 0}, {95, 44}, 45, 0.0f, random)),   // 5 px from x = (95, 50)
+      segmentOf(pointsOnLine({101, 48}, {101, 0}, 49, 0.0f, random))  // 2 px from (101, 50)
+  };
+  EndpointSnapper snapper({});
+  snapper.snap(segments);
+  ASSERT_EQ(snapper.junctions().size(), 1u);
+  EXPECT_LT((snapper.junctions()[0].position - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[0].end() - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[2].end() - Eigen::Vector2d(101.0, 50.0)).norm(), 1e-6);
+  EXPECT_LT((segments[1].end() - Eigen::Vector2d(95.0, 44.0)).norm(), 1e-6);
 }
 
 }  // namespace

@@ -26,10 +26,6 @@ ScenePolygon rectangle(const Eigen::Vector2d& centre, double width, double heigh
   return {{centre - a - b, centre + a - b, centre + a + b, centre - a + b}, grey};
 }
 
-ScenePolygon box(double x0, double y0, double x1, double y1, double grey) {
-  return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, grey};
-}
-
 }  // namespace
 
 SyntheticScene renderPolygons(const SceneOptions& options, double background_grey,
@@ -66,15 +62,16 @@ SyntheticScene renderPolygons(const SceneOptions& options, double background_gre
   return scene;
 }
 
-SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed) {
+SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed,
+                                const SideRange& sides) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   constexpr double kMarginPx = 8.0;
   std::vector<ScenePolygon> polygons;
   std::vector<std::pair<Eigen::Vector2d, double>> discs;
   for (int attempt = 0; attempt < 2000 && static_cast<int>(polygons.size()) < count; ++attempt) {
-    const double width = 40.0 + 70.0 * unit(random);
-    const double height = 40.0 + 70.0 * unit(random);
+    const double width = sides.min_px + (sides.max_px - sides.min_px) * unit(random);
+    const double height = sides.min_px + (sides.max_px - sides.min_px) * unit(random);
     const double radius = 0.5 * std::hypot(width, height);
     const Eigen::Vector2d centre(
         radius + kMarginPx + unit(random) * (options.size.width - 2 * (radius + kMarginPx)),
@@ -91,31 +88,6 @@ SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t
     discs.emplace_back(centre, radius);
   }
   return renderPolygons(options, 128.0, polygons, seed);
-}
-
-SyntheticScene renderStreetView(const SceneOptions& options, uint32_t seed) {
-  const double w = options.size.width;
-  const double h = options.size.height;
-  std::vector<ScenePolygon> polygons;
-  polygons.push_back(box(0.0, 0.72 * h, w, h, 90.0));                      // street
-  polygons.push_back(box(0.04 * w, 0.12 * h, 0.52 * w, 0.74 * h, 170.0));  // façade 1
-  polygons.push_back(box(0.55 * w, 0.20 * h, 0.97 * w, 0.74 * h, 140.0));  // façade 2
-  for (int row = 0; row < 4; ++row) {
-    for (int column = 0; column < 5; ++column) {
-      const double x0 = (0.07 + 0.09 * column) * w;
-      const double y0 = (0.16 + 0.13 * row) * h;
-      polygons.push_back(box(x0, y0, x0 + 0.05 * w, y0 + 0.08 * h, 60.0));
-    }
-    for (int column = 0; column < 4; ++column) {
-      const double x0 = (0.58 + 0.095 * column) * w;
-      const double y0 = (0.24 + 0.12 * row) * h;
-      polygons.push_back(box(x0, y0, x0 + 0.06 * w, y0 + 0.07 * h, 215.0));
-    }
-  }
-  polygons.push_back(box(0.25 * w, 0.62 * h, 0.31 * w, 0.74 * h, 50.0));   // door
-  polygons.push_back(box(0.0, 0.78 * h, w, 0.80 * h, 150.0));              // kerb
-  polygons.push_back(box(0.44 * w, 0.30 * h, 0.455 * w, 0.90 * h, 40.0));  // pole
-  return renderPolygons(options, 200.0, polygons, seed);
 }
 
 }  // namespace lineloc::testing

@@ -43,12 +43,16 @@ struct ScenePolygon {
 SyntheticScene renderPolygons(const SceneOptions& options, double background_grey,
                               const std::vector<ScenePolygon>& polygons, uint32_t seed);
 
-// `count` non-overlapping rotated rectangles of random size (40..110 px),
-// angle and polarity (dark 30..80 or bright 180..230 on a 128 background).
-SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed);
+// The range of a rectangle's side lengths (px).
+struct SideRange {
+  double min_px = 40.0;
+  double max_px = 110.0;
+};
 
-// A street-like view: sky, two façades with rows of windows and doors, a
-// pavement edge and a pole occluding one façade.
-SyntheticScene renderStreetView(const SceneOptions& options, uint32_t seed);
+// `count` non-overlapping rotated rectangles of random size (sides in
+// `sides`), angle and polarity (dark 30..80 or bright 180..230 on a 128
+// background).
+SyntheticScene renderRectangles(const SceneOptions& options, int count, uint32_t seed,
+                                const SideRange& sides = {});
 
 }  // namespace lineloc::testing

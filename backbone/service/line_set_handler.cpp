@@ -133,7 +133,7 @@ void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap
   if (alignment.status == AlignmentStatus::kOk) {
     const Confirmation confirmation =
         confirmPreviousSearch(line_set, alignment.T_world_camera.pose);
-    outcome = toString(confirmation);
+    outcome = describe(confirmation);
     if (confirmation != Confirmation::kConfirmed) {
       fix.status = lineloc_msg_FIX_AMBIGUOUS;
       fix.T_world_camera = line_set.predicted_T_world_camera;
@@ -143,12 +143,12 @@ void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap
   spdlog::info(
       "search for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
       "best / {:.1f} rival, {} inliers, grid search {:.0f} ms",
-      line_set.robot_id, line_set.sequence_number, lineloc::toString(fix.status), outcome,
-      search.aligned, search.hypotheses, search.best_score, search.rival_score, alignment.inliers,
+      line_set.robot_id, line_set.sequence_number, toString(fix.status), outcome, search.aligned,
+      search.hypotheses, search.best_score, search.rival_score, alignment.inliers,
       search.search_ns * 1e-6);
 }
 
-const char* LineSetHandler::toString(Confirmation confirmation) {
+const char* LineSetHandler::describe(Confirmation confirmation) {
   switch (confirmation) {
     case Confirmation::kConfirmed:
       return "confirms the previous search";

@@ -103,7 +103,7 @@ class LineSetHandler {
                     const PoseWithCovariance& prior, PoseFixData& fix);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   enum class Confirmation { kConfirmed, kFirst, kDisagrees };
-  static const char* toString(Confirmation confirmation);
+  static const char* describe(Confirmation confirmation);
   // Whether `acquired` at `line_set`'s time confirms the robot's previous
   // search result (kFirst: there is none recent); remembers it for the next
   // one either way.

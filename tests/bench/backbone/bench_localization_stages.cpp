@@ -18,32 +18,26 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "backbone/matching/localizer.h"
 #include "backbone/tracker/model_file.h"
-#include "common/camera/camera_calibration.h"
 #include "common/messages/messages.h"
-#include "common/trajectory/tum_trajectory.h"
-#include "robot/input/image_sequence.h"
 #include "robot/vision/features/feature_extractor.h"
-#include "sim/dataset/drive_simulation.h"
+#include "tests/support/delft_drive.h"
 
 namespace fs = std::filesystem;
 
 namespace lineloc {
 namespace {
 
-constexpr double kCameraHeightM = 1.5;
 constexpr double kDriveSeconds = 12.0;
 constexpr double kCameraRateHz = 2.0;
 constexpr double kTrackingPositionSigmaM = 0.02;
 constexpr double kTrackingRotationSigmaRad = 0.1 * M_PI / 180.0;
 constexpr double kDgpsSigmaM = 4.0;
 constexpr double kCompassSigmaRad = 0.5 * M_PI / 180.0;
-const Eigen::Vector3d kSiteOrigin(84900.0, 447600.0, 0.0);
 
 struct Frame {
   cv::Mat image;
@@ -55,31 +49,23 @@ struct Frame {
 // ray-casting scene: built once for every benchmark.
 struct Drive {
   Drive() {
-    const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
     const fs::path folder = fs::temp_directory_path() / fmt::format("bench_stages_{}", getpid());
     fs::remove_all(folder);
     DriveSimulationConfig config;
-    config.city_model = city.string();
-    config.site_origin = {kSiteOrigin.x(), kSiteOrigin.y(), kSiteOrigin.z()};
-    config.output = folder.string();
     config.duration_s = kDriveSeconds;
     config.drive.initial_still_s = 0.5;
     config.camera_rate_hz = kCameraRateHz;
-    config.camera_height_m = kCameraHeightM;
-    simulateDrive(config);
-    calibration = readCameraCalibration((folder / "cam0" / "calibration.yaml").string());
-    std::map<int64_t, Eigen::Isometry3d> truth;
-    for (const StampedPose& pose : readTumFile((folder / "groundtruth_cam0.tum").string())) {
-      truth[pose.stamp_ns] = pose.pose;
-    }
+    const test::SimulatedFrames simulated = test::simulateDelftDrive(config, folder);
+    calibration = simulated.calibration;
     FeatureExtractor extractor(calibration);
-    for (const FrameRef& ref : listImageSequence((folder / "cam0").string())) {
-      Frame frame{cv::imread(ref.path, cv::IMREAD_GRAYSCALE), truth.at(*ref.stamp_ns), {}};
+    for (size_t i = 0; i < simulated.images.size(); ++i) {
+      Frame frame{cv::imread(simulated.images[i], cv::IMREAD_GRAYSCALE), simulated.truth[i], {}};
       frame.segments = extractor.extract(frame.image).segments;
       frames.push_back(std::move(frame));
     }
     fs::remove_all(folder);
-    model = readLocalModel(city.string(), kSiteOrigin, std::nullopt).model;
+    model = readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt)
+                .model;
     scene = std::make_unique<OcclusionScene>(model.faces);
   }
 

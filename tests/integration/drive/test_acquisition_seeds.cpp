@@ -20,18 +20,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "backbone/service/line_set_handler.h"
-#include "common/camera/camera_calibration.h"
-#include "common/trajectory/tum_trajectory.h"
-#include "robot/input/image_sequence.h"
 #include "robot/vision/features/feature_extractor.h"
-#include "sim/dataset/drive_simulation.h"
 #include "tests/support/child_process.h"
+#include "tests/support/delft_drive.h"
 #include "tests/support/test_database.h"
 
 namespace fs = std::filesystem;
@@ -40,12 +36,10 @@ namespace lineloc {
 namespace {
 
 constexpr int kSeeds = 50;
-constexpr double kCameraHeightM = 1.5;
 constexpr double kDgpsSigmaM = 4.0;
 constexpr double kYawSigmaRad = 0.5 * M_PI / 180.0;
 constexpr double kChi2Six9973 = 20.06;
 constexpr int kMinFixedSeeds = 10;
-const std::vector<double> kSiteOrigin = {84900.0, 447600.0, 0.0};
 
 // e^T Sigma^-1 e, e = [dp; dtheta] of the estimate against the truth.
 double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {
@@ -57,33 +51,12 @@ double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::I
 }
 
 // The start of seed's drive: two frames 0.5 s apart and their true poses.
-struct DriveStart {
-  std::vector<std::string> images;
-  std::vector<Eigen::Isometry3d> truth;
-  CameraCalibration calibration;
-};
-
-DriveStart simulateStart(const fs::path& city, const fs::path& folder, uint64_t seed) {
+test::SimulatedFrames simulateStart(const fs::path& folder, uint64_t seed) {
   DriveSimulationConfig config;
-  config.city_model = city.string();
-  config.site_origin = kSiteOrigin;
-  config.output = folder.string();
   config.seed = seed;
   config.duration_s = 0.6;
   config.camera_rate_hz = 2.0;
-  config.camera_height_m = kCameraHeightM;
-  simulateDrive(config);
-  DriveStart start;
-  start.calibration = readCameraCalibration((folder / "cam0" / "calibration.yaml").string());
-  std::map<int64_t, Eigen::Isometry3d> truth;
-  for (const StampedPose& pose : readTumFile((folder / "groundtruth_cam0.tum").string())) {
-    truth[pose.stamp_ns] = pose.pose;
-  }
-  for (const FrameRef& frame : listImageSequence((folder / "cam0").string())) {
-    start.images.push_back(frame.path);
-    start.truth.push_back(truth.at(*frame.stamp_ns));
-  }
-  return start;
+  return test::simulateDelftDrive(config, folder);
 }
 
 LineSetData lineSet(const std::vector<ImageSegment>& segments, const PinholeCamera& camera,
@@ -95,12 +68,12 @@ LineSetData lineSet(const std::vector<ImageSegment>& segments, const PinholeCame
   data.camera = camera;
   data.segments = segments;
   data.predicted_T_world_camera = predicted;
-  data.camera_height_m = kCameraHeightM;
+  data.camera_height_m = test::kDelftCameraHeightM;
   return data;
 }
 
 TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
-  const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+  const fs::path city = test::delftCityModel();
   ASSERT_TRUE(fs::exists(city)) << "shared data missing: " << city;
   const fs::path work =
       fs::temp_directory_path() / ("acquisition_seeds_" + std::to_string(getpid()));
@@ -108,9 +81,11 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
   fs::create_directories(work);
   test::TestDatabase database("acquisition_seeds");
   {
-    test::ChildProcess load(std::string(LINELOC_BIN_DIR) + "/lineloc-load",
-                            {"--db", database.conninfo(), "--site", "delft", "--origin", "84900",
-                             "447600", "0", city.string()},
+    std::vector<std::string> args = {"--db", database.conninfo(), "--site", "delft", "--origin"};
+    const std::vector<std::string> origin = test::delftSiteOriginArgs();
+    args.insert(args.end(), origin.begin(), origin.end());
+    args.push_back(city.string());
+    test::ChildProcess load(std::string(LINELOC_BIN_DIR) + "/lineloc-load", args,
                             (work / "load.log").string());
     ASSERT_EQ(load.wait(120'000), std::optional<int>(0));
   }
@@ -119,7 +94,7 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
   int fixed = 0;
   int wrong = 0;
   for (int seed = 1; seed <= kSeeds; ++seed) {
-    const DriveStart start = simulateStart(city, work / std::to_string(seed), seed);
+    const test::SimulatedFrames start = simulateStart(work / std::to_string(seed), seed);
     ASSERT_GE(start.images.size(), 2u);
     std::mt19937 random(static_cast<uint32_t>(1000 + seed));
     std::normal_distribution<double> n(0.0, 1.0);

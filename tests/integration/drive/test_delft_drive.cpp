@@ -30,6 +30,7 @@
 
 #include "common/trajectory/tum_trajectory.h"
 #include "tests/support/child_process.h"
+#include "tests/support/delft_drive.h"
 #include "tests/support/test_database.h"
 #include "tests/support/test_dds.h"
 
@@ -39,7 +40,6 @@ namespace lineloc {
 namespace {
 
 constexpr int kDriveSeconds = 30;
-constexpr double kCameraHeightM = 1.5;
 constexpr double kMaxPositionRmseM = 0.05;
 constexpr double kMaxAttitudeRmseDeg = 0.2;
 constexpr double kMinFixedFraction = 0.95;
@@ -52,7 +52,6 @@ constexpr double kSettleSeconds = 3.0;
 constexpr int kKillAfterSeconds = 12;
 constexpr int kOutageSeconds = 3;
 constexpr double kLastPartSeconds = 8.0;
-const std::vector<std::string> kSiteOrigin = {"84900", "447600", "0"};
 
 std::map<int64_t, Eigen::Isometry3d> byStamp(const std::vector<StampedPose>& poses) {
   std::map<int64_t, Eigen::Isometry3d> result;
@@ -117,10 +116,10 @@ class DelftDrive : public ::testing::Test {
     work_ = fs::temp_directory_path() / ("delft_drive_" + std::to_string(getpid()));
     fs::remove_all(work_);
     fs::create_directories(work_);
-    const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+    const fs::path city = test::delftCityModel();
     ASSERT_TRUE(fs::exists(city)) << "shared data missing: " << city;
     std::vector<std::string> load = {"--db", database_.conninfo(), "--site", "delft", "--origin"};
-    load.insert(load.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    load.insert(load.end(), origin_.begin(), origin_.end());
     load.push_back(city.string());
     runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
     std::vector<std::string> simulate = {"--city-model",
@@ -132,9 +131,9 @@ class DelftDrive : public ::testing::Test {
                                          "--duration-s",
                                          std::to_string(kDriveSeconds),
                                          "--camera-height-m",
-                                         fmt::format("{}", kCameraHeightM),
+                                         fmt::format("{}", test::kDelftCameraHeightM),
                                          "--site-origin"};
-    simulate.insert(simulate.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    simulate.insert(simulate.end(), origin_.begin(), origin_.end());
     runOrFail("lineloc-sim", simulate, work_ / "sim.log", 600'000);
   }
   void TearDown() override {
@@ -160,10 +159,10 @@ class DelftDrive : public ::testing::Test {
     args.insert(args.end(),
                 {"--robot-id", "drive", "--images", (work_ / "dataset").string(), "--calibration",
                  (work_ / "dataset" / "cam0" / "calibration.yaml").string(), "--site-crs",
-                 "EPSG:7415", "--camera-height-m", fmt::format("{}", kCameraHeightM),
+                 "EPSG:7415", "--camera-height-m", fmt::format("{}", test::kDelftCameraHeightM),
                  "--trajectory-out", (work_ / "fixes.tum").string(), "--fused-trajectory-out",
                  (work_ / "fused.tum").string(), "--site-origin"});
-    args.insert(args.end(), kSiteOrigin.begin(), kSiteOrigin.end());
+    args.insert(args.end(), origin_.begin(), origin_.end());
     return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot",
                                                 args, (work_ / "robot.log").string());
   }
@@ -178,6 +177,7 @@ class DelftDrive : public ::testing::Test {
   }
 
   fs::path work_;
+  const std::vector<std::string> origin_ = test::delftSiteOriginArgs();
   test::TestDatabase database_{"delft_drive"};
 };
 

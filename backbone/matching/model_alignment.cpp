@@ -83,6 +83,30 @@ double largestPositionSigma(const Matrix6d& covariance) {
   return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
 }
 
+// The smallest covariance at least as large as both a and b in every
+// direction: with a = L L^T and L^-1 b L^-T = V D V^T, L V max(D, 1) V^T L^T.
+Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
+  const Eigen::LLT<Matrix6d> llt(a);
+  const Matrix6d L = llt.matrixL();
+  const Matrix6d whitened =
+      L.triangularView<Eigen::Lower>().solve(L.triangularView<Eigen::Lower>().solve(b).transpose());
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (whitened + whitened.transpose()));
+  const Matrix6d V = eigen.eigenvectors();
+  const Matrix6d covering =
+      L * V * eigen.eigenvalues().cwiseMax(1.0).asDiagonal() * V.transpose() * L.transpose();
+  return 0.5 * (covering + covering.transpose());
+}
+
+// Each correspondence's model line: the pieces of one line share its error.
+std::vector<int> modelLineGroups(const std::vector<LineMatch>& matches) {
+  std::vector<int> groups;
+  groups.reserve(matches.size());
+  for (const LineMatch& match : matches) {
+    groups.push_back(match.model_index);
+  }
+  return groups;
+}
+
 bool converged(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                const AlignmentOptions& options) {
   const Eigen::AngleAxisd rotation(a.linear().transpose() * b.linear());
@@ -115,6 +139,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   Alignment alignment;
   alignment.T_world_camera = predicted_T_world_camera;
   PoseWithCovariance current = predicted_T_world_camera;
+  MatchedProblem last_round;
   PoseOptions pose_options;
   pose_options.refinement.loss = RobustLoss::kCauchy;
   pose_options.refinement.function_tolerance = options.function_tolerance;
@@ -124,8 +149,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
     alignment.rounds = round + 1;
     const int64_t matching_start_ns = steadyClockNs();
     const auto candidates = gateCandidates(image, model, current, camera, options.matching);
-    const MatchedProblem matched =
-        buildProblem(image, model, candidates, current.pose, camera, options);
+    MatchedProblem matched = buildProblem(image, model, candidates, current.pose, camera, options);
     alignment.matching_ns += steadyClockNs() - matching_start_ns;
     alignment.matches = static_cast<int>(matched.matches.size());
     if (alignment.matches < options.min_inliers) {
@@ -156,6 +180,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
     const bool done = converged(current.pose, estimate.T_world_camera.pose, options);
     current = estimate.T_world_camera;
     current.covariance *= varianceFactor(inlier_chi2, alignment.inliers);
+    last_round = std::move(matched);
     if (done) {
       break;
     }
@@ -167,6 +192,16 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
         fmt::format("{} inliers, {} needed", alignment.inliers, options.min_inliers);
     return alignment;
   }
+  const Matrix6d jackknife =
+      leaveGroupOutCovariance(last_round.problem, current.pose, modelLineGroups(last_round.matches),
+                              pose_options.refinement);
+  if (!jackknife.allFinite()) {
+    alignment.status = AlignmentStatus::kIllConditioned;
+    alignment.message = "one model line alone determines part of the pose";
+    return alignment;
+  }
+  current.covariance = coveringCovariance(current.covariance, jackknife);
+  alignment.T_world_camera = current;
   const double sigma = largestPositionSigma(current.covariance);
   if (!(sigma <= options.max_position_sigma_m)) {
     alignment.status = AlignmentStatus::kIllConditioned;

@@ -17,6 +17,16 @@
 // Wrobel, "Photogrammetric Computer Vision", 2016, §4.2.3), so a fix is never
 // more confident than its own residuals allow.
 //
+// That covariance still treats every match as independent. A façade puts
+// window edges a few pixels from a building edge, each within its noise, and
+// several of them can pull the pose the same way; the pose then moves by
+// several of its own standard deviations. The reported covariance is therefore
+// the smallest one that covers, in every direction, both the propagated noise
+// and the jackknife covariance over model lines (leaveGroupOutCovariance,
+// common/pose/pose_refinement.h): how far the pose moves when each model line's
+// matches are left out in turn. When leaving out one model line leaves the pose
+// undetermined, the answer is ill-conditioned.
+//
 // The answer is only OK when enough matches carry it and the result is well
 // conditioned: too few inliers, or a position standard deviation beyond
 // max_position_sigma_m (a long façade seen alone constrains nothing along

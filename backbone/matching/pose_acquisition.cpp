@@ -28,6 +28,26 @@ bool byScore(const Verified& a, const Verified& b) {
   return a.coverage.score < b.coverage.score;
 }
 
+// An alignment that settled on a pose: OK, or ill-conditioned (it fits the
+// image but its covariance is too wide to answer with). Both compete as
+// rivals; only an OK one can win.
+bool hasPose(const Alignment& alignment) {
+  return alignment.status == AlignmentStatus::kOk ||
+         alignment.status == AlignmentStatus::kIllConditioned;
+}
+
+bool isOk(const Verified& candidate) {
+  return candidate.alignment.status == AlignmentStatus::kOk;
+}
+
+// OK alignments above the others, then by score.
+bool byOkThenScore(const Verified& a, const Verified& b) {
+  if (isOk(a) != isOk(b)) {
+    return isOk(b);
+  }
+  return byScore(a, b);
+}
+
 // The best-scoring aligned alternative that is distinct from `best`.
 const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& best,
                           const PoseSearchOptions& options) {
@@ -68,7 +88,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     Verified& candidate = verified[i];
     candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
     candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
-    if (candidate.alignment.status == AlignmentStatus::kOk) {
+    if (hasPose(candidate.alignment)) {
       candidate.coverage = search.coverage(
           candidate.visible, candidate.alignment.T_world_camera.pose, verification_map);
     }
@@ -77,18 +97,18 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   for (Verified& candidate : verified) {
     acquisition.alignment.matching_ns += candidate.alignment.matching_ns;
     acquisition.alignment.pose_ns += candidate.alignment.pose_ns;
-    if (candidate.alignment.status == AlignmentStatus::kOk) {
+    if (hasPose(candidate.alignment)) {
       aligned.push_back(std::move(candidate));
     }
   }
   acquisition.summary.aligned = static_cast<int>(aligned.size());
-  if (aligned.empty()) {
+  const auto best = std::max_element(aligned.begin(), aligned.end(), byOkThenScore);
+  if (best == aligned.end() || !isOk(*best)) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
-    acquisition.alignment.message =
-        fmt::format("none of {} search hypotheses aligned", hypotheses.size());
+    acquisition.alignment.message = fmt::format(
+        "none of {} search hypotheses aligned to a well-conditioned pose", hypotheses.size());
     return acquisition;
   }
-  const auto best = std::max_element(aligned.begin(), aligned.end(), byScore);
   const Verified* rival = bestRival(aligned, *best, options.search);
   const int64_t matching_ns = acquisition.alignment.matching_ns;
   const int64_t pose_ns = acquisition.alignment.pose_ns;

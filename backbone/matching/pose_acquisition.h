@@ -7,8 +7,10 @@
 // edges), and the best one wins — unless another one, distinct from it, scores
 // nearly as well: then the view does not tell them apart (a repetitive
 // street, a single façade) and the answer is kAmbiguous, never the likelier
-// of two precise poses. Inlier counts do not separate them: a wrong pose near
-// a façade full of windows finds as many lines to agree with.
+// of two precise poses. An alignment that fits but is ill-conditioned (its
+// covariance too wide to answer with) is such a rival too, though it never
+// wins. Inlier counts do not separate them: a wrong pose near a façade full
+// of windows finds as many lines to agree with.
 //
 // An acquired pose may still have settled on a neighbour of the right one a
 // window's width away (a near-parallel line taken for the right one): its

@@ -6,6 +6,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <vector>
 
 #include "common/pose/pose_input_check.h"
@@ -382,6 +384,54 @@ PoseEstimate refineCheckedPose(const PoseProblem& problem,
   }
   return summarize(prepared, T_camera_world, current, options, PoseStatus::kIterationLimit,
                    options.max_iterations);
+}
+
+Matrix6d leaveGroupOutCovariance(const PoseProblem& problem,
+                                 const Eigen::Isometry3d& T_world_camera,
+                                 const std::vector<int>& line_groups,
+                                 const RefinementOptions& options) {
+  struct GroupSystem {
+    Matrix6d information = Matrix6d::Zero();
+    Vector6d gradient = Vector6d::Zero();
+  };
+  const PreparedProblem prepared = prepare(problem);
+  const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
+  std::map<int64_t, GroupSystem> groups;
+  Matrix6d information = Matrix6d::Zero();
+  visitTerms(prepared, T_camera_world, [&](const Term& term, bool is_line, size_t i) {
+    const double weight =
+        evaluateLoss(options.loss, options.loss_scale, term.normalized.squaredNorm()).derivative;
+    // Points are groups of their own, after the line groups' keys.
+    const int64_t key = is_line ? line_groups[i] : (int64_t{1} << 40) + static_cast<int64_t>(i);
+    GroupSystem& group = groups[key];
+    group.information.noalias() += weight * term.jacobian.transpose() * term.jacobian;
+    group.gradient.noalias() += weight * term.jacobian.transpose() * term.normalized;
+    information.noalias() += weight * term.jacobian.transpose() * term.jacobian;
+  });
+  const Matrix6d undetermined = Matrix6d::Identity() * std::numeric_limits<double>::infinity();
+  if (groups.size() < 2) {
+    return undetermined;
+  }
+  std::vector<Vector6d> shifts;
+  shifts.reserve(groups.size());
+  for (const auto& [key, group] : groups) {
+    const Matrix6d without = information - group.information;
+    if (isDegenerate(without, options.degeneracy_threshold)) {
+      return undetermined;
+    }
+    shifts.push_back(without.ldlt().solve(group.gradient));
+  }
+  Vector6d mean = Vector6d::Zero();
+  for (const Vector6d& shift : shifts) {
+    mean += shift;
+  }
+  mean /= static_cast<double>(shifts.size());
+  Matrix6d spread = Matrix6d::Zero();
+  for (const Vector6d& shift : shifts) {
+    spread.noalias() += (shift - mean) * (shift - mean).transpose();
+  }
+  const double count = static_cast<double>(shifts.size());
+  return worldCovariance((count - 1.0) / count * spread, T_world_camera.linear());
 }
 
 PoseEstimate refinePose(const PoseProblem& problem, const Eigen::Isometry3d& T_world_camera_start,

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "common/pose/pose_problem.h"
 
@@ -75,5 +76,22 @@ PoseEstimate refinePose(const PoseProblem& problem, const Eigen::Isometry3d& T_w
 PoseEstimate refineCheckedPose(const PoseProblem& problem,
                                const Eigen::Isometry3d& T_world_camera_start,
                                const RefinementOptions& options);
+
+// Jackknife covariance of a refined pose (Efron & Stein, "The Jackknife
+// Estimate of Variance", Ann. Statist. 9(3), 1981), for correspondences that
+// may share one error: line correspondence i belongs to group line_groups[i]
+// (the image pieces of one model line, say), each point is a group of its own,
+// and each group g in turn is left out. With the robust weights w_i at the
+// pose, the one-step shift of the solution without g is
+//   dx_g = (H - H_g)^-1 sum_{i in g} w_i J_i^T r_i,  H_g = sum_{i in g} w_i J_i^T J_i,
+// and the covariance (G - 1) / G sum_g (dx_g - mean)(dx_g - mean)^T over the G
+// groups, in the pose.h convention. Unlike (J^T W J)^-1 it grows with what the
+// residuals show rather than what the noise model promises: a few wrong
+// matches pulling the pose make it wide. Infinite when leaving out one group
+// leaves the pose undetermined.
+Matrix6d leaveGroupOutCovariance(const PoseProblem& problem,
+                                 const Eigen::Isometry3d& T_world_camera,
+                                 const std::vector<int>& line_groups,
+                                 const RefinementOptions& options);
 
 }  // namespace lineloc

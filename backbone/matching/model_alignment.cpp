@@ -97,12 +97,36 @@ Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
   return 0.5 * (covering + covering.transpose());
 }
 
-// Each correspondence's model line: the pieces of one line share its error.
-std::vector<int> modelLineGroups(const std::vector<LineMatch>& matches) {
-  std::vector<int> groups;
-  groups.reserve(matches.size());
-  for (const LineMatch& match : matches) {
-    groups.push_back(match.model_index);
+// True when two model segments are one physical edge to the camera: the
+// pieces of one model line, or parallel lines within coincident_m of each
+// other (the two creases of a footprint jog a few centimetres deep, of which
+// the image shows one edge).
+bool sameEdge(const VisibleSegment& a, const VisibleSegment& b, double coincident_m) {
+  if (a.model_line_id == b.model_line_id) {
+    return true;
+  }
+  const Eigen::Vector3d direction = (a.end_world - a.start_world).normalized();
+  const auto offset = [&](const Eigen::Vector3d& point) {
+    const Eigen::Vector3d relative = point - a.start_world;
+    return (relative - direction.dot(relative) * direction).norm();
+  };
+  return offset(b.start_world) < coincident_m && offset(b.end_world) < coincident_m;
+}
+
+// Group of each correspondence for the jackknife: correspondences whose
+// model segments are one edge (sameEdge) share its error and are left out
+// together.
+std::vector<int> edgeGroups(const std::vector<LineMatch>& matches,
+                            const std::vector<VisibleSegment>& model, double coincident_m) {
+  std::vector<int> groups(matches.size());
+  for (size_t i = 0; i < matches.size(); ++i) {
+    groups[i] = static_cast<int>(i);
+    for (size_t j = 0; j < i; ++j) {
+      if (sameEdge(model[matches[j].model_index], model[matches[i].model_index], coincident_m)) {
+        groups[i] = groups[j];
+        break;
+      }
+    }
   }
   return groups;
 }
@@ -192,9 +216,9 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
         fmt::format("{} inliers, {} needed", alignment.inliers, options.min_inliers);
     return alignment;
   }
-  const Matrix6d jackknife =
-      leaveGroupOutCovariance(last_round.problem, current.pose, modelLineGroups(last_round.matches),
-                              pose_options.refinement);
+  const Matrix6d jackknife = leaveGroupOutCovariance(
+      last_round.problem, current.pose,
+      edgeGroups(last_round.matches, model, options.coincident_edge_m), pose_options.refinement);
   if (!jackknife.allFinite()) {
     alignment.status = AlignmentStatus::kIllConditioned;
     alignment.message = "one model line alone determines part of the pose";

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "common/pose/pose_input_check.h"
@@ -391,30 +391,44 @@ Matrix6d leaveGroupOutCovariance(const PoseProblem& problem,
                                  const std::vector<int>& line_groups,
                                  const RefinementOptions& options) {
   struct GroupSystem {
+    bool used = false;
     Matrix6d information = Matrix6d::Zero();
     Vector6d gradient = Vector6d::Zero();
   };
-  const PreparedProblem prepared = prepare(problem);
-  const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
-  std::map<int64_t, GroupSystem> groups;
+  const size_t lines = problem.lines.size();
+  const bool valid = line_groups.size() == lines &&
+                     std::all_of(line_groups.begin(), line_groups.end(), [lines](int group) {
+                       return group >= 0 && static_cast<size_t>(group) < lines;
+                     });
+  if (!valid) {
+    throw std::invalid_argument("leaveGroupOutCovariance: one group in [0, lines) per line");
+  }
+  // Line groups first, then one group per point.
+  std::vector<GroupSystem> groups(lines + problem.points.size());
+  visitTerms(
+      prepare(problem), T_world_camera.inverse(), [&](const Term& term, bool is_line, size_t i) {
+        const double weight =
+            evaluateLoss(options.loss, options.loss_scale, term.normalized.squaredNorm())
+                .derivative;
+        GroupSystem& group = groups[is_line ? static_cast<size_t>(line_groups[i]) : lines + i];
+        group.used = true;
+        group.information.noalias() += weight * term.jacobian.transpose() * term.jacobian;
+        group.gradient.noalias() += weight * term.jacobian.transpose() * term.normalized;
+      });
+  groups.erase(std::remove_if(groups.begin(), groups.end(),
+                              [](const GroupSystem& group) { return !group.used; }),
+               groups.end());
   Matrix6d information = Matrix6d::Zero();
-  visitTerms(prepared, T_camera_world, [&](const Term& term, bool is_line, size_t i) {
-    const double weight =
-        evaluateLoss(options.loss, options.loss_scale, term.normalized.squaredNorm()).derivative;
-    // Points are groups of their own, after the line groups' keys.
-    const int64_t key = is_line ? line_groups[i] : (int64_t{1} << 40) + static_cast<int64_t>(i);
-    GroupSystem& group = groups[key];
-    group.information.noalias() += weight * term.jacobian.transpose() * term.jacobian;
-    group.gradient.noalias() += weight * term.jacobian.transpose() * term.normalized;
-    information.noalias() += weight * term.jacobian.transpose() * term.jacobian;
-  });
+  for (const GroupSystem& group : groups) {
+    information += group.information;
+  }
   const Matrix6d undetermined = Matrix6d::Identity() * std::numeric_limits<double>::infinity();
   if (groups.size() < 2) {
     return undetermined;
   }
   std::vector<Vector6d> shifts;
   shifts.reserve(groups.size());
-  for (const auto& [key, group] : groups) {
+  for (const GroupSystem& group : groups) {
     const Matrix6d without = information - group.information;
     if (isDegenerate(without, options.degeneracy_threshold)) {
       return undetermined;

@@ -80,7 +80,8 @@ PoseEstimate refineCheckedPose(const PoseProblem& problem,
 // Jackknife covariance of a refined pose (Efron & Stein, "The Jackknife
 // Estimate of Variance", Ann. Statist. 9(3), 1981), for correspondences that
 // may share one error: line correspondence i belongs to group line_groups[i]
-// (the image pieces of one model line, say), each point is a group of its own,
+// in [0, lines) (the image pieces of one model line, say; std::invalid_argument
+// otherwise), each point is a group of its own,
 // and each group g in turn is left out. With the robust weights w_i at the
 // pose, the one-step shift of the solution without g is
 //   dx_g = (H - H_g)^-1 sum_{i in g} w_i J_i^T r_i,  H_g = sum_{i in g} w_i J_i^T J_i,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "common/pose/pose_refinement.h"
@@ -16,22 +17,13 @@ namespace lineloc {
 namespace {
 
 using test::makeScene;
+using test::poseError;
 using test::Scene;
 using test::SceneOptions;
 
 // chi^2_6 at 0.9973: the 6-D equivalent of three standard deviations.
 constexpr double kChi2Six9973 = 20.06;
 constexpr double kStatedVariancePx2 = 1.5 * 1.5;
-
-// e = [dp; dtheta] of the truth against the estimate (common/geometry/pose.h).
-Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
-                                      const Eigen::Isometry3d& truth) {
-  Eigen::Matrix<double, 6, 1> error;
-  error.head<3>() = truth.translation() - estimate.translation();
-  const Eigen::AngleAxisd rotation(truth.linear() * estimate.linear().transpose());
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error;
-}
 
 // e^T Sigma^-1 e of the estimate against the truth.
 double normalizedErrorSquared(const Eigen::Isometry3d& estimate, const Matrix6d& covariance,
@@ -170,6 +162,18 @@ TEST(LeaveGroupOutCovariance, IsInfiniteWhenOneGroupCarriesPartOfThePose) {
   EXPECT_TRUE(
       leaveGroupOutCovariance(enough.problem, enough.T_world_camera, ownGroups(enough.problem), {})
           .allFinite());
+}
+
+// One group per line, each naming a line index: anything else is a caller's
+// bug, named rather than read out of bounds.
+TEST(LeaveGroupOutCovariance, GroupsNotOnePerLineAreRejected) {
+  const Scene scene = makeScene({.lines = 6, .noise_px = 0.0, .seed = 3});
+  const std::vector<int> too_few = {0, 1, 2};
+  const std::vector<int> out_of_range = {0, 1, 2, 3, 4, 6};
+  EXPECT_THROW(leaveGroupOutCovariance(scene.problem, scene.T_world_camera, too_few, {}),
+               std::invalid_argument);
+  EXPECT_THROW(leaveGroupOutCovariance(scene.problem, scene.T_world_camera, out_of_range, {}),
+               std::invalid_argument);
 }
 
 }  // namespace

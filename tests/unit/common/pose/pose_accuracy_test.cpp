@@ -247,11 +247,7 @@ TEST(CovarianceTest, NormalizedEstimationErrorSquaredIsChiSquared6) {
     const PoseEstimate estimate = estimatePose(scene.problem);
     ASSERT_EQ(estimate.status, PoseStatus::kConverged) << estimate.message;
     const Eigen::Isometry3d& estimated = estimate.T_world_camera.pose;
-    Eigen::Matrix<double, 6, 1> error;
-    error.head<3>() = scene.T_world_camera.translation() - estimated.translation();
-    const Eigen::AngleAxisd rotation(scene.T_world_camera.linear() *
-                                     estimated.linear().transpose());
-    error.tail<3>() = rotation.angle() * rotation.axis();
+    const Eigen::Matrix<double, 6, 1> error = test::poseError(estimated, scene.T_world_camera);
     nees_sum += error.dot(estimate.T_world_camera.covariance.ldlt().solve(error));
   }
   const double mean_nees = nees_sum / kTrials;

@@ -180,12 +180,8 @@ TEST(PoseEstimatorTest, StepsBelowTheUncertaintyStopTheRefinement) {
   ASSERT_TRUE(reference.ok()) << reference.message;
   ASSERT_TRUE(estimate.ok()) << estimate.message;
   EXPECT_LT(estimate.iterations, reference.iterations);
-  Eigen::Matrix<double, 6, 1> difference;
-  difference.head<3>() =
-      estimate.T_world_camera.pose.translation() - reference.T_world_camera.pose.translation();
-  const Eigen::AngleAxisd rotation(estimate.T_world_camera.pose.linear() *
-                                   reference.T_world_camera.pose.linear().transpose());
-  difference.tail<3>() = rotation.angle() * rotation.axis();
+  const Eigen::Matrix<double, 6, 1> difference =
+      test::poseError(reference.T_world_camera.pose, estimate.T_world_camera.pose);
   const double squared_sigmas =
       difference.dot(reference.T_world_camera.covariance.ldlt().solve(difference));
   EXPECT_LT(squared_sigmas, 1e-4);

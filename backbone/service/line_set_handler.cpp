@@ -20,13 +20,16 @@ std::vector<ModelSegment> toSegments(const std::vector<db::ModelLine>& lines) {
   return segments;
 }
 
-std::vector<FaceRing> toRings(const std::vector<db::ModelFaceRecord>& faces) {
+OcclusionScene occlusionScene(const std::vector<db::ModelFaceRecord>& faces) {
   std::vector<FaceRing> rings;
+  std::vector<int64_t> building_ids;
   rings.reserve(faces.size());
+  building_ids.reserve(faces.size());
   for (const db::ModelFaceRecord& face : faces) {
     rings.push_back(face.ring_world);
+    building_ids.push_back(face.building_id);
   }
-  return rings;
+  return OcclusionScene(rings, building_ids);
 }
 
 }  // namespace
@@ -75,7 +78,7 @@ void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
 LineSetHandler::PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view)
     : view(std::move(map_view)),
       segments(toSegments(view->lines)),
-      scene(toRings(view->faces)),
+      scene(occlusionScene(view->faces)),
       ground_level(groundLevel(*view)) {}
 
 std::shared_ptr<const LineSetHandler::PreparedMap> LineSetHandler::prepare(

@@ -55,6 +55,7 @@ LocalModel readLocalModel(const std::string& path, std::optional<Eigen::Vector3d
       for (const Eigen::Vector3d& p : face.rings.front())
         ring.push_back(p - local.origin);
       local.model.faces.push_back(std::move(ring));
+      local.model.face_building_ids.push_back(static_cast<int64_t>(b));
     }
     for (const citymodel::ExtractedLine& line : prepared.lines[b]) {
       local.model.lines.push_back({static_cast<int64_t>(local.model.lines.size()),

@@ -7,7 +7,7 @@ namespace lineloc {
 ModelTracker::ModelTracker(TrackedModel model, const PinholeCamera& camera,
                            const PoseWithCovariance& start, const TrackerOptions& options)
     : model_(std::move(model)),
-      scene_(model_.faces),
+      scene_(model_.faces, model_.face_building_ids),
       camera_(camera),
       options_(options),
       current_(start) {}

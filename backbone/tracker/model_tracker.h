@@ -16,6 +16,7 @@ namespace lineloc {
 struct TrackedModel {
   std::vector<ModelSegment> lines;
   std::vector<FaceRing> faces;
+  std::vector<int64_t> face_building_ids;  // one per face, or empty: one building
 };
 
 struct TrackerOptions {

@@ -2,6 +2,8 @@
 
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "common/geometry/polygon_triangulation.h"
 
@@ -11,11 +13,17 @@ namespace {
 struct Mesh {
   std::vector<float> vertices;  // x y z per vertex
   std::vector<unsigned> indices;
+  std::vector<int64_t> triangle_building_ids;
 };
 
-Mesh triangulate(const std::vector<FaceRing>& faces) {
+Mesh triangulate(const std::vector<FaceRing>& faces, const std::vector<int64_t>& building_ids) {
+  if (!building_ids.empty() && building_ids.size() != faces.size()) {
+    throw std::invalid_argument("OcclusionScene: " + std::to_string(building_ids.size()) +
+                                " building ids for " + std::to_string(faces.size()) + " faces");
+  }
   Mesh mesh;
-  for (const FaceRing& ring : faces) {
+  for (size_t face = 0; face < faces.size(); ++face) {
+    const FaceRing& ring = faces[face];
     const unsigned base = static_cast<unsigned>(mesh.vertices.size() / 3);
     const auto triangles = triangulatePolygon(ring);
     if (triangles.empty()) {
@@ -29,20 +37,38 @@ Mesh triangulate(const std::vector<FaceRing>& faces) {
     for (const auto& t : triangles) {
       mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
     }
+    mesh.triangle_building_ids.insert(mesh.triangle_building_ids.end(), triangles.size(),
+                                      building_ids.empty() ? 0 : building_ids[face]);
   }
   return mesh;
 }
 
+RTCRay rayAlong(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, float far) {
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x());
+  ray.org_y = static_cast<float>(origin.y());
+  ray.org_z = static_cast<float>(origin.z());
+  ray.dir_x = static_cast<float>(direction.x());
+  ray.dir_y = static_cast<float>(direction.y());
+  ray.dir_z = static_cast<float>(direction.z());
+  ray.tnear = 0.0f;
+  ray.tfar = far;
+  ray.mask = std::numeric_limits<unsigned>::max();
+  return ray;
+}
+
 }  // namespace
 
-OcclusionScene::OcclusionScene(const std::vector<FaceRing>& faces)
-    : device_(rtcNewDevice("threads=1")) {
+OcclusionScene::OcclusionScene(const std::vector<FaceRing>& faces,
+                               const std::vector<int64_t>& building_ids) {
+  Mesh mesh = triangulate(faces, building_ids);
+  device_ = rtcNewDevice("threads=1");
   if (device_ == nullptr) {
     throw std::runtime_error("cannot create an Embree device");
   }
   scene_ = rtcNewScene(device_);
-  const Mesh mesh = triangulate(faces);
   triangle_count_ = mesh.indices.size() / 3;
+  triangle_building_ids_ = std::move(mesh.triangle_building_ids);
   if (triangle_count_ > 0) {
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(
@@ -75,18 +101,24 @@ bool OcclusionScene::blocked(const Eigen::Vector3d& from, const Eigen::Vector3d&
   const Eigen::Vector3d direction = path / length;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray{};
-  ray.org_x = static_cast<float>(from.x());
-  ray.org_y = static_cast<float>(from.y());
-  ray.org_z = static_cast<float>(from.z());
-  ray.dir_x = static_cast<float>(direction.x());
-  ray.dir_y = static_cast<float>(direction.y());
-  ray.dir_z = static_cast<float>(direction.z());
-  ray.tnear = 0.0f;
-  ray.tfar = static_cast<float>(length - end_clearance_m);
-  ray.mask = std::numeric_limits<unsigned>::max();
+  RTCRay ray = rayAlong(from, direction, static_cast<float>(length - end_clearance_m));
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+std::optional<SurfaceHit> OcclusionScene::firstSurface(const Eigen::Vector3d& origin,
+                                                       const Eigen::Vector3d& direction) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit ray_hit{};
+  ray_hit.ray = rayAlong(origin, direction, std::numeric_limits<float>::infinity());
+  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &ray_hit);
+  if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    return std::nullopt;
+  }
+  const Eigen::Vector3d normal(ray_hit.hit.Ng_x, ray_hit.hit.Ng_y, ray_hit.hit.Ng_z);
+  return SurfaceHit{normal.normalized(), triangle_building_ids_[ray_hit.hit.primID]};
 }
 
 }  // namespace lineloc

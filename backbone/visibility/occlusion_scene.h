@@ -1,6 +1,7 @@
-// Building faces as an Embree 3 ray-casting scene, asked one question: is the
-// straight path between two points blocked by a face? (Wald et al., "Embree:
-// A Kernel Framework for Efficient CPU Ray Tracing", SIGGRAPH 2014.)
+// Building faces as an Embree 3 ray-casting scene, asked two questions: is the
+// straight path between two points blocked by a face, and which surface does a
+// ray meet first? (Wald et al., "Embree: A Kernel Framework for Efficient CPU
+// Ray Tracing", SIGGRAPH 2014.)
 //
 // Coordinates are world (site-local) metres, small enough for Embree's floats.
 #pragma once
@@ -8,6 +9,8 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace lineloc {
@@ -15,10 +18,18 @@ namespace lineloc {
 // A planar face: its outer ring, without the repeated closing vertex.
 using FaceRing = std::vector<Eigen::Vector3d>;
 
+// What a ray meets first: the plane and the building of a face.
+struct SurfaceHit {
+  Eigen::Vector3d unit_normal = Eigen::Vector3d::Zero();  // sign as the ring winds
+  int64_t building_id = 0;
+};
+
 class OcclusionScene {
  public:
   // Triangulates every face (degenerate ones are skipped) and builds the BVH.
-  explicit OcclusionScene(const std::vector<FaceRing>& faces);
+  // faces[i] belongs to building building_ids[i]; with no ids, to one building.
+  explicit OcclusionScene(const std::vector<FaceRing>& faces,
+                          const std::vector<int64_t>& building_ids = {});
   ~OcclusionScene();
   OcclusionScene(const OcclusionScene&) = delete;
   OcclusionScene& operator=(const OcclusionScene&) = delete;
@@ -28,12 +39,18 @@ class OcclusionScene {
   bool blocked(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                double end_clearance_m) const;
 
+  // The first face on the ray from `origin` along `direction`, or nothing (the
+  // ray leaves the model: sky or ground).
+  std::optional<SurfaceHit> firstSurface(const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& direction) const;
+
   size_t triangleCount() const { return triangle_count_; }
 
  private:
   RTCDevice device_;
   RTCScene scene_;
   size_t triangle_count_ = 0;
+  std::vector<int64_t> triangle_building_ids_;
 };
 
 }  // namespace lineloc

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "common/camera/camera_frustum.h"
 
@@ -49,6 +50,40 @@ double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
   return static_cast<double>(seen) / from.count;
 }
 
+// Whether the surfaces seen through two pixels may differ (see the header):
+// false only when both rays meet faces of one building and one orientation.
+class ContrastProbe {
+ public:
+  ContrastProbe(const OcclusionScene& scene, const Eigen::Isometry3d& T_world_camera,
+                const PinholeCamera& camera, const VisibilityOptions& options)
+      : scene_(scene),
+        T_world_camera_(T_world_camera),
+        K_inverse_(camera.K().inverse()),
+        same_plane_cos_(std::cos(options.same_plane_angle_rad)) {}
+
+  bool differ(const Eigen::Vector2d& pixel_a, const Eigen::Vector2d& pixel_b) const {
+    const std::optional<SurfaceHit> a = surfaceAt(pixel_a);
+    const std::optional<SurfaceHit> b = surfaceAt(pixel_b);
+    if (!a || !b) {
+      return true;
+    }
+    return a->building_id != b->building_id ||
+           std::abs(a->unit_normal.dot(b->unit_normal)) < same_plane_cos_;
+  }
+
+ private:
+  std::optional<SurfaceHit> surfaceAt(const Eigen::Vector2d& pixel) const {
+    const Eigen::Vector3d ray_camera = K_inverse_ * pixel.homogeneous();
+    return scene_.firstSurface(T_world_camera_.translation(),
+                               (T_world_camera_.linear() * ray_camera).normalized());
+  }
+
+  const OcclusionScene& scene_;
+  const Eigen::Isometry3d& T_world_camera_;
+  Eigen::Matrix3d K_inverse_;
+  double same_plane_cos_;
+};
+
 HalfSpaces visibilityFrustum(const PinholeCamera& camera, const VisibilityOptions& options) {
   return cameraFrustum(camera, options.near_m, options.far_m, options.image_margin_px);
 }
@@ -79,6 +114,7 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
   const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
   const auto from = viewpoints(T_world_camera);
   const HalfSpaces frustum = visibilityFrustum(camera, options);
+  const ContrastProbe contrast(scene, T_world_camera.pose, camera, options);
   std::vector<VisibleSegment> visible;
   for (const ModelSegment& line : lines) {
     Eigen::Vector3d a = T_camera_world * line.start_world;
@@ -86,7 +122,17 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
     if (!clipTo(frustum, a, b)) {
       continue;
     }
-    const double length_px = (camera.project(a) - camera.project(b)).norm();
+    const Eigen::Vector2d a_px = camera.project(a);
+    const Eigen::Vector2d b_px = camera.project(b);
+    const double length_px = (b_px - a_px).norm();
+    if (length_px < options.min_visible_length_px) {
+      continue;
+    }
+    const Eigen::Vector2d probe_offset_px =
+        options.contrast_probe_px * Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
+        length_px;
+    // Probes stay this far from the ends, where the line meets a face's corner.
+    const double probe_inset = options.contrast_probe_px / length_px;
     const int samples =
         std::clamp(static_cast<int>(std::ceil(length_px / options.sample_spacing_px)) + 1, 2,
                    options.max_samples_per_line);
@@ -98,9 +144,12 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
     for (int i = 0; i <= samples; ++i) {
       double fraction = 0.0;
       if (i < samples) {
-        const Eigen::Vector3d p =
-            a_world + (b_world - a_world) * (static_cast<double>(i) / (samples - 1));
-        const bool seen_now = !scene.blocked(from.points[0], p, options.surface_clearance_m);
+        const double t = static_cast<double>(i) / (samples - 1);
+        const Eigen::Vector3d p = a_world + (b_world - a_world) * t;
+        const double t_probe = std::clamp(t, probe_inset, 1.0 - probe_inset);
+        const Eigen::Vector2d p_px = camera.project(a + (b - a) * t_probe);
+        const bool seen_now = !scene.blocked(from.points[0], p, options.surface_clearance_m) &&
+                              contrast.differ(p_px + probe_offset_px, p_px - probe_offset_px);
         fraction = seen_now ? visibleFraction(scene, from, p, options.surface_clearance_m) : 0.0;
       }
       if (fraction > 0.0) {

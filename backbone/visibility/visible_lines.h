@@ -11,9 +11,20 @@
 // estimation", Proc. IEEE 2004, eq. 12 with kappa = 0). A piece's weight is the
 // mean fraction of those 7 viewpoints that see its samples: 1 for a line
 // surely visible, lower near occluding edges, so the matcher trusts it less.
+//
+// A visible line is an image edge only where the surfaces on its two sides
+// differ. A sample is hidden when the rays through the pixels
+// `contrast_probe_px` either side of the projected line both meet faces of one
+// building whose planes are within `same_plane_angle_rad` (a ray that meets no
+// face sees sky or ground, or a line the model gives no faces). So the two
+// creases of a footprint jog a few centimetres deep show only while the narrow
+// wall between them faces the camera and is wider than the probe; seen from its
+// back side, the near wall's crease lies against the far wall, which has the
+// same orientation and façade, and no edge shows.
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +60,10 @@ struct VisibilityOptions {
   // Samples closer than this to the sampled point do not block it (metres).
   double surface_clearance_m = 0.05;
   double min_visible_length_px = 10.0;
+  // About the front end's blur (Gaussian sigma 1 px, then a 3x3 Sobel): a
+  // narrower strip of wall gives no edge of its own.
+  double contrast_probe_px = 1.5;
+  double same_plane_angle_rad = 10.0 * M_PI / 180.0;
 };
 
 // The visible pieces of `lines` seen from `T_world_camera` (with covariance)

@@ -66,7 +66,7 @@ struct Drive {
     fs::remove_all(folder);
     model = readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt)
                 .model;
-    scene = std::make_unique<OcclusionScene>(model.faces);
+    scene = std::make_unique<OcclusionScene>(model.faces, model.face_building_ids);
   }
 
   // The truth moved by one draw of the given uncertainty.

@@ -124,6 +124,96 @@ TEST(Visibility, UncertainPositionLowersTheWeightOfLinesSeenThroughAGap) {
   EXPECT_GT(unsure[0].weight, 0.0);
 }
 
+// A wall along y = 0 for x in [0, 10] whose footprint jogs back by `depth_m` at
+// x = 10 and goes on along y = depth_m to x = 20, all 10 m high, one building;
+// lines 0 and 1 are the creases at the near and the far end of the narrow wall
+// between them, which faces +x.
+struct Jog {
+  std::vector<FaceRing> faces;
+  std::vector<ModelSegment> creases;
+};
+
+Jog makeJog(double depth_m) {
+  const auto wall = [](double x0, double y0, double x1, double y1) {
+    return FaceRing{{x0, y0, 0}, {x1, y1, 0}, {x1, y1, 10}, {x0, y0, 10}};
+  };
+  Jog jog;
+  jog.faces = {wall(0, 0, 10, 0), wall(10, 0, 10, depth_m), wall(10, depth_m, 20, depth_m)};
+  jog.creases = {{0, 1, {10, 0, 0}, {10, 0, 10}}, {1, 1, {10, depth_m, 0}, {10, depth_m, 10}}};
+  return jog;
+}
+
+// From (14, -8) the 0.3 m narrow wall faces the camera and spans 9 px
+// (u = 320 - 500 * 4 / 8 = 70 to 320 - 500 * 4 / 8.3 = 79): both creases are
+// edges. From (6, -8) its back faces the camera: the near crease lies against
+// the far wall, parallel and of the same building, so it shows no edge, and the
+// far crease is behind the near wall.
+TEST(Visibility, FootprintJogShowsOnlyWhileItsNarrowWallFacesTheCamera) {
+  const Jog jog = makeJog(0.3);
+  const OcclusionScene scene(jog.faces);
+  EXPECT_EQ(ids(visibleSegments(jog.creases, scene, lookingNorth({14, -8, 5}, 0.01), kCamera, {})),
+            (std::vector<int64_t>{0, 1}));
+  EXPECT_TRUE(
+      visibleSegments(jog.creases, scene, lookingNorth({6, -8, 5}, 0.01), kCamera, {}).empty());
+}
+
+// A 5 cm jog seen from 30 m spans 0.1 px, less than the contrast probe: the
+// probes either side of each crease meet the two parallel walls. From 1 m it
+// spans 12 px (u = 320 - 500 * 0.5 / 1 = 70 to 320 - 500 * 0.5 / 1.05 = 82) and
+// both creases show.
+TEST(Visibility, JogShowsOnlyWhereItIsWiderThanTheProbe) {
+  const Jog jog = makeJog(0.05);
+  const OcclusionScene scene(jog.faces);
+  EXPECT_TRUE(
+      visibleSegments(jog.creases, scene, lookingNorth({14, -30, 5}, 0.01), kCamera, {}).empty());
+  EXPECT_EQ(
+      ids(visibleSegments(jog.creases, scene, lookingNorth({10.5, -1, 5}, 0.01), kCamera, {})),
+      (std::vector<int64_t>{0, 1}));
+}
+
+// Two flush façades meet at x = 10: an edge between two buildings, none
+// between two faces of one building's plane.
+TEST(Visibility, FlushFacadesShowAnEdgeOnlyBetweenBuildings) {
+  const Jog flush = makeJog(0.0);
+  const std::vector<FaceRing> faces = {flush.faces[0], flush.faces[2]};
+  const std::vector<ModelSegment> joint = {flush.creases[0]};
+  const PoseWithCovariance pose = lookingNorth({10, -10, 5}, 0.01);
+  const OcclusionScene two_buildings(faces, {1, 2});
+  EXPECT_EQ(visibleSegments(joint, two_buildings, pose, kCamera, {}).size(), 1u);
+  const OcclusionScene one_building(faces, {1, 1});
+  EXPECT_TRUE(visibleSegments(joint, one_building, pose, kCamera, {}).empty());
+}
+
+// Lines the model gives no faces (the scene is empty) predict no surfaces to
+// compare: they stay visible.
+TEST(Visibility, LinesWithoutFacesStayVisible) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene empty({});
+  const auto visible =
+      visibleSegments(cube.edges, empty, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
+  EXPECT_EQ(visible.size(), 12u);
+}
+
+TEST(OcclusionScene, FirstSurfaceGivesThePlaneAndBuildingOfTheNearestFace) {
+  const Jog jog = makeJog(2.0);
+  const OcclusionScene scene(jog.faces, {7, 8, 9});
+  const auto near_wall = scene.firstSurface({5, -10, 5}, Eigen::Vector3d::UnitY());
+  ASSERT_TRUE(near_wall.has_value());
+  EXPECT_EQ(near_wall->building_id, 7);
+  EXPECT_NEAR(std::abs(near_wall->unit_normal.y()), 1.0, 1e-6);
+  const auto side = scene.firstSurface({15, 1, 5}, -Eigen::Vector3d::UnitX());
+  ASSERT_TRUE(side.has_value());
+  EXPECT_EQ(side->building_id, 8);
+  EXPECT_NEAR(std::abs(side->unit_normal.x()), 1.0, 1e-6);
+  EXPECT_FALSE(scene.firstSurface({5, -10, 5}, -Eigen::Vector3d::UnitY()).has_value());
+  EXPECT_FALSE(scene.firstSurface({5, -10, 5}, Eigen::Vector3d::UnitZ()).has_value());
+}
+
+TEST(OcclusionScene, RejectsBuildingIdsThatAreNotOnePerFace) {
+  const Jog jog = makeJog(1.0);
+  EXPECT_THROW(OcclusionScene(jog.faces, {1, 2}), std::invalid_argument);
+}
+
 TEST(Visibility, FrustumClipping) {
   VisibilityOptions options;
   options.image_margin_px = 0.0;

@@ -99,6 +99,95 @@ bool clipTo(const HalfSpaces& frustum, Eigen::Vector3d& start_camera, Eigen::Vec
   return true;
 }
 
+// Samples a line clipped to the frustum every sample_spacing_px, keeps the
+// samples the camera centre sees where the line can show as an edge, weighs
+// each by the fraction of viewpoints that see it, and cuts the line into runs
+// of kept samples.
+class LineSampler {
+ public:
+  LineSampler(const OcclusionScene& scene, const PoseWithCovariance& T_world_camera,
+              const PinholeCamera& camera, const VisibilityOptions& options)
+      : scene_(scene),
+        T_world_camera_(T_world_camera.pose),
+        camera_(camera),
+        options_(options),
+        viewpoints_(viewpoints(T_world_camera)),
+        contrast_(scene, T_world_camera.pose, camera, options) {}
+
+  void appendVisiblePieces(const ModelSegment& line, const Eigen::Vector3d& a_camera,
+                           const Eigen::Vector3d& b_camera,
+                           std::vector<VisibleSegment>& visible) const {
+    const Eigen::Vector2d a_px = camera_.project(a_camera);
+    const Eigen::Vector2d b_px = camera_.project(b_camera);
+    const double length_px = (b_px - a_px).norm();
+    if (length_px < options_.min_visible_length_px) {
+      return;
+    }
+    const int samples =
+        std::clamp(static_cast<int>(std::ceil(length_px / options_.sample_spacing_px)) + 1, 2,
+                   options_.max_samples_per_line);
+    const std::vector<double> fractions = sampleFractions(a_camera, b_camera, length_px, samples);
+    const Eigen::Vector3d a_world = T_world_camera_ * a_camera;
+    const Eigen::Vector3d b_world = T_world_camera_ * b_camera;
+    const double step_px = length_px / (samples - 1);
+    const auto at = [&](int i) {
+      return a_world + (b_world - a_world) * (static_cast<double>(i) / (samples - 1));
+    };
+    int run_start = -1;
+    double run_weight = 0.0;
+    for (int i = 0; i <= samples; ++i) {
+      const double fraction = i < samples ? fractions[i] : 0.0;
+      if (fraction > 0.0) {
+        run_start = run_start < 0 ? i : run_start;
+        run_weight += fraction;
+        continue;
+      }
+      if (run_start >= 0 && (i - 1 - run_start) * step_px >= options_.min_visible_length_px) {
+        visible.push_back(
+            {line.id, line.kind, at(run_start), at(i - 1), run_weight / (i - run_start)});
+      }
+      run_start = -1;
+      run_weight = 0.0;
+    }
+  }
+
+ private:
+  // Per sample: the fraction of viewpoints that see it, 0 where the centre
+  // does not or where the line cannot show as an edge.
+  std::vector<double> sampleFractions(const Eigen::Vector3d& a_camera,
+                                      const Eigen::Vector3d& b_camera, double length_px,
+                                      int samples) const {
+    const Eigen::Vector2d a_px = camera_.project(a_camera);
+    const Eigen::Vector2d b_px = camera_.project(b_camera);
+    const Eigen::Vector2d probe_offset_px =
+        options_.contrast_probe_px * Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
+        length_px;
+    // Probes stay this far from the ends, where the line meets a face's corner.
+    const double probe_inset = options_.contrast_probe_px / length_px;
+    std::vector<double> fractions(samples, 0.0);
+    for (int i = 0; i < samples; ++i) {
+      const double t = static_cast<double>(i) / (samples - 1);
+      const Eigen::Vector3d p = T_world_camera_ * (a_camera + (b_camera - a_camera) * t);
+      if (scene_.blocked(viewpoints_.points[0], p, options_.surface_clearance_m)) {
+        continue;
+      }
+      const double t_probe = std::clamp(t, probe_inset, 1.0 - probe_inset);
+      const Eigen::Vector2d p_px = camera_.project(a_camera + (b_camera - a_camera) * t_probe);
+      if (contrast_.differ(p_px + probe_offset_px, p_px - probe_offset_px)) {
+        fractions[i] = visibleFraction(scene_, viewpoints_, p, options_.surface_clearance_m);
+      }
+    }
+    return fractions;
+  }
+
+  const OcclusionScene& scene_;
+  const Eigen::Isometry3d& T_world_camera_;
+  const PinholeCamera& camera_;
+  const VisibilityOptions& options_;
+  Viewpoints viewpoints_;
+  ContrastProbe contrast_;
+};
+
 }  // namespace
 
 bool clipToFrustum(Eigen::Vector3d& start_camera, Eigen::Vector3d& end_camera,
@@ -111,60 +200,15 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
                                             const PoseWithCovariance& T_world_camera,
                                             const PinholeCamera& camera,
                                             const VisibilityOptions& options) {
+  const LineSampler sampler(scene, T_world_camera, camera, options);
   const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
-  const auto from = viewpoints(T_world_camera);
   const HalfSpaces frustum = visibilityFrustum(camera, options);
-  const ContrastProbe contrast(scene, T_world_camera.pose, camera, options);
   std::vector<VisibleSegment> visible;
   for (const ModelSegment& line : lines) {
     Eigen::Vector3d a = T_camera_world * line.start_world;
     Eigen::Vector3d b = T_camera_world * line.end_world;
-    if (!clipTo(frustum, a, b)) {
-      continue;
-    }
-    const Eigen::Vector2d a_px = camera.project(a);
-    const Eigen::Vector2d b_px = camera.project(b);
-    const double length_px = (b_px - a_px).norm();
-    if (length_px < options.min_visible_length_px) {
-      continue;
-    }
-    const Eigen::Vector2d probe_offset_px =
-        options.contrast_probe_px * Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
-        length_px;
-    // Probes stay this far from the ends, where the line meets a face's corner.
-    const double probe_inset = options.contrast_probe_px / length_px;
-    const int samples =
-        std::clamp(static_cast<int>(std::ceil(length_px / options.sample_spacing_px)) + 1, 2,
-                   options.max_samples_per_line);
-    const Eigen::Vector3d a_world = T_world_camera.pose * a;
-    const Eigen::Vector3d b_world = T_world_camera.pose * b;
-    const double step_px = length_px / (samples - 1);
-    int run_start = -1;
-    double run_weight = 0.0;
-    for (int i = 0; i <= samples; ++i) {
-      double fraction = 0.0;
-      if (i < samples) {
-        const double t = static_cast<double>(i) / (samples - 1);
-        const Eigen::Vector3d p = a_world + (b_world - a_world) * t;
-        const double t_probe = std::clamp(t, probe_inset, 1.0 - probe_inset);
-        const Eigen::Vector2d p_px = camera.project(a + (b - a) * t_probe);
-        const bool seen_now = !scene.blocked(from.points[0], p, options.surface_clearance_m) &&
-                              contrast.differ(p_px + probe_offset_px, p_px - probe_offset_px);
-        fraction = seen_now ? visibleFraction(scene, from, p, options.surface_clearance_m) : 0.0;
-      }
-      if (fraction > 0.0) {
-        run_start = run_start < 0 ? i : run_start;
-        run_weight += fraction;
-        continue;
-      }
-      if (run_start >= 0 && (i - 1 - run_start) * step_px >= options.min_visible_length_px) {
-        const double t0 = static_cast<double>(run_start) / (samples - 1);
-        const double t1 = static_cast<double>(i - 1) / (samples - 1);
-        visible.push_back({line.id, line.kind, a_world + (b_world - a_world) * t0,
-                           a_world + (b_world - a_world) * t1, run_weight / (i - run_start)});
-      }
-      run_start = -1;
-      run_weight = 0.0;
+    if (clipTo(frustum, a, b)) {
+      sampler.appendVisiblePieces(line, a, b, visible);
     }
   }
   return visible;

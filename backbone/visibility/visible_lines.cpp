@@ -123,20 +123,24 @@ class LineSampler {
     if (length_px < options_.min_visible_length_px) {
       return;
     }
+    const ProbedLine probed{a_camera, b_camera,
+                            options_.contrast_probe_px *
+                                Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
+                                length_px,
+                            options_.contrast_probe_px / length_px};
     const int samples =
         std::clamp(static_cast<int>(std::ceil(length_px / options_.sample_spacing_px)) + 1, 2,
                    options_.max_samples_per_line);
-    const std::vector<double> fractions = sampleFractions(a_camera, b_camera, length_px, samples);
-    const Eigen::Vector3d a_world = T_world_camera_ * a_camera;
-    const Eigen::Vector3d b_world = T_world_camera_ * b_camera;
     const double step_px = length_px / (samples - 1);
     const auto at = [&](int i) {
-      return a_world + (b_world - a_world) * (static_cast<double>(i) / (samples - 1));
+      return T_world_camera_ *
+             (a_camera + (b_camera - a_camera) * (static_cast<double>(i) / (samples - 1)));
     };
     int run_start = -1;
     double run_weight = 0.0;
     for (int i = 0; i <= samples; ++i) {
-      const double fraction = i < samples ? fractions[i] : 0.0;
+      const double fraction =
+          i < samples ? sampleFraction(probed, at(i), static_cast<double>(i) / (samples - 1)) : 0.0;
       if (fraction > 0.0) {
         run_start = run_start < 0 ? i : run_start;
         run_weight += fraction;
@@ -152,32 +156,29 @@ class LineSampler {
   }
 
  private:
-  // Per sample: the fraction of viewpoints that see it, 0 where the centre
-  // does not or where the line cannot show as an edge.
-  std::vector<double> sampleFractions(const Eigen::Vector3d& a_camera,
-                                      const Eigen::Vector3d& b_camera, double length_px,
-                                      int samples) const {
-    const Eigen::Vector2d a_px = camera_.project(a_camera);
-    const Eigen::Vector2d b_px = camera_.project(b_camera);
-    const Eigen::Vector2d probe_offset_px =
-        options_.contrast_probe_px * Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
-        length_px;
-    // Probes stay this far from the ends, where the line meets a face's corner.
-    const double probe_inset = options_.contrast_probe_px / length_px;
-    std::vector<double> fractions(samples, 0.0);
-    for (int i = 0; i < samples; ++i) {
-      const double t = static_cast<double>(i) / (samples - 1);
-      const Eigen::Vector3d p = T_world_camera_ * (a_camera + (b_camera - a_camera) * t);
-      if (scene_.blocked(viewpoints_.points[0], p, options_.surface_clearance_m)) {
-        continue;
-      }
-      const double t_probe = std::clamp(t, probe_inset, 1.0 - probe_inset);
-      const Eigen::Vector2d p_px = camera_.project(a_camera + (b_camera - a_camera) * t_probe);
-      if (contrast_.differ(p_px + probe_offset_px, p_px - probe_offset_px)) {
-        fractions[i] = visibleFraction(scene_, viewpoints_, p, options_.surface_clearance_m);
-      }
+  // A clipped line (camera frame) with its contrast probes' offset normal to
+  // it (pixels) and their inset from its ends (fraction of its length), where
+  // it meets a face's corner.
+  struct ProbedLine {
+    Eigen::Vector3d a_camera;
+    Eigen::Vector3d b_camera;
+    Eigen::Vector2d probe_offset_px;
+    double probe_inset;
+  };
+
+  // The fraction of viewpoints that see the line's point p_world at t; 0
+  // where the centre does not, or where the line cannot show as an edge.
+  double sampleFraction(const ProbedLine& line, const Eigen::Vector3d& p_world, double t) const {
+    if (scene_.blocked(viewpoints_.points[0], p_world, options_.surface_clearance_m)) {
+      return 0.0;
     }
-    return fractions;
+    const double t_probe = std::clamp(t, line.probe_inset, 1.0 - line.probe_inset);
+    const Eigen::Vector2d p_px =
+        camera_.project(line.a_camera + (line.b_camera - line.a_camera) * t_probe);
+    if (!contrast_.differ(p_px + line.probe_offset_px, p_px - line.probe_offset_px)) {
+      return 0.0;
+    }
+    return visibleFraction(scene_, viewpoints_, p_world, options_.surface_clearance_m);
   }
 
   const OcclusionScene& scene_;

@@ -17,7 +17,7 @@ struct Mesh {
 };
 
 Mesh triangulate(const std::vector<FaceRing>& faces, const std::vector<int64_t>& building_ids) {
-  if (!building_ids.empty() && building_ids.size() != faces.size()) {
+  if (building_ids.size() != faces.size()) {
     throw std::invalid_argument("OcclusionScene: " + std::to_string(building_ids.size()) +
                                 " building ids for " + std::to_string(faces.size()) + " faces");
   }
@@ -38,7 +38,7 @@ Mesh triangulate(const std::vector<FaceRing>& faces, const std::vector<int64_t>&
       mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
     }
     mesh.triangle_building_ids.insert(mesh.triangle_building_ids.end(), triangles.size(),
-                                      building_ids.empty() ? 0 : building_ids[face]);
+                                      building_ids[face]);
   }
   return mesh;
 }

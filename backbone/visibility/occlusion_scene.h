@@ -27,9 +27,9 @@ struct SurfaceHit {
 class OcclusionScene {
  public:
   // Triangulates every face (degenerate ones are skipped) and builds the BVH.
-  // faces[i] belongs to building building_ids[i]; with no ids, to one building.
-  explicit OcclusionScene(const std::vector<FaceRing>& faces,
-                          const std::vector<int64_t>& building_ids = {});
+  // faces[i] belongs to building building_ids[i]: visibility finds an edge
+  // between flush façades only where their buildings differ.
+  OcclusionScene(const std::vector<FaceRing>& faces, const std::vector<int64_t>& building_ids);
   ~OcclusionScene();
   OcclusionScene(const OcclusionScene&) = delete;
   OcclusionScene& operator=(const OcclusionScene&) = delete;

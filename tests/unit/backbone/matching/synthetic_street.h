@@ -15,9 +15,12 @@ namespace lineloc::testing {
 inline const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
 inline constexpr double kPixelSigma = 0.5;
 
+// Each box is a building of its own.
 struct Street {
   std::vector<FaceRing> faces;
+  std::vector<int64_t> face_building_ids;
   std::vector<ModelSegment> edges;
+  int64_t building_count = 0;
 };
 
 inline void addBox(Street& street, double x0, double y0, double x1, double y1, double h) {
@@ -27,6 +30,8 @@ inline void addBox(Street& street, double x0, double y0, double x1, double y1, d
                                        {c[0], c[1], c[5], c[4]}, {c[1], c[2], c[6], c[5]},
                                        {c[2], c[3], c[7], c[6]}, {c[3], c[0], c[4], c[7]}};
   street.faces.insert(street.faces.end(), faces.begin(), faces.end());
+  street.face_building_ids.insert(street.face_building_ids.end(), faces.size(),
+                                  ++street.building_count);
   const int pairs[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                             {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
   for (const auto& pair : pairs) {

@@ -12,7 +12,7 @@ using namespace lineloc::testing;
 
 TEST(ModelAlignment, RecoversThePoseConsistentlyWithItsCovariance) {
   const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces);
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(7);
   for (int trial = 0; trial < 10; ++trial) {
     const Scene scene = render(street, occlusion, 0, random);
@@ -27,7 +27,7 @@ TEST(ModelAlignment, RecoversThePoseConsistentlyWithItsCovariance) {
 
 TEST(ModelAlignment, ClutterNotInTheModelDoesNotPullThePose) {
   const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces);
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(11);
   for (int trial = 0; trial < 10; ++trial) {
     Scene scene = render(street, occlusion, 0, random);
@@ -44,7 +44,7 @@ TEST(ModelAlignment, ClutterNotInTheModelDoesNotPullThePose) {
 TEST(ModelAlignment, ASingleFacadeIsReportedIllConditionedNotPrecise) {
   Street wall;
   addBox(wall, 8, -50, 9, 200, 10);  // one long façade along the street, featureless
-  const OcclusionScene occlusion(wall.faces);
+  const OcclusionScene occlusion(wall.faces, wall.face_building_ids);
   std::mt19937 random(3);
   const Scene scene = render(wall, occlusion, 0, random);
   const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.3, 0.01);
@@ -54,7 +54,7 @@ TEST(ModelAlignment, ASingleFacadeIsReportedIllConditionedNotPrecise) {
 
 TEST(ModelAlignment, NothingToMatchIsTooFewMatches) {
   const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces);
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(5);
   const Scene scene = render(street, occlusion, 0, random);
   const Alignment alignment = alignModel({}, scene.visible, truePose(), kCamera, {});

@@ -36,7 +36,7 @@ PoseWithCovariance dgpsPrior(std::mt19937& random) {
 // allowed (the street repeats), a wrong precise pose is not.
 void expectConsistentOrAmbiguous(int clutter_percent, uint32_t seed) {
   const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces);
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(seed);
   int ok = 0;
   constexpr int kTrials = 6;
@@ -71,7 +71,7 @@ TEST(PoseAcquisition, ThirtyPercentClutterChangesNothing) {
 TEST(PoseAcquisition, AFeaturelessFacadeIsNeverAPrecisePose) {
   Street wall;
   addBox(wall, 8, -50, 9, 200, 10);  // along the street, nothing to place the camera along it
-  const OcclusionScene occlusion(wall.faces);
+  const OcclusionScene occlusion(wall.faces, wall.face_building_ids);
   std::mt19937 random(5);
   const Scene scene = render(wall, occlusion, 0, random);
   const Acquisition acquisition = acquirePose(scene.image, wall.edges, occlusion, dgpsPrior(random),
@@ -81,7 +81,7 @@ TEST(PoseAcquisition, AFeaturelessFacadeIsNeverAPrecisePose) {
 
 TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
   const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces);
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(9);
   const Scene scene = render(street, occlusion, 10, random);
   const PoseSearch search(street.edges, occlusion, kCamera, PoseSearchOptions{});
@@ -102,7 +102,7 @@ TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
 TEST(PoseSearch, InsideABuildingThereIsNothingToFind) {
   Street block;
   addBox(block, -100, -100, 100, 100, 30);
-  const OcclusionScene occlusion(block.faces);
+  const OcclusionScene occlusion(block.faces, block.face_building_ids);
   const PoseSearch search(block.edges, occlusion, kCamera, PoseSearchOptions{});
   PoseWithCovariance prior = truePose();
   prior.covariance = diagonalPoseCovariance(2.0, 0.01);

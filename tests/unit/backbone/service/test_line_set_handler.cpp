@@ -72,12 +72,15 @@ std::vector<ImageSegment> observedEdges(const std::string& conninfo,
   const db::TileContents tile =
       query.within({Eigen::Vector2d(-100, -100), Eigen::Vector2d(100, 100)});
   std::vector<FaceRing> faces;
-  for (const auto& face : tile.faces)
+  std::vector<int64_t> building_ids;
+  for (const auto& face : tile.faces) {
     faces.push_back(face.ring_world);
+    building_ids.push_back(face.building_id);
+  }
   std::vector<ModelSegment> lines;
   for (const auto& line : tile.lines)
     lines.push_back({line.id, 0, line.start_world, line.end_world});
-  const OcclusionScene scene(faces);
+  const OcclusionScene scene(faces, building_ids);
   std::mt19937 random(1);
   std::normal_distribution<double> noise(0.0, 0.3);
   std::vector<ImageSegment> segments;

@@ -8,9 +8,11 @@ namespace {
 
 const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
 
-// A box [x0, x1] x [y0, y1] x [0, h]: 6 faces, 12 edges.
+// A box [x0, x1] x [y0, y1] x [0, h]: 6 faces, 12 edges, one building whose id
+// is that of its first edge.
 struct Box {
   std::vector<FaceRing> faces;
+  std::vector<int64_t> face_building_ids;
   std::vector<ModelSegment> edges;
 };
 
@@ -20,12 +22,25 @@ Box makeBox(double x0, double y0, double x1, double y1, double h, int64_t first_
   Box box;
   box.faces = {{c[0], c[3], c[2], c[1]}, {c[4], c[5], c[6], c[7]}, {c[0], c[1], c[5], c[4]},
                {c[1], c[2], c[6], c[5]}, {c[2], c[3], c[7], c[6]}, {c[3], c[0], c[4], c[7]}};
+  box.face_building_ids.assign(box.faces.size(), first_id);
   const int pairs[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                             {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
   for (int i = 0; i < 12; ++i) {
     box.edges.push_back({first_id + i, 0, c[pairs[i][0]], c[pairs[i][1]]});
   }
   return box;
+}
+
+// The faces of all `boxes`, each box a building.
+OcclusionScene sceneOf(const std::vector<const Box*>& boxes) {
+  std::vector<FaceRing> faces;
+  std::vector<int64_t> building_ids;
+  for (const Box* box : boxes) {
+    faces.insert(faces.end(), box->faces.begin(), box->faces.end());
+    building_ids.insert(building_ids.end(), box->face_building_ids.begin(),
+                        box->face_building_ids.end());
+  }
+  return OcclusionScene(faces, building_ids);
 }
 
 // Camera at `position` looking along +y (north), level: x_c = east, y_c = down.
@@ -53,7 +68,7 @@ std::vector<int64_t> ids(const std::vector<VisibleSegment>& segments) {
 // (5 + (x - 5) 20 / (20 + y), 5 + (z - 5) 20 / (20 + y)), inside the front wall.
 TEST(Visibility, HeadOnCubeShowsOnlyItsFrontWall) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
-  const OcclusionScene scene(cube.faces);
+  const OcclusionScene scene = sceneOf({&cube});
   EXPECT_EQ(scene.triangleCount(), 12u);
   const auto visible =
       visibleSegments(cube.edges, scene, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
@@ -67,7 +82,7 @@ TEST(Visibility, HeadOnCubeShowsOnlyItsFrontWall) {
 // From the south-west diagonal two walls show: 7 edges.
 TEST(Visibility, DiagonalViewShowsTwoWalls) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
-  const OcclusionScene scene(cube.faces);
+  const OcclusionScene scene = sceneOf({&cube});
   PoseWithCovariance pose = lookingNorth({-15, -15, 5}, 0.01);
   pose.pose.linear() = Eigen::AngleAxisd(-M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                        pose.pose.linear();
@@ -82,9 +97,7 @@ TEST(Visibility, DiagonalViewShowsTwoWalls) {
 TEST(Visibility, LowWallCutsTheVerticalsAtTheSightLine) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
   Box wall = makeBox(-20, -5.2, 30, -5, 4, 100);
-  std::vector<FaceRing> faces = cube.faces;
-  faces.insert(faces.end(), wall.faces.begin(), wall.faces.end());
-  const OcclusionScene scene(faces);
+  const OcclusionScene scene = sceneOf({&cube, &wall});
   const auto visible =
       visibleSegments(cube.edges, scene, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
   const double sight_z = 5.0 - 1.0 * 20.0 / 15.0;
@@ -109,10 +122,7 @@ TEST(Visibility, UncertainPositionLowersTheWeightOfLinesSeenThroughAGap) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
   const Box left = makeBox(-30, -10.2, 4.5, -10, 30, 100);
   const Box right = makeBox(5.5, -10.2, 40, -10, 30, 200);
-  std::vector<FaceRing> faces = cube.faces;
-  for (const Box* b : {&left, &right})
-    faces.insert(faces.end(), b->faces.begin(), b->faces.end());
-  const OcclusionScene scene(faces);
+  const OcclusionScene scene = sceneOf({&cube, &left, &right});
   std::vector<ModelSegment> front_top = {cube.edges[4]};
   const auto sure = visibleSegments(front_top, scene, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
   const auto unsure =
@@ -130,6 +140,7 @@ TEST(Visibility, UncertainPositionLowersTheWeightOfLinesSeenThroughAGap) {
 // between them, which faces +x.
 struct Jog {
   std::vector<FaceRing> faces;
+  std::vector<int64_t> face_building_ids{1, 1, 1};
   std::vector<ModelSegment> creases;
 };
 
@@ -150,7 +161,7 @@ Jog makeJog(double depth_m) {
 // far crease is behind the near wall.
 TEST(Visibility, FootprintJogShowsOnlyWhileItsNarrowWallFacesTheCamera) {
   const Jog jog = makeJog(0.3);
-  const OcclusionScene scene(jog.faces);
+  const OcclusionScene scene(jog.faces, jog.face_building_ids);
   EXPECT_EQ(ids(visibleSegments(jog.creases, scene, lookingNorth({14, -8, 5}, 0.01), kCamera, {})),
             (std::vector<int64_t>{0, 1}));
   EXPECT_TRUE(
@@ -163,7 +174,7 @@ TEST(Visibility, FootprintJogShowsOnlyWhileItsNarrowWallFacesTheCamera) {
 // both creases show.
 TEST(Visibility, JogShowsOnlyWhereItIsWiderThanTheProbe) {
   const Jog jog = makeJog(0.05);
-  const OcclusionScene scene(jog.faces);
+  const OcclusionScene scene(jog.faces, jog.face_building_ids);
   EXPECT_TRUE(
       visibleSegments(jog.creases, scene, lookingNorth({14, -30, 5}, 0.01), kCamera, {}).empty());
   EXPECT_EQ(
@@ -188,7 +199,7 @@ TEST(Visibility, FlushFacadesShowAnEdgeOnlyBetweenBuildings) {
 // compare: they stay visible.
 TEST(Visibility, LinesWithoutFacesStayVisible) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
-  const OcclusionScene empty({});
+  const OcclusionScene empty({}, {});
   const auto visible =
       visibleSegments(cube.edges, empty, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
   EXPECT_EQ(visible.size(), 12u);

@@ -6,33 +6,10 @@
 #include <utility>
 
 #include "backbone/map/ground_level.h"
+#include "backbone/service/map_geometry.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
-namespace {
-
-std::vector<ModelSegment> toSegments(const std::vector<db::ModelLine>& lines) {
-  std::vector<ModelSegment> segments;
-  segments.reserve(lines.size());
-  for (const db::ModelLine& line : lines) {
-    segments.push_back({line.id, static_cast<int>(line.kind), line.start_world, line.end_world});
-  }
-  return segments;
-}
-
-OcclusionScene occlusionScene(const std::vector<db::ModelFaceRecord>& faces) {
-  std::vector<FaceRing> rings;
-  std::vector<int64_t> building_ids;
-  rings.reserve(faces.size());
-  building_ids.reserve(faces.size());
-  for (const db::ModelFaceRecord& face : faces) {
-    rings.push_back(face.ring_world);
-    building_ids.push_back(face.building_id);
-  }
-  return OcclusionScene(rings, building_ids);
-}
-
-}  // namespace
 
 lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
   switch (status) {
@@ -77,7 +54,7 @@ void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
 
 LineSetHandler::PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view)
     : view(std::move(map_view)),
-      segments(toSegments(view->lines)),
+      segments(modelSegments(view->lines)),
       scene(occlusionScene(view->faces)),
       ground_level(groundLevel(*view)) {}
 

@@ -9,6 +9,7 @@
 #include "backbone/map/database_tile_fetcher.h"
 #include "backbone/matching/line_matcher.h"
 #include "backbone/service/line_set_handler.h"
+#include "backbone/service/map_geometry.h"
 #include "tests/support/test_database.h"
 
 namespace lineloc {
@@ -71,16 +72,8 @@ std::vector<ImageSegment> observedEdges(const std::string& conninfo,
   db::MapTileQuery query(connection, *db::findSite(connection, "test"));
   const db::TileContents tile =
       query.within({Eigen::Vector2d(-100, -100), Eigen::Vector2d(100, 100)});
-  std::vector<FaceRing> faces;
-  std::vector<int64_t> building_ids;
-  for (const auto& face : tile.faces) {
-    faces.push_back(face.ring_world);
-    building_ids.push_back(face.building_id);
-  }
-  std::vector<ModelSegment> lines;
-  for (const auto& line : tile.lines)
-    lines.push_back({line.id, 0, line.start_world, line.end_world});
-  const OcclusionScene scene(faces, building_ids);
+  const OcclusionScene scene = occlusionScene(tile.faces);
+  const std::vector<ModelSegment> lines = modelSegments(tile.lines);
   std::mt19937 random(1);
   std::normal_distribution<double> noise(0.0, 0.3);
   std::vector<ImageSegment> segments;

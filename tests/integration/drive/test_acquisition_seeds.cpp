@@ -28,6 +28,7 @@
 #include "robot/vision/features/feature_extractor.h"
 #include "tests/support/child_process.h"
 #include "tests/support/delft_drive.h"
+#include "tests/support/pose_error.h"
 #include "tests/support/test_database.h"
 
 namespace fs = std::filesystem;
@@ -38,17 +39,7 @@ namespace {
 constexpr int kSeeds = 50;
 constexpr double kDgpsSigmaM = 4.0;
 constexpr double kYawSigmaRad = 0.5 * M_PI / 180.0;
-constexpr double kChi2Six9973 = 20.06;
 constexpr int kMinFixedSeeds = 10;
-
-// e^T Sigma^-1 e, e = [dp; dtheta] of the estimate against the truth.
-double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {
-  Eigen::Matrix<double, 6, 1> error;
-  error.head<3>() = truth.translation() - estimate.pose.translation();
-  const Eigen::AngleAxisd rotation(truth.linear() * estimate.pose.linear().transpose());
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error.dot(estimate.covariance.ldlt().solve(error));
-}
 
 // The start of seed's drive: two frames 0.5 s apart and their true poses.
 test::SimulatedFrames simulateStart(const fs::path& folder, uint64_t seed) {
@@ -122,11 +113,11 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
       continue;
     }
     ++fixed;
-    const double nees = normalizedErrorSquared(answer->T_world_camera, start.truth[1]);
+    const double nees = test::normalizedErrorSquared(answer->T_world_camera, start.truth[1]);
     const double error_m =
         (answer->T_world_camera.pose.translation() - start.truth[1].translation()).norm();
     fmt::print("seed {}: ok, error {:.3f} m, e^T S^-1 e {:.1f}\n", seed, error_m, nees);
-    if (nees > kChi2Six9973) {
+    if (nees > test::kChi2Six9973) {
       ++wrong;
       ADD_FAILURE() << "seed " << seed << ": a precise wrong pose, " << error_m
                     << " m off, e^T Sigma^-1 e " << nees;

@@ -1,0 +1,26 @@
+// How far an estimated pose is from the truth in its own reported
+// uncertainty, for tests that check "no precise wrong pose" (paper §3.2).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include "common/geometry/pose.h"
+
+namespace lineloc::test {
+
+// chi^2_6(0.9973): the 6-D equivalent of three standard deviations.
+inline constexpr double kChi2Six9973 = 20.06;
+
+// e^T Sigma^-1 e, e = [dp; dtheta] of the estimate against the truth (the
+// error convention of common/geometry/pose.h).
+inline double normalizedErrorSquared(const PoseWithCovariance& estimate,
+                                     const Eigen::Isometry3d& truth) {
+  Eigen::Matrix<double, 6, 1> error;
+  error.head<3>() = truth.translation() - estimate.pose.translation();
+  const Eigen::AngleAxisd rotation(truth.linear() * estimate.pose.linear().transpose());
+  error.tail<3>() = rotation.angle() * rotation.axis();
+  return error.dot(estimate.covariance.ldlt().solve(error));
+}
+
+}  // namespace lineloc::test

@@ -9,8 +9,12 @@
 
 #include "backbone/matching/line_matcher.h"
 #include "backbone/visibility/visible_lines.h"
+#include "tests/support/pose_error.h"
 
 namespace lineloc::testing {
+
+using test::kChi2Six999;
+using test::normalizedErrorSquared;
 
 inline const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
 inline constexpr double kPixelSigma = 0.5;
@@ -111,19 +115,5 @@ inline PoseWithCovariance perturbedPrior(const PoseWithCovariance& truth, std::m
   prior.covariance = diagonalPoseCovariance(2 * position_sigma, 2 * rotation_sigma);
   return prior;
 }
-
-// e^T Sigma^-1 e of the estimate against the truth, e = [dp; dtheta].
-inline double normalizedErrorSquared(const PoseWithCovariance& estimate,
-                                     const PoseWithCovariance& truth) {
-  Eigen::Matrix<double, 6, 1> error;
-  error.head<3>() = truth.pose.translation() - estimate.pose.translation();
-  const Eigen::AngleAxisd rotation(truth.pose.linear() * estimate.pose.linear().transpose());
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error.dot(estimate.covariance.ldlt().solve(error));
-}
-
-// chi^2 with 6 degrees of freedom at 99.9 %: a consistent estimate exceeds it
-// once in a thousand trials.
-inline constexpr double kChi2Six999 = 22.46;
 
 }  // namespace lineloc::testing

@@ -53,7 +53,7 @@ void expectConsistentOrAmbiguous(int clutter_percent, uint32_t seed) {
       continue;
     }
     ++ok;
-    EXPECT_LT(normalizedErrorSquared(acquisition.alignment.T_world_camera, truePose()),
+    EXPECT_LT(normalizedErrorSquared(acquisition.alignment.T_world_camera, truePose().pose),
               kChi2Six999);
   }
   // The street has distinct building heights: most views are unambiguous.

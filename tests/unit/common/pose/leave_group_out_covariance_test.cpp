@@ -16,21 +16,14 @@
 namespace lineloc {
 namespace {
 
+using test::kChi2Six9973;
 using test::makeScene;
+using test::normalizedErrorSquared;
 using test::poseError;
 using test::Scene;
 using test::SceneOptions;
 
-// chi^2_6 at 0.9973: the 6-D equivalent of three standard deviations.
-constexpr double kChi2Six9973 = 20.06;
 constexpr double kStatedVariancePx2 = 1.5 * 1.5;
-
-// e^T Sigma^-1 e of the estimate against the truth.
-double normalizedErrorSquared(const Eigen::Isometry3d& estimate, const Matrix6d& covariance,
-                              const Eigen::Isometry3d& truth) {
-  const Eigen::Matrix<double, 6, 1> error = poseError(estimate, truth);
-  return error.dot(covariance.ldlt().solve(error));
-}
 
 // The refinement as the backbone's alignment runs it: Cauchy loss, stopped
 // at a thousandth of a standard deviation.
@@ -143,9 +136,9 @@ TEST(LeaveGroupOutCovariance, PiecesOfOneLineAreLeftOutTogether) {
   ASSERT_TRUE(estimate.ok()) << estimate.message;
   const Eigen::Isometry3d& pose = estimate.T_world_camera.pose;
   const double nees_grouped = normalizedErrorSquared(
-      pose, leaveGroupOutCovariance(scene.problem, pose, grouped, options), scene.T_world_camera);
+      {pose, leaveGroupOutCovariance(scene.problem, pose, grouped, options)}, scene.T_world_camera);
   const double nees_one_by_one = normalizedErrorSquared(
-      pose, leaveGroupOutCovariance(scene.problem, pose, one_by_one, options),
+      {pose, leaveGroupOutCovariance(scene.problem, pose, one_by_one, options)},
       scene.T_world_camera);
   EXPECT_LT(nees_grouped, nees_one_by_one);
   EXPECT_LE(nees_grouped, kChi2Six9973);

@@ -101,15 +101,6 @@ Eigen::Isometry3d perturbPose(const Eigen::Isometry3d& pose, double rotation_rad
   return perturbed;
 }
 
-Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
-                                      const Eigen::Isometry3d& truth) {
-  Eigen::Matrix<double, 6, 1> error;
-  error.head<3>() = truth.translation() - estimate.translation();
-  const Eigen::AngleAxisd rotation(truth.linear() * estimate.linear().transpose());
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error;
-}
-
 double rotationErrorRad(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
   return Eigen::AngleAxisd(estimate.linear().transpose() * truth.linear()).angle();
 }

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "common/pose/pose_problem.h"
+#include "tests/support/pose_error.h"
 
 namespace lineloc::test {
 
@@ -37,11 +38,6 @@ Scene makeScene(const SceneOptions& options);
 // translation_m in a random direction.
 Eigen::Isometry3d perturbPose(const Eigen::Isometry3d& pose, double rotation_rad,
                               double translation_m, std::mt19937& random);
-
-// e = [dp; dtheta] taking `estimate` to `truth` in the covariance convention of
-// common/geometry/pose.h: e^T Sigma^-1 e is the estimate's normalized error.
-Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
-                                      const Eigen::Isometry3d& truth);
 
 double rotationErrorRad(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth);
 double translationErrorM(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth);

@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "robot/inertial/chi_square.h"
@@ -21,6 +22,9 @@ constexpr double kStillVelocitySigma_mps = 0.05;
 constexpr int64_t kMaxVelocityBaseline_ns = 500'000'000;
 // Bound on a ground robot's acceleration, for the error of that velocity.
 constexpr double kMaxGroundAcceleration_mps2 = 2.0;
+// Gated vision fixes that can show a common offset from the filter: three
+// fit its offset and drift with a degree of freedom to spare.
+constexpr size_t kMinGatedFixesForRestart = 3;
 // Compass readings needed for a start-up heading (1 s at 10 Hz).
 constexpr size_t kMinStartupCompassReadings = 10;
 
@@ -177,7 +181,7 @@ void InertialNavigator::addGps(const GpsFix& fix) {
     tryInitialiseFromSensors();
     return;
   }
-  addMeasurement(fix.stamp_ns, {GpsPayload{fix.p_world_antenna}, std::nullopt});
+  addMeasurement(fix.stamp_ns, {GpsPayload{fix.p_world_antenna}, std::nullopt, std::nullopt});
 }
 
 void InertialNavigator::addCompass(const CompassReading& reading) {
@@ -190,8 +194,8 @@ void InertialNavigator::addCompass(const CompassReading& reading) {
     tryInitialiseFromSensors();
     return;
   }
-  addMeasurement(reading.stamp_ns,
-                 {YawPayload{yawFromCompass(reading.magnetic_heading_rad)}, std::nullopt});
+  addMeasurement(reading.stamp_ns, {YawPayload{yawFromCompass(reading.magnetic_heading_rad)},
+                                    std::nullopt, std::nullopt});
 }
 
 MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
@@ -205,12 +209,14 @@ MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
   const VisionPayload vision{T_world_camera, T_body_camera};
   if (snapshots_.empty()) {
     const BodyFix fix = bodyFixOf(stamp_ns, vision);
-    const MeasurementOutcome outcome = startFromVision(fix, startup_vision_);
+    const std::optional<StartVelocity> velocity = startVelocity(fix, startup_vision_);
+    const MeasurementOutcome outcome =
+        velocity ? startFromVision(fix, *velocity) : MeasurementOutcome::kSkipped;
     startup_vision_ = fix;
     ++counterOf(counters_.vision, outcome);
     return outcome;
   }
-  const MeasurementOutcome outcome = addMeasurement(stamp_ns, {vision, std::nullopt});
+  const MeasurementOutcome outcome = addMeasurement(stamp_ns, {vision, std::nullopt, std::nullopt});
   restartIfVisionKeepsBeingGated();
   return outcome;
 }
@@ -271,14 +277,14 @@ void InertialNavigator::process(const BufferedImu& imu) {
   snapshots_.push_back(std::move(snapshot));
 }
 
-MeasurementOutcome InertialNavigator::apply(const Measurement& measurement,
-                                            Snapshot& snapshot) const {
+MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& snapshot) const {
   NavigationState& state = snapshot.state;
   ErrorCovariance& covariance = snapshot.covariance;
   if (const auto* vision = std::get_if<VisionPayload>(&measurement.payload)) {
-    const UpdateOutcome outcome =
-        applyUpdate(linearisePoseFix(state, vision->T_world_camera, vision->T_body_camera),
-                    gate_by_dimension_[6], state, covariance);
+    const LinearisedMeasurement<6> z =
+        linearisePoseFix(state, vision->T_world_camera, vision->T_body_camera);
+    measurement.vision_residual = z.residual;
+    const UpdateOutcome outcome = applyUpdate(z, gate_by_dimension_[6], state, covariance);
     if (outcome.status == UpdateStatus::kAccepted) {
       snapshot.last_vision_ns = state.stamp_ns;
     }
@@ -452,8 +458,26 @@ InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
   return fix;
 }
 
+std::optional<InertialNavigator::StartVelocity> InertialNavigator::startVelocity(
+    const BodyFix& fix, const std::optional<BodyFix>& previous) const {
+  if (!moved_since_start_ && alignment_detector_.isStill()) {
+    return StartVelocity{Eigen::Vector3d::Zero(), kStillVelocitySigma_mps};
+  }
+  const int64_t baseline_ns = previous ? fix.stamp_ns - previous->stamp_ns : 0;
+  if (baseline_ns <= 0 || baseline_ns > kMaxVelocityBaseline_ns) {
+    return std::nullopt;
+  }
+  // v = dp / dt; sigma from both positions, plus the speed change a dt / 2
+  // the mean velocity misses at a ground robot's acceleration.
+  const double dt = static_cast<double>(baseline_ns) * kNsToS;
+  const double position_variance = fix.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff() +
+                                   previous->covariance.topLeftCorner<3, 3>().diagonal().maxCoeff();
+  return StartVelocity{(fix.T_world_body.translation() - previous->T_world_body.translation()) / dt,
+                       std::sqrt(position_variance) / dt + 0.5 * kMaxGroundAcceleration_mps2 * dt};
+}
+
 MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
-                                                      const std::optional<BodyFix>& previous) {
+                                                      const StartVelocity& velocity) {
   const auto imu = bufferedImuAt(fix.stamp_ns);
   if (!imu) {
     return MeasurementOutcome::kTooLate;
@@ -462,22 +486,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   state.stamp_ns = fix.stamp_ns;
   state.p_world_body = fix.T_world_body.translation();
   state.q_world_body = Eigen::Quaterniond(fix.T_world_body.linear()).normalized();
-  double velocity_sigma = kStillVelocitySigma_mps;
-  if (moved_since_start_ || !alignment_detector_.isStill()) {
-    const int64_t baseline_ns = previous ? fix.stamp_ns - previous->stamp_ns : 0;
-    if (baseline_ns <= 0 || baseline_ns > kMaxVelocityBaseline_ns) {
-      return MeasurementOutcome::kSkipped;
-    }
-    // v = dp / dt; sigma from both positions, plus the speed change a dt / 2
-    // the mean velocity misses at a ground robot's acceleration.
-    const double dt = static_cast<double>(baseline_ns) * kNsToS;
-    state.v_world_body =
-        (fix.T_world_body.translation() - previous->T_world_body.translation()) / dt;
-    const double position_variance =
-        fix.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff() +
-        previous->covariance.topLeftCorner<3, 3>().diagonal().maxCoeff();
-    velocity_sigma = std::sqrt(position_variance) / dt + 0.5 * kMaxGroundAcceleration_mps2 * dt;
-  }
+  state.v_world_body = velocity.v_world_mps;
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
   ErrorCovariance covariance = ErrorCovariance::Zero();
@@ -487,7 +496,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   covariance.block<3, 3>(kAttitude, kAttitude) = fix.covariance.bottomRightCorner<3, 3>();
   covariance.block<3, 3>(kVelocity, kVelocity)
       .diagonal()
-      .setConstant(velocity_sigma * velocity_sigma);
+      .setConstant(velocity.sigma_mps * velocity.sigma_mps);
   covariance.block<3, 3>(kGyroBias, kGyroBias)
       .diagonal()
       .setConstant(gyro_bias_sigma * gyro_bias_sigma);
@@ -498,28 +507,97 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   return MeasurementOutcome::kAccepted;
 }
 
-void InertialNavigator::restartIfVisionKeepsBeingGated() {
-  if (snapshots_.empty() || config_.vision_gated_before_restart <= 0) {
-    return;
-  }
-  std::vector<BodyFix> gated;
+std::vector<InertialNavigator::GatedFix> InertialNavigator::gatedVisionRun() const {
+  std::vector<GatedFix> run;
   for (auto it = measurements_.rbegin(); it != measurements_.rend(); ++it) {
     const auto* vision = std::get_if<VisionPayload>(&it->second.payload);
     if (vision == nullptr || !it->second.outcome) {
       continue;
     }
-    if (*it->second.outcome != MeasurementOutcome::kGated) {
-      return;
+    if (*it->second.outcome != MeasurementOutcome::kGated || !it->second.vision_residual) {
+      return {};
     }
-    gated.push_back(bodyFixOf(it->first, *vision));
-    if (static_cast<int>(gated.size()) == config_.vision_gated_before_restart) {
-      break;
+    run.push_back({bodyFixOf(it->first, *vision), *it->second.vision_residual,
+                   vision->T_world_camera.covariance});
+    if (run.front().fix.stamp_ns - it->first >= config_.vision_gated_restart_after_ns) {
+      return run;
     }
   }
-  if (static_cast<int>(gated.size()) < config_.vision_gated_before_restart) {
+  return {};
+}
+
+// Position residuals r_i = a + b (t_i - t_mean) + e_i (least squares), attitude
+// residuals theta_i = theta_mean + e_i; every e_i within the gate of its fix's
+// covariance.
+std::optional<InertialNavigator::ResidualDrift> InertialNavigator::commonResidualDrift(
+    const std::vector<GatedFix>& run) const {
+  const double n = static_cast<double>(run.size());
+  std::vector<double> dt_s;
+  Eigen::Vector3d position_mean = Eigen::Vector3d::Zero();
+  Eigen::Vector3d attitude_mean = Eigen::Vector3d::Zero();
+  for (const GatedFix& gated : run) {
+    dt_s.push_back(static_cast<double>(gated.fix.stamp_ns - run.front().fix.stamp_ns) * kNsToS);
+    position_mean += gated.residual.head<3>() / n;
+    attitude_mean += gated.residual.tail<3>() / n;
+  }
+  const double t_mean_s = std::accumulate(dt_s.begin(), dt_s.end(), 0.0) / n;
+  double time_spread_s2 = 0.0;
+  Eigen::Vector3d slope_sum = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < run.size(); ++i) {
+    dt_s[i] -= t_mean_s;
+    time_spread_s2 += dt_s[i] * dt_s[i];
+    slope_sum += dt_s[i] * run[i].residual.head<3>();
+  }
+  ResidualDrift drift;
+  drift.velocity_mps = slope_sum / time_spread_s2;
+  drift.attitude_offset_rad = attitude_mean;
+  double position_variance = 0.0;
+  for (size_t i = 0; i < run.size(); ++i) {
+    const Eigen::Vector3d position_error =
+        run[i].residual.head<3>() - position_mean - dt_s[i] * drift.velocity_mps;
+    const Eigen::Vector3d attitude_error = run[i].residual.tail<3>() - attitude_mean;
+    const Eigen::Matrix3d position_covariance = run[i].fix_covariance.topLeftCorner<3, 3>();
+    const Eigen::Matrix3d attitude_covariance = run[i].fix_covariance.bottomRightCorner<3, 3>();
+    if (position_error.dot(position_covariance.ldlt().solve(position_error)) >
+            gate_by_dimension_[3] ||
+        attitude_error.dot(attitude_covariance.ldlt().solve(attitude_error)) >
+            gate_by_dimension_[3]) {
+      return std::nullopt;
+    }
+    position_variance = std::max(position_variance, position_covariance.diagonal().maxCoeff());
+  }
+  drift.velocity_variance = position_variance / time_spread_s2;
+  return drift;
+}
+
+void InertialNavigator::restartIfVisionKeepsBeingGated() {
+  if (snapshots_.empty() || config_.vision_gated_restart_after_ns <= 0) {
     return;
   }
-  if (startFromVision(gated[0], gated[1]) == MeasurementOutcome::kAccepted) {
+  const std::vector<GatedFix> run = gatedVisionRun();
+  if (run.size() < kMinGatedFixesForRestart) {
+    return;
+  }
+  const std::optional<ResidualDrift> drift = commonResidualDrift(run);
+  if (!drift) {
+    return;
+  }
+  const GatedFix& newest = run.front();
+  const auto after = std::upper_bound(
+      snapshots_.begin(), snapshots_.end(), newest.fix.stamp_ns,
+      [](int64_t stamp, const Snapshot& snapshot) { return stamp < snapshot.state.stamp_ns; });
+  const Snapshot& filter = after == snapshots_.begin() ? snapshots_.front() : *std::prev(after);
+  // The filter's velocity, corrected by the drift; its error also grows with
+  // the attitude error the fixes show, g |theta| over half the run.
+  const double run_s = static_cast<double>(newest.fix.stamp_ns - run.back().fix.stamp_ns) * kNsToS;
+  const double tilt_velocity_sigma_mps =
+      config_.gravity_mps2 * drift->attitude_offset_rad.norm() * 0.5 * run_s;
+  const double velocity_variance =
+      filter.covariance.block<3, 3>(kVelocity, kVelocity).diagonal().maxCoeff() +
+      drift->velocity_variance + tilt_velocity_sigma_mps * tilt_velocity_sigma_mps;
+  const StartVelocity velocity{filter.state.v_world_body + drift->velocity_mps,
+                               std::sqrt(velocity_variance)};
+  if (startFromVision(newest.fix, velocity) == MeasurementOutcome::kAccepted) {
     ++counters_.restarts;
   }
 }

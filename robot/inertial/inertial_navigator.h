@@ -18,8 +18,17 @@
 // covariances; only if the robot has not moved since power-on. Vision fixes
 // before that start the filter from their pose: at once when it has stood
 // still since power-on, else from two fixes at most 0.5 s apart, whose
-// difference gives the velocity. The same restart follows
-// `vision_gated_before_restart` vision fixes gated in a row.
+// difference gives the velocity.
+//
+// Restart. Vision fixes gated without a break for `vision_gated_restart_after_ns`
+// mean the filter, not the fixes, is wrong, but only when their residuals
+// against the filter move together: position residuals a + b t and attitude
+// residuals a constant, each fix within its own covariance's gate. The filter
+// then restarts at the newest fix's pose with its own velocity plus the drift
+// b; the IMU biases start again as at power-on. A burst of wrong fixes (a car's edges taken
+// for a building's) is shorter than that, and a backbone switching between
+// two wrong solutions breaks the common offset: restarting from either, with
+// the velocity of two fixes a frame apart, threw away a good filter.
 //
 // Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
 // only while the filter's horizontal position sigma exceeds the DGPS sigma (its
@@ -40,6 +49,7 @@
 #include <map>
 #include <optional>
 #include <variant>
+#include <vector>
 
 #include "common/geometry/pose.h"
 #include "robot/inertial/error_state_update.h"
@@ -88,9 +98,9 @@ struct InertialNavigatorConfig {
   double gyro_turn_on_bias_sigma_radps = 0.0035;
   double accel_turn_on_bias_sigma_mps2 = 0.05;
 
-  // This many vision fixes gated in a row mean the filter, not the fixes, is
-  // wrong: it restarts from the last two fixes.
-  int vision_gated_before_restart = 5;
+  // Vision fixes gated without a break for this long, moving together, restart
+  // the filter from the newest (0: never).
+  int64_t vision_gated_restart_after_ns = 1'000'000'000;
 
   int64_t tracking_timeout_ns = 1'000'000'000;
   double lost_position_sigma_m = 10.0;
@@ -152,7 +162,7 @@ struct NavigatorHealth {
   MeasurementCounters gps;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
-  int64_t restarts = 0;  // from vision, after vision_gated_before_restart gated fixes
+  int64_t restarts = 0;  // from vision, after vision_gated_restart_after_ns of gated fixes
   ImuCounters imu;
 };
 
@@ -210,6 +220,8 @@ class InertialNavigator {
   struct Measurement {
     std::variant<VisionPayload, GpsPayload, YawPayload> payload;
     std::optional<MeasurementOutcome> outcome;
+    // A vision fix's residual z - h(x) against the filter when last applied.
+    std::optional<Eigen::Matrix<double, 6, 1>> vision_residual;
   };
   struct Snapshot {
     NavigationState state;
@@ -229,12 +241,26 @@ class InertialNavigator {
     Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
     Matrix6d covariance = Matrix6d::Identity();
   };
+  struct GatedFix {
+    BodyFix fix;
+    Eigen::Matrix<double, 6, 1> residual;
+    Matrix6d fix_covariance;  // of the camera pose, as the residual
+  };
+  struct ResidualDrift {
+    Eigen::Vector3d velocity_mps;
+    double velocity_variance = 0.0;
+    Eigen::Vector3d attitude_offset_rad;
+  };
+  struct StartVelocity {
+    Eigen::Vector3d v_world_mps;
+    double sigma_mps = 0.0;
+  };
 
   bool acceptImu(const ImuSample& sample);
   MeasurementOutcome addMeasurement(int64_t stamp_ns, Measurement measurement);
   void replayFrom(size_t snapshot_index);
   void process(const BufferedImu& imu);
-  MeasurementOutcome apply(const Measurement& measurement, Snapshot& snapshot) const;
+  MeasurementOutcome apply(Measurement& measurement, Snapshot& snapshot) const;
   void recordOutcome(Measurement& measurement, MeasurementOutcome outcome);
   MeasurementCounters& countersFor(const Measurement& measurement);
   void prune();
@@ -244,7 +270,17 @@ class InertialNavigator {
                const ImuSample& imu);
   void tryInitialiseFromSensors();
   static BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision);
-  MeasurementOutcome startFromVision(const BodyFix& fix, const std::optional<BodyFix>& previous);
+  // Standing still since power-on: zero; else from the fix and one at most
+  // kMaxVelocityBaseline_ns before it (none: nullopt).
+  std::optional<StartVelocity> startVelocity(const BodyFix& fix,
+                                             const std::optional<BodyFix>& previous) const;
+  // Starts at the fix's pose and covariance with this velocity, the IMU biases
+  // from standing still or their turn-on spread.
+  MeasurementOutcome startFromVision(const BodyFix& fix, const StartVelocity& velocity);
+  // The gated vision fixes since the last one not gated, newest first, when they
+  // span vision_gated_restart_after_ns; else empty.
+  std::vector<GatedFix> gatedVisionRun() const;
+  std::optional<ResidualDrift> commonResidualDrift(const std::vector<GatedFix>& run) const;
   void restartIfVisionKeepsBeingGated();
   Eigen::Vector3d initialGyroBias(double& sigma_radps) const;
   double yawFromCompass(double magnetic_heading_rad) const;

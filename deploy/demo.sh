@@ -53,7 +53,7 @@ echo "demo: robot and backbone running in real time over DDS"
   --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
   --camera-height-m "$CAMERA_HEIGHT_M" \
   --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
-  --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
+  --fix-log-out "$OUT/fixes.txt" --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 
 kill -TERM "$BACKBONE_PID" && wait "$BACKBONE_PID" || true
 trap - EXIT
@@ -61,5 +61,6 @@ grep -v "^\[" "$OUT/backbone.log" || true
 
 echo "demo: the robot's pose at each frame (what it knew then) against the ground truth"
 "$BIN/lineloc-eval" --ground-truth "$OUT/dataset/groundtruth_cam0.tum" --estimate "$OUT/fused.tum" \
-  --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" --plot "$OUT/evaluation.png"
+  --fix-log "$OUT/fixes.txt" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
+  --plot "$OUT/evaluation.png"
 echo "demo: plot in $OUT/evaluation.png; fixes in $OUT/fixes.tum, backbone counters in $OUT/backbone-stats.json"

@@ -1,13 +1,26 @@
 #include "common/dds/dds_entities.h"
 
-#include <filesystem>
+#include <dds/ddsi/ddsi_cdrstream.h>
+#include <dds/ddsi/q_protocol.h>
 #include <fmt/format.h>
+
+#include <filesystem>
 #include <utility>
 
 namespace lineloc::dds {
 
 DdsError::DdsError(const std::string& what_failed, dds_return_t code)
     : std::runtime_error(fmt::format("DDS {} failed: {}", what_failed, dds_strretcode(code))) {}
+
+uint32_t serializedSizeBytes(const void* sample, const dds_topic_descriptor_t& descriptor) {
+  constexpr uint32_t kEncapsulationHeaderBytes = 4;
+  dds_ostream_t stream;
+  dds_ostream_init(&stream, 0, CDR_ENC_VERSION_1);
+  dds_stream_write(&stream, static_cast<const char*>(sample), descriptor.m_ops);
+  const uint32_t payload_bytes = stream.m_index;
+  dds_ostream_fini(&stream);
+  return kEncapsulationHeaderBytes + payload_bytes;
+}
 
 dds_return_t check(dds_return_t code, const char* what_failed) {
   if (code < 0) {
@@ -70,6 +83,8 @@ Qos::Qos(int32_t history_depth) : qos_(dds_create_qos()) {
   dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, history_depth);
 }
 
-Qos::~Qos() { dds_delete_qos(qos_); }
+Qos::~Qos() {
+  dds_delete_qos(qos_);
+}
 
 }  // namespace lineloc::dds

@@ -77,6 +77,16 @@ class Qos {
 template <typename Message>
 struct TopicTraits;
 
+// Bytes a sample puts on the wire: its CDR encoding (XCDR1, which Cyclone
+// writes for lineloc's final types) plus the 4-byte encapsulation header. The
+// RTPS submessage, UDP and IP headers around it are not counted.
+uint32_t serializedSizeBytes(const void* sample, const dds_topic_descriptor_t& descriptor);
+
+template <typename Message>
+uint32_t serializedSizeBytes(const Message& sample) {
+  return serializedSizeBytes(&sample, *TopicTraits<Message>::descriptor());
+}
+
 template <typename Message>
 class Writer {
  public:

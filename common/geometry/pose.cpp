@@ -1,5 +1,7 @@
 #include "common/geometry/pose.h"
 
+#include <Eigen/Cholesky>
+
 namespace lineloc {
 
 Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quaterniond& rotation) {
@@ -7,6 +9,20 @@ Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quat
   pose.linear() = rotation.normalized().toRotationMatrix();
   pose.translation() = translation;
   return pose;
+}
+
+Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
+                                      const Eigen::Isometry3d& truth) {
+  Eigen::Matrix<double, 6, 1> error;
+  error.head<3>() = truth.translation() - estimate.translation();
+  const Eigen::AngleAxisd rotation(truth.linear() * estimate.linear().transpose());
+  error.tail<3>() = rotation.angle() * rotation.axis();
+  return error;
+}
+
+double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {
+  const Eigen::Matrix<double, 6, 1> error = poseError(estimate.pose, truth);
+  return error.dot(estimate.covariance.ldlt().solve(error));
 }
 
 Matrix6d diagonalPoseCovariance(double position_sigma_m, double rotation_sigma_rad) {

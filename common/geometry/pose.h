@@ -24,6 +24,17 @@ Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quat
 // Translation-then-rotation standard deviations on the diagonal: diag(sp^2 I3, sr^2 I3).
 Matrix6d diagonalPoseCovariance(double position_sigma_m, double rotation_sigma_rad);
 
+// The error vector e = [dp; dtheta] taking `estimate` to `truth` in the
+// convention above: t_truth = t_est + dp, R_truth = Exp(dtheta) R_est.
+Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
+                                      const Eigen::Isometry3d& truth);
+
+// e^T Sigma^-1 e: the estimate's error in its own covariance, the normalized
+// estimation error squared (Bar-Shalom, Li & Kirubarajan, "Estimation with
+// Applications to Tracking and Navigation", 2001, §5.4.2); chi^2 with 6
+// degrees of freedom for a consistent estimate.
+double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth);
+
 // True when every entry of the pose and covariance is finite and the rotation is
 // orthonormal to within `tolerance`.
 bool isFinitePose(const PoseWithCovariance& pose, double tolerance = 1e-6);

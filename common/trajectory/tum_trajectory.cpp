@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/trajectory/line_records.h"
+
 namespace lineloc {
 namespace {
 
@@ -89,20 +91,7 @@ StampedPose parseTumLine(const std::string& line, const std::string& where) {
 }
 
 std::vector<StampedPose> readTumFile(const std::string& path) {
-  std::ifstream stream(path);
-  if (!stream) {
-    throw std::runtime_error(fmt::format("cannot open trajectory file '{}'", path));
-  }
-  std::vector<StampedPose> poses;
-  std::string line;
-  for (int line_number = 1; std::getline(stream, line); ++line_number) {
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') {
-      continue;
-    }
-    poses.push_back(parseTumLine(line, fmt::format("{}:{}", path, line_number)));
-  }
-  return poses;
+  return readLineRecords<StampedPose>(path, "trajectory file", parseTumLine);
 }
 
 }  // namespace lineloc

@@ -18,6 +18,7 @@
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
+#include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/agent/sensor_streams.h"
 #include "robot/input/image_prefetcher.h"
@@ -56,6 +57,8 @@ class FixReceiver {
       : reader_(participant, dds::Qos(kHistoryDepth)),
         robot_id_(config.robot_id),
         trajectory_(config.trajectory_out),
+        fix_log_(config.fix_log_out.empty() ? std::nullopt
+                                            : std::make_optional<FixLogWriter>(config.fix_log_out)),
         summary_(summary),
         handler_(std::move(handler)) {}
 
@@ -91,6 +94,10 @@ class FixReceiver {
     const PoseFixData fix = fromMessage(message);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
+    if (fix_log_) {
+      fix_log_->write({fix.stamp_ns, fix.T_world_camera, toString(fix.status), fix.inliers,
+                       fix.model_lines, fix.residual_rms_px});
+    }
     if (fix.status == lineloc_msg_FIX_OK) {
       trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});
       handler_(fix);
@@ -100,6 +107,7 @@ class FixReceiver {
   dds::Reader<lineloc_msg_PoseFix> reader_;
   std::string robot_id_;
   TumWriter trajectory_;
+  std::optional<FixLogWriter> fix_log_;
   RobotRunSummary& summary_;
   Handler handler_;
   std::unordered_map<uint32_t, int64_t> exposure_wall_ns_;
@@ -332,6 +340,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         receiver.expect(line_set.sequence_number, exposure_wall_ns);
         writer.write(message.message());
         ++summary.frames_sent;
+        summary.line_set_bytes.push_back(dds::serializedSizeBytes(message.message()));
         break;
       }
     }

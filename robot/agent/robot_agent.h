@@ -43,6 +43,8 @@ struct RobotConfig {
   std::string dds_config;
   std::string trajectory_out = "poses.tum";
   std::string fused_trajectory_out = "fused.tum";
+  // Every PoseFix received, with its status and covariance (fix_log.h); empty: none.
+  std::string fix_log_out;
   double state_rate_hz = 20.0;
   double wait_for_backbone_s = 5.0;
   double fix_timeout_s = 2.0;
@@ -60,6 +62,8 @@ struct RobotRunSummary {
   std::map<std::string, int> fixes_by_status;
   // Frame exposure -> PoseFix received, per answered frame.
   std::vector<int64_t> latency_ns;
+  // Each LineSet's bytes on the wire (dds::serializedSizeBytes), per frame sent.
+  std::vector<int64_t> line_set_bytes;
   std::string health;
 };
 

@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
   options.add("trajectory_out", config.trajectory_out, "TUM file the received fixes go to");
   options.add("fused_trajectory_out", config.fused_trajectory_out,
               "TUM file of the pose predicted at each frame (what the robot knew then)");
+  options.add("fix_log_out", config.fix_log_out,
+              "file every PoseFix received goes to: TUM pose, status, counts, covariance (empty: "
+              "none)");
   options.add("state_rate_hz", config.state_rate_hz, "RobotState publication rate");
   options.add("wait_for_backbone_s", config.wait_for_backbone_s,
               "how long to wait for a backbone before sending");
@@ -66,11 +69,14 @@ int main(int argc, char** argv) {
     std::cout << fmt::format(
         "lineloc-robot: {} frames sent ({} before the filter started), {} fixes received, {} "
         "dropped, {} applied, {} rejected; exposure -> fix median {:.2f} ms, p99 {:.2f} ms\n"
+        "lineloc-robot: LineSet on the wire median {} bytes, p99 {} bytes\n"
         "lineloc-robot: {} states published; {} sensor lines dropped; {}\n",
         summary.frames_sent, summary.frames_before_start, summary.fixes_received,
         summary.fixes_dropped, summary.fixes_applied, summary.fixes_rejected,
         lineloc::percentile(summary.latency_ns, 50) * 1e-6,
-        lineloc::percentile(summary.latency_ns, 99) * 1e-6, summary.states_published,
+        lineloc::percentile(summary.latency_ns, 99) * 1e-6,
+        lineloc::percentile(summary.line_set_bytes, 50),
+        lineloc::percentile(summary.line_set_bytes, 99), summary.states_published,
         summary.sensor_lines_dropped, summary.health);
     for (const auto& [status, count] : summary.fixes_by_status) {
       std::cout << fmt::format("lineloc-robot:   {:>6} fixes {}\n", count, status);

@@ -1,5 +1,6 @@
 // lineloc-eval: compares an estimated TUM trajectory with ground truth in the
-// map frame, prints the error table and writes the evaluation plot.
+// map frame, prints the error table and writes the evaluation plot; with the
+// robot's fix log, also how consistent the backbone's fixes were.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -9,6 +10,7 @@
 
 #include "common/config/program_options.h"
 #include "sim/eval/evaluation_plot.h"
+#include "sim/eval/fix_consistency.h"
 #include "sim/eval/trajectory_evaluation.h"
 #include "sim/world/city_mesh.h"
 
@@ -17,6 +19,7 @@ namespace {
 struct EvalConfig {
   std::string ground_truth;
   std::string estimate;
+  std::string fix_log;
   std::string plot = "evaluation.png";
   std::string city_model;
   std::vector<double> site_origin;
@@ -50,6 +53,9 @@ int main(int argc, char** argv) {
                                   "accuracy of an estimated trajectory against ground truth");
   options.add("ground_truth", config.ground_truth, "ground-truth TUM file (required)");
   options.add("estimate", config.estimate, "estimated TUM file (required)");
+  options.add("fix_log", config.fix_log,
+              "the robot's fix log (lineloc-robot --fix-log-out): each OK fix's error in its own "
+              "covariance, and the fixes beyond 3 sigma (empty: none)");
   options.add("plot", config.plot, "PNG written with the top view and errors over time");
   options.add("city_model", config.city_model,
               "city model whose footprints the plot shows (CityJSON / .jsonl; empty: none)");
@@ -78,6 +84,13 @@ int main(int argc, char** argv) {
     const lineloc::TrajectoryEvaluation evaluation =
         lineloc::evaluateTrajectory(ground_truth, estimate, evaluation_options);
     std::cout << lineloc::formatEvaluationTable(evaluation, evaluation_options);
+    if (!config.fix_log.empty()) {
+      const lineloc::FixConsistencyOptions consistency_options{config.max_ground_truth_gap_s};
+      std::cout << lineloc::formatFixConsistency(
+          lineloc::evaluateFixConsistency(ground_truth, lineloc::readFixLog(config.fix_log),
+                                          consistency_options),
+          consistency_options);
+    }
     const std::optional<lineloc::SceneMesh> footprints = loadFootprints(config);
     const cv::Mat plot =
         lineloc::drawEvaluationPlot(ground_truth, estimate, evaluation, evaluation_options,

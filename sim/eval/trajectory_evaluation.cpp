@@ -43,32 +43,6 @@ ErrorStatistics statistics(std::vector<double> values) {
   return stats;
 }
 
-// Ground truth at `stamp_ns`, or nothing outside its span or across a gap.
-std::optional<Eigen::Isometry3d> interpolate(const std::vector<StampedPose>& truth,
-                                             int64_t stamp_ns, int64_t max_gap_ns) {
-  const auto after = std::lower_bound(
-      truth.begin(), truth.end(), stamp_ns,
-      [](const StampedPose& pose, int64_t stamp) { return pose.stamp_ns < stamp; });
-  if (after == truth.end()) {
-    return std::nullopt;
-  }
-  if (after->stamp_ns == stamp_ns) {
-    return after->pose;
-  }
-  if (after == truth.begin() || after->stamp_ns - (after - 1)->stamp_ns > max_gap_ns) {
-    return std::nullopt;
-  }
-  const StampedPose& before = *(after - 1);
-  const double s = static_cast<double>(stamp_ns - before.stamp_ns) /
-                   static_cast<double>(after->stamp_ns - before.stamp_ns);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::Quaterniond(before.pose.linear())
-                      .slerp(s, Eigen::Quaterniond(after->pose.linear()))
-                      .toRotationMatrix();
-  pose.translation() = (1.0 - s) * before.pose.translation() + s * after->pose.translation();
-  return pose;
-}
-
 struct MatchedPose {
   int64_t stamp_ns;
   Eigen::Isometry3d truth;
@@ -104,6 +78,31 @@ void relativePoseErrors(const std::vector<MatchedPose>& matched, double delta_s,
 
 }  // namespace
 
+std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<StampedPose>& truth,
+                                                        int64_t stamp_ns, int64_t max_gap_ns) {
+  const auto after = std::lower_bound(
+      truth.begin(), truth.end(), stamp_ns,
+      [](const StampedPose& pose, int64_t stamp) { return pose.stamp_ns < stamp; });
+  if (after == truth.end()) {
+    return std::nullopt;
+  }
+  if (after->stamp_ns == stamp_ns) {
+    return after->pose;
+  }
+  if (after == truth.begin() || after->stamp_ns - (after - 1)->stamp_ns > max_gap_ns) {
+    return std::nullopt;
+  }
+  const StampedPose& before = *(after - 1);
+  const double s = static_cast<double>(stamp_ns - before.stamp_ns) /
+                   static_cast<double>(after->stamp_ns - before.stamp_ns);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::Quaterniond(before.pose.linear())
+                      .slerp(s, Eigen::Quaterniond(after->pose.linear()))
+                      .toRotationMatrix();
+  pose.translation() = (1.0 - s) * before.pose.translation() + s * after->pose.translation();
+  return pose;
+}
+
 TrajectoryEvaluation evaluateTrajectory(const std::vector<StampedPose>& ground_truth,
                                         const std::vector<StampedPose>& estimate,
                                         const EvaluationOptions& options) {
@@ -122,7 +121,7 @@ TrajectoryEvaluation evaluateTrajectory(const std::vector<StampedPose>& ground_t
   int within = 0;
   for (const StampedPose& pose : estimate) {
     const std::optional<Eigen::Isometry3d> truth =
-        interpolate(ground_truth, pose.stamp_ns, max_gap_ns);
+        interpolateGroundTruth(ground_truth, pose.stamp_ns, max_gap_ns);
     if (!truth) {
       continue;
     }

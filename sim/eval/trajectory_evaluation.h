@@ -63,6 +63,11 @@ struct TrajectoryEvaluation {
   std::optional<double> time_to_first_good_fix_s;
 };
 
+// Ground truth (sorted by time) at `stamp_ns`: linear in position, slerped in
+// rotation; nothing outside its span or across a gap longer than max_gap_ns.
+std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<StampedPose>& truth,
+                                                        int64_t stamp_ns, int64_t max_gap_ns);
+
 // Both trajectories sorted by time. kNoGroundTruth: fewer than two ground-truth
 // poses. kNoOverlap: no estimate falls inside the ground truth's time span.
 TrajectoryEvaluation evaluateTrajectory(const std::vector<StampedPose>& ground_truth,

@@ -1,0 +1,126 @@
+#include "common/trajectory/fix_log.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/trajectory/line_records.h"
+#include "common/trajectory/tum_trajectory.h"
+
+namespace lineloc {
+namespace {
+
+constexpr int kTumFields = 8;
+constexpr int kCovarianceFields = 21;
+constexpr int kFieldCount = kTumFields + 4 + kCovarianceFields;
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::istringstream stream(line);
+  std::vector<std::string> fields;
+  for (std::string field; stream >> field;) {
+    fields.push_back(field);
+  }
+  return fields;
+}
+
+uint32_t parseCount(const std::string& text, const char* name, const std::string& where) {
+  uint32_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    throw std::runtime_error(
+        fmt::format("{}: {} '{}' is not an unsigned integer", where, name, text));
+  }
+  return value;
+}
+
+double parseFinite(const std::string& text, const char* name, const std::string& where) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    throw std::runtime_error(fmt::format("{}: {} '{}' is not a finite number", where, name, text));
+  }
+  return value;
+}
+
+bool isStatusName(const std::string& text) {
+  return !text.empty() &&
+         text.find_first_not_of("abcdefghijklmnopqrstuvwxyz_") == std::string::npos;
+}
+
+}  // namespace
+
+FixLogWriter::FixLogWriter(const std::string& path) : stream_(path) {
+  if (!stream_) {
+    throw std::runtime_error(fmt::format("cannot open fix log '{}' for writing", path));
+  }
+  stream_ << "# t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px "
+             "covariance upper triangle c00 c01 .. c55 (m, rad; e = [dp; dtheta])\n";
+}
+
+void FixLogWriter::write(const LoggedFix& fix) {
+  stream_ << formatFixLogLine(fix) << '\n';
+  stream_.flush();
+}
+
+std::string formatFixLogLine(const LoggedFix& fix) {
+  std::string line = formatTumLine({fix.stamp_ns, fix.T_world_camera.pose});
+  line += fmt::format(" {} {} {} {:.3f}", fix.status, fix.inliers, fix.model_lines,
+                      fix.residual_rms_px);
+  for (int row = 0; row < 6; ++row) {
+    for (int col = row; col < 6; ++col) {
+      line += fmt::format(" {:.9g}", fix.T_world_camera.covariance(row, col));
+    }
+  }
+  return line;
+}
+
+LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
+  const std::vector<std::string> fields = splitFields(line);
+  if (static_cast<int>(fields.size()) != kFieldCount) {
+    throw std::runtime_error(fmt::format(
+        "{}: expected {} fields (a TUM pose, status, inliers, model_lines, residual_rms_px and "
+        "21 covariance entries), got {}",
+        where, kFieldCount, fields.size()));
+  }
+  std::string tum_line;
+  for (int i = 0; i < kTumFields; ++i) {
+    tum_line += fields[i] + ' ';
+  }
+  const StampedPose stamped = parseTumLine(tum_line, where);
+  LoggedFix fix;
+  fix.stamp_ns = stamped.stamp_ns;
+  fix.T_world_camera.pose = stamped.pose;
+  fix.status = fields[kTumFields];
+  if (!isStatusName(fix.status)) {
+    throw std::runtime_error(
+        fmt::format("{}: status '{}' is not a status name", where, fix.status));
+  }
+  fix.inliers = parseCount(fields[kTumFields + 1], "inliers", where);
+  fix.model_lines = parseCount(fields[kTumFields + 2], "model_lines", where);
+  fix.residual_rms_px = parseFinite(fields[kTumFields + 3], "residual_rms_px", where);
+  if (fix.residual_rms_px < 0.0) {
+    throw std::runtime_error(fmt::format("{}: residual_rms_px is negative", where));
+  }
+  int field = kTumFields + 4;
+  for (int row = 0; row < 6; ++row) {
+    for (int col = row; col < 6; ++col) {
+      const double value = parseFinite(fields[field++], "covariance entry", where);
+      fix.T_world_camera.covariance(row, col) = value;
+      fix.T_world_camera.covariance(col, row) = value;
+    }
+  }
+  if (fix.T_world_camera.covariance.llt().info() != Eigen::Success) {
+    throw std::runtime_error(fmt::format("{}: covariance is not positive definite", where));
+  }
+  return fix;
+}
+
+std::vector<LoggedFix> readFixLog(const std::string& path) {
+  return readLineRecords<LoggedFix>(path, "fix log", parseFixLogLine);
+}
+
+}  // namespace lineloc

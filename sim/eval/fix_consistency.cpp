@@ -1,0 +1,47 @@
+#include "sim/eval/fix_consistency.h"
+
+#include <fmt/format.h>
+
+#include "common/time/percentile.h"
+#include "sim/eval/trajectory_evaluation.h"
+
+namespace lineloc {
+
+FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_truth,
+                                      const std::vector<LoggedFix>& fixes,
+                                      const FixConsistencyOptions& options) {
+  const auto max_gap_ns = static_cast<int64_t>(options.max_ground_truth_gap_s * 1e9);
+  FixConsistency consistency;
+  consistency.answers = static_cast<int>(fixes.size());
+  for (const LoggedFix& fix : fixes) {
+    if (fix.status != "ok") {
+      continue;
+    }
+    ++consistency.ok;
+    const auto truth = interpolateGroundTruth(ground_truth, fix.stamp_ns, max_gap_ns);
+    if (!truth) {
+      continue;
+    }
+    const double nees = normalizedErrorSquared(fix.T_world_camera, *truth);
+    consistency.nees.push_back(nees);
+    consistency.beyond_bound += nees > options.nees_bound ? 1 : 0;
+  }
+  return consistency;
+}
+
+std::string formatFixConsistency(const FixConsistency& consistency,
+                                 const FixConsistencyOptions& options) {
+  if (consistency.nees.empty()) {
+    return fmt::format("fixes: {} answers, {} ok, none with ground truth\n", consistency.answers,
+                       consistency.ok);
+  }
+  return fmt::format(
+      "fixes: {} answers, {} ok; NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = "
+      "{:.2f} (precise wrong poses, {:.2f} % of {} with ground truth)\n",
+      consistency.answers, consistency.ok, percentile(consistency.nees, 50),
+      percentile(consistency.nees, 99), consistency.beyond_bound, options.nees_bound,
+      100.0 * consistency.beyond_bound / static_cast<double>(consistency.nees.size()),
+      consistency.nees.size());
+}
+
+}  // namespace lineloc

@@ -1,0 +1,39 @@
+// The backbone's answers against ground truth (lineloc-eval --fix-log): each
+// OK fix's normalized estimation error squared (NEES, common/geometry/pose.h)
+// and the fixes beyond chi^2_6(0.9973), the 6-D equivalent of three sigma.
+// Those are precise wrong poses, which the system must not give (paper §3.2):
+// a consistent estimator exceeds the bound in 0.27 % of fixes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/trajectory/fix_log.h"
+#include "common/trajectory/tum_trajectory.h"
+
+namespace lineloc {
+
+struct FixConsistencyOptions {
+  // Ground truth is not interpolated across gaps longer than this (s).
+  double max_ground_truth_gap_s = 0.5;
+  // chi^2_6(0.9973).
+  double nees_bound = 20.06;
+};
+
+struct FixConsistency {
+  int answers = 0;
+  int ok = 0;
+  // NEES of each OK fix with ground truth at its stamp, in log order.
+  std::vector<double> nees;
+  int beyond_bound = 0;
+};
+
+FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_truth,
+                                      const std::vector<LoggedFix>& fixes,
+                                      const FixConsistencyOptions& options);
+
+// One line: answers, OK fixes, NEES median and p99, fixes beyond the bound.
+std::string formatFixConsistency(const FixConsistency& consistency,
+                                 const FixConsistencyOptions& options);
+
+}  // namespace lineloc

@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/trajectory/fix_log.h"
+#include "common/trajectory/tum_trajectory.h"
+
+namespace lineloc {
+namespace {
+
+std::string temporaryPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()))).string();
+}
+
+LoggedFix sampleFix() {
+  LoggedFix fix;
+  fix.stamp_ns = 1'700'000'009'533'333'238;
+  fix.T_world_camera.pose.translation() = Eigen::Vector3d(8.18, -79.75, 1.68);
+  fix.T_world_camera.pose.linear() =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 3).normalized()).toRotationMatrix();
+  Eigen::Matrix<double, 6, 6> square = Eigen::Matrix<double, 6, 6>::Random();
+  fix.T_world_camera.covariance =
+      1e-4 * (square * square.transpose()) + 1e-6 * Eigen::Matrix<double, 6, 6>::Identity();
+  fix.status = "ok";
+  fix.inliers = 17;
+  fix.model_lines = 412;
+  fix.residual_rms_px = 1.25;
+  return fix;
+}
+
+TEST(FixLog, WriteThenReadKeepsPoseCovarianceAndCounts) {
+  const std::string path = temporaryPath("fix_log_roundtrip");
+  const LoggedFix written = sampleFix();
+  LoggedFix not_ok = written;
+  not_ok.status = "too_few_matches";
+  {
+    FixLogWriter writer(path);
+    writer.write(written);
+    writer.write(not_ok);
+  }
+  const std::vector<LoggedFix> fixes = readFixLog(path);
+  ASSERT_EQ(fixes.size(), 2u);
+  EXPECT_EQ(fixes[0].stamp_ns, written.stamp_ns);
+  EXPECT_TRUE(fixes[0].T_world_camera.pose.isApprox(written.T_world_camera.pose, 1e-6));
+  EXPECT_TRUE(fixes[0].T_world_camera.covariance.isApprox(written.T_world_camera.covariance, 1e-8));
+  EXPECT_EQ(fixes[0].status, "ok");
+  EXPECT_EQ(fixes[0].inliers, 17u);
+  EXPECT_EQ(fixes[0].model_lines, 412u);
+  EXPECT_DOUBLE_EQ(fixes[0].residual_rms_px, 1.25);
+  EXPECT_EQ(fixes[1].status, "too_few_matches");
+  std::filesystem::remove(path);
+}
+
+TEST(FixLog, TheFirstEightFieldsAreATumLine) {
+  const std::string line = formatFixLogLine(sampleFix());
+  EXPECT_EQ(line.rfind(formatTumLine({sampleFix().stamp_ns, sampleFix().T_world_camera.pose}), 0),
+            0u);
+}
+
+// Replaces field `index` (0-based) of a good line.
+std::string withField(int index, const std::string& value) {
+  std::istringstream stream(formatFixLogLine(sampleFix()));
+  std::string line;
+  int i = 0;
+  for (std::string field; stream >> field; ++i) {
+    line += (i == index ? value : field) + ' ';
+  }
+  return line;
+}
+
+void expectError(const std::string& line, const std::string& expected) {
+  try {
+    parseFixLogLine(line, "log.txt:3");
+    FAIL() << "accepted: " << line;
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("log.txt:3"), std::string::npos) << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
+TEST(FixLog, MalformedLinesNameTheLineAndTheField) {
+  expectError("", "expected 33 fields");
+  expectError(formatFixLogLine(sampleFix()) + " 0.5", "got 34");
+  expectError(withField(4, "2.0"), "quaternion norm");
+  expectError(withField(8, "OK"), "status 'OK'");
+  expectError(withField(9, "-3"), "inliers '-3'");
+  expectError(withField(10, "4.5"), "model_lines '4.5'");
+  expectError(withField(11, "-1"), "residual_rms_px is negative");
+  expectError(withField(11, "nan"), "residual_rms_px 'nan'");
+  expectError(withField(12, "inf"), "covariance entry 'inf'");
+  expectError(withField(12, "-1e-4"), "not positive definite");
+}
+
+TEST(FixLog, MissingFileIsNamed) {
+  try {
+    readFixLog("/nonexistent/fixes.txt");
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("/nonexistent/fixes.txt"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include "sim/eval/fix_consistency.h"
+
+namespace lineloc {
+namespace {
+
+// Ground truth along x at 1 m/s for 10 s, every 0.1 s.
+std::vector<StampedPose> straightDrive() {
+  std::vector<StampedPose> truth;
+  for (int64_t i = 0; i <= 100; ++i) {
+    StampedPose pose;
+    pose.stamp_ns = i * 100'000'000;
+    pose.pose.translation() = Eigen::Vector3d(0.1 * static_cast<double>(i), 0.0, 1.5);
+    truth.push_back(pose);
+  }
+  return truth;
+}
+
+// A fix at `stamp_ns` (between ground-truth samples), `sigmas` standard
+// deviations (2 cm) off in y.
+LoggedFix fixOff(int64_t stamp_ns, double sigmas, const std::string& status = "ok") {
+  LoggedFix fix;
+  fix.stamp_ns = stamp_ns;
+  fix.status = status;
+  fix.T_world_camera.covariance = diagonalPoseCovariance(0.02, 0.001);
+  fix.T_world_camera.pose.translation() =
+      Eigen::Vector3d(1e-9 * static_cast<double>(stamp_ns), 0.02 * sigmas, 1.5);
+  return fix;
+}
+
+TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
+  const std::vector<LoggedFix> fixes = {
+      fixOff(2'050'000'000, 2.0),                      // NEES 4
+      fixOff(3'050'000'000, 5.0),                      // NEES 25: precise and wrong
+      fixOff(4'050'000'000, 50.0, "too_few_matches"),  // not an answer with a pose
+      fixOff(20'000'000'000, 0.0),                     // after the ground truth ends
+  };
+  const FixConsistencyOptions options;
+  const FixConsistency consistency = evaluateFixConsistency(straightDrive(), fixes, options);
+  EXPECT_EQ(consistency.answers, 4);
+  EXPECT_EQ(consistency.ok, 3);
+  ASSERT_EQ(consistency.nees.size(), 2u);
+  EXPECT_NEAR(consistency.nees[0], 4.0, 1e-6);
+  EXPECT_NEAR(consistency.nees[1], 25.0, 1e-6);
+  EXPECT_EQ(consistency.beyond_bound, 1);
+  const std::string line = formatFixConsistency(consistency, options);
+  EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;
+}
+
+TEST(FixConsistency, SaysSoWhenNoFixHasGroundTruth) {
+  const FixConsistency consistency =
+      evaluateFixConsistency(straightDrive(), {fixOff(20'000'000'000, 0.0)}, {});
+  EXPECT_TRUE(consistency.nees.empty());
+  EXPECT_EQ(formatFixConsistency(consistency, {}),
+            "fixes: 1 answers, 1 ok, none with ground truth\n");
+}
+
+}  // namespace
+}  // namespace lineloc

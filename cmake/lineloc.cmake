@@ -18,6 +18,7 @@ function(lineloc_add_unit_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
                         GTest::gtest_main)
+  target_precompile_headers(${name} REUSE_FROM lineloc_test_pch)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
@@ -86,6 +87,7 @@ function(lineloc_add_integration_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
                         GTest::gtest_main)
+  target_precompile_headers(${name} REUSE_FROM lineloc_test_pch)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}"

@@ -92,9 +92,11 @@ TEST(LinePack, MalformedPacksAreRefusedNamingTheBuilding) {
   expectRefused(pack + "x", "not a whole number");
 
   std::string unknown_kind = pack;
-  unknown_kind.replace(8, 2, std::string("\x00\x05", 2));
+  unknown_kind[8] = '\x00';  // kind, big-endian int16
+  unknown_kind[9] = '\x05';
   expectRefused(unknown_kind, "unknown kind 5");
-  unknown_kind.replace(8, 2, std::string("\xFF\xFF", 2));
+  unknown_kind[8] = '\xFF';
+  unknown_kind[9] = '\xFF';
   expectRefused(unknown_kind, "unknown kind -1");
 
   for (const double bad :

@@ -517,9 +517,8 @@ std::vector<InertialNavigator::GatedFix> InertialNavigator::gatedVisionRun() con
     if (*it->second.outcome != MeasurementOutcome::kGated || !it->second.vision_residual) {
       return {};
     }
-    run.push_back({bodyFixOf(it->first, *vision), *it->second.vision_residual,
-                   vision->T_world_camera.covariance});
-    if (run.front().fix.stamp_ns - it->first >= config_.vision_gated_restart_after_ns) {
+    run.push_back({it->first, vision, *it->second.vision_residual});
+    if (run.front().stamp_ns - it->first >= config_.vision_gated_restart_after_ns) {
       return run;
     }
   }
@@ -536,7 +535,7 @@ std::optional<InertialNavigator::ResidualDrift> InertialNavigator::commonResidua
   Eigen::Vector3d position_mean = Eigen::Vector3d::Zero();
   Eigen::Vector3d attitude_mean = Eigen::Vector3d::Zero();
   for (const GatedFix& gated : run) {
-    dt_s.push_back(static_cast<double>(gated.fix.stamp_ns - run.front().fix.stamp_ns) * kNsToS);
+    dt_s.push_back(static_cast<double>(gated.stamp_ns - run.front().stamp_ns) * kNsToS);
     position_mean += gated.residual.head<3>() / n;
     attitude_mean += gated.residual.tail<3>() / n;
   }
@@ -556,8 +555,9 @@ std::optional<InertialNavigator::ResidualDrift> InertialNavigator::commonResidua
     const Eigen::Vector3d position_error =
         run[i].residual.head<3>() - position_mean - dt_s[i] * drift.velocity_mps;
     const Eigen::Vector3d attitude_error = run[i].residual.tail<3>() - attitude_mean;
-    const Eigen::Matrix3d position_covariance = run[i].fix_covariance.topLeftCorner<3, 3>();
-    const Eigen::Matrix3d attitude_covariance = run[i].fix_covariance.bottomRightCorner<3, 3>();
+    const Matrix6d& fix_covariance = run[i].vision->T_world_camera.covariance;
+    const Eigen::Matrix3d position_covariance = fix_covariance.topLeftCorner<3, 3>();
+    const Eigen::Matrix3d attitude_covariance = fix_covariance.bottomRightCorner<3, 3>();
     if (position_error.dot(position_covariance.ldlt().solve(position_error)) >
             gate_by_dimension_[3] ||
         attitude_error.dot(attitude_covariance.ldlt().solve(attitude_error)) >
@@ -584,12 +584,12 @@ void InertialNavigator::restartIfVisionKeepsBeingGated() {
   }
   const GatedFix& newest = run.front();
   const auto after = std::upper_bound(
-      snapshots_.begin(), snapshots_.end(), newest.fix.stamp_ns,
+      snapshots_.begin(), snapshots_.end(), newest.stamp_ns,
       [](int64_t stamp, const Snapshot& snapshot) { return stamp < snapshot.state.stamp_ns; });
   const Snapshot& filter = after == snapshots_.begin() ? snapshots_.front() : *std::prev(after);
   // The filter's velocity, corrected by the drift; its error also grows with
   // the attitude error the fixes show, g |theta| over half the run.
-  const double run_s = static_cast<double>(newest.fix.stamp_ns - run.back().fix.stamp_ns) * kNsToS;
+  const double run_s = static_cast<double>(newest.stamp_ns - run.back().stamp_ns) * kNsToS;
   const double tilt_velocity_sigma_mps =
       config_.gravity_mps2 * drift->attitude_offset_rad.norm() * 0.5 * run_s;
   const double velocity_variance =
@@ -597,7 +597,8 @@ void InertialNavigator::restartIfVisionKeepsBeingGated() {
       drift->velocity_variance + tilt_velocity_sigma_mps * tilt_velocity_sigma_mps;
   const StartVelocity velocity{filter.state.v_world_body + drift->velocity_mps,
                                std::sqrt(velocity_variance)};
-  if (startFromVision(newest.fix, velocity) == MeasurementOutcome::kAccepted) {
+  if (startFromVision(bodyFixOf(newest.stamp_ns, *newest.vision), velocity) ==
+      MeasurementOutcome::kAccepted) {
     ++counters_.restarts;
   }
 }

@@ -241,10 +241,11 @@ class InertialNavigator {
     Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
     Matrix6d covariance = Matrix6d::Identity();
   };
+  // A gated vision fix in measurements_, with its residual against the filter.
   struct GatedFix {
-    BodyFix fix;
+    int64_t stamp_ns = 0;
+    const VisionPayload* vision = nullptr;
     Eigen::Matrix<double, 6, 1> residual;
-    Matrix6d fix_covariance;  // of the camera pose, as the residual
   };
   struct ResidualDrift {
     Eigen::Vector3d velocity_mps;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kTumFields = 8;
 constexpr int kCovarianceFields = 21;
-constexpr int kFieldCount = kTumFields + 4 + kCovarianceFields;
+constexpr int kFieldCount = kTumFields + 5 + kCovarianceFields;
 
 std::vector<std::string> splitFields(const std::string& line) {
   std::istringstream stream(line);
@@ -46,6 +46,14 @@ double parseFinite(const std::string& text, const char* name, const std::string&
   return value;
 }
 
+double parseNonNegative(const std::string& text, const char* name, const std::string& where) {
+  const double value = parseFinite(text, name, where);
+  if (value < 0.0) {
+    throw std::runtime_error(fmt::format("{}: {} is negative", where, name));
+  }
+  return value;
+}
+
 bool isStatusName(const std::string& text) {
   return !text.empty() &&
          text.find_first_not_of("abcdefghijklmnopqrstuvwxyz_") == std::string::npos;
@@ -57,7 +65,7 @@ FixLogWriter::FixLogWriter(const std::string& path) : stream_(path) {
   if (!stream_) {
     throw std::runtime_error(fmt::format("cannot open fix log '{}' for writing", path));
   }
-  stream_ << "# t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px "
+  stream_ << "# t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px latency_ms "
              "covariance upper triangle c00 c01 .. c55 (m, rad; e = [dp; dtheta])\n";
 }
 
@@ -68,8 +76,8 @@ void FixLogWriter::write(const LoggedFix& fix) {
 
 std::string formatFixLogLine(const LoggedFix& fix) {
   std::string line = formatTumLine({fix.stamp_ns, fix.T_world_camera.pose});
-  line += fmt::format(" {} {} {} {:.3f}", fix.status, fix.inliers, fix.model_lines,
-                      fix.residual_rms_px);
+  line += fmt::format(" {} {} {} {:.3f} {:.3f}", fix.status, fix.inliers, fix.model_lines,
+                      fix.residual_rms_px, fix.latency_ms);
   for (int row = 0; row < 6; ++row) {
     for (int col = row; col < 6; ++col) {
       line += fmt::format(" {:.9g}", fix.T_world_camera.covariance(row, col));
@@ -82,8 +90,8 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
   const std::vector<std::string> fields = splitFields(line);
   if (static_cast<int>(fields.size()) != kFieldCount) {
     throw std::runtime_error(fmt::format(
-        "{}: expected {} fields (a TUM pose, status, inliers, model_lines, residual_rms_px and "
-        "21 covariance entries), got {}",
+        "{}: expected {} fields (a TUM pose, status, inliers, model_lines, residual_rms_px, "
+        "latency_ms and 21 covariance entries), got {}",
         where, kFieldCount, fields.size()));
   }
   std::string tum_line;
@@ -101,11 +109,9 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
   }
   fix.inliers = parseCount(fields[kTumFields + 1], "inliers", where);
   fix.model_lines = parseCount(fields[kTumFields + 2], "model_lines", where);
-  fix.residual_rms_px = parseFinite(fields[kTumFields + 3], "residual_rms_px", where);
-  if (fix.residual_rms_px < 0.0) {
-    throw std::runtime_error(fmt::format("{}: residual_rms_px is negative", where));
-  }
-  int field = kTumFields + 4;
+  fix.residual_rms_px = parseNonNegative(fields[kTumFields + 3], "residual_rms_px", where);
+  fix.latency_ms = parseNonNegative(fields[kTumFields + 4], "latency_ms", where);
+  int field = kTumFields + 5;
   for (int row = 0; row < 6; ++row) {
     for (int col = row; col < 6; ++col) {
       const double value = parseFinite(fields[field++], "covariance entry", where);

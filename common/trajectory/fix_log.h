@@ -3,7 +3,10 @@
 // counts and the pose's 6 x 6 covariance (upper triangle, row-major, in the
 // error convention of common/geometry/pose.h):
 //
-//   t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px c00 c01 .. c05 c11 .. c55
+//   t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px latency_ms c00 .. c55
+//
+// latency_ms runs from the frame's exposure to the robot receiving the answer,
+// so t + latency_ms is when the robot's estimate first includes the fix.
 //
 // The first eight fields alone are a TUM trajectory. With the covariance, a run
 // can be checked for precise wrong poses against ground truth (lineloc-eval
@@ -26,6 +29,7 @@ struct LoggedFix {
   uint32_t inliers = 0;
   uint32_t model_lines = 0;
   double residual_rms_px = 0.0;
+  double latency_ms = 0.0;
 };
 
 // Appends fixes, flushing each line so a killed process leaves every fix so far.
@@ -44,7 +48,7 @@ std::string formatFixLogLine(const LoggedFix& fix);
 // Parses one line; `where` names it in error messages. Throws
 // std::runtime_error on a malformed pose (as parseTumLine), a status that is
 // not lower-case letters and underscores, counts that are not unsigned
-// integers, a residual that is negative or not finite, or a covariance that
+// integers, a residual or latency that is negative or not finite, or a covariance that
 // is not finite and positive definite.
 LoggedFix parseFixLogLine(const std::string& line, const std::string& where);
 

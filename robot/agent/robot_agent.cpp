@@ -89,14 +89,16 @@ class FixReceiver {
       spdlog::warn("dropped a PoseFix for unknown or answered frame {}", message.sequence_number);
       return;
     }
-    summary_.latency_ns.push_back(wallClockNs() - exposure->second);
+    const int64_t latency_ns = wallClockNs() - exposure->second;
+    summary_.latency_ns.push_back(latency_ns);
     exposure_wall_ns_.erase(exposure);
     const PoseFixData fix = fromMessage(message);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
       fix_log_->write({fix.stamp_ns, fix.T_world_camera, toString(fix.status), fix.inliers,
-                       fix.model_lines, fix.residual_rms_px});
+                       fix.model_lines, fix.residual_rms_px,
+                       1e-6 * static_cast<double>(latency_ns)});
     }
     if (fix.status == lineloc_msg_FIX_OK) {
       trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});

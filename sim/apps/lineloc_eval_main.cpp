@@ -45,6 +45,27 @@ std::optional<lineloc::SceneMesh> loadFootprints(const EvalConfig& config) {
   return lineloc::buildCityMesh(model, origin).mesh;
 }
 
+// How consistent the backbone's fixes were, and the trajectory's error from
+// the first OK fix on (the accuracy bounds hold "after the first fix").
+void printFixReport(const EvalConfig& config, const std::vector<lineloc::StampedPose>& ground_truth,
+                    const std::vector<lineloc::StampedPose>& estimate,
+                    lineloc::EvaluationOptions evaluation_options) {
+  const lineloc::FixConsistencyOptions consistency_options{config.max_ground_truth_gap_s};
+  const lineloc::FixConsistency consistency = lineloc::evaluateFixConsistency(
+      ground_truth, lineloc::readFixLog(config.fix_log), consistency_options);
+  std::cout << lineloc::formatFixConsistency(consistency, consistency_options);
+  if (!consistency.first_ok_received_ns || ground_truth.empty()) {
+    return;
+  }
+  evaluation_options.evaluate_from_ns = *consistency.first_ok_received_ns;
+  std::cout << fmt::format(
+      "\nafter the first OK fix (received {:.3f} s after the ground truth starts):\n",
+      1e-9 *
+          static_cast<double>(*consistency.first_ok_received_ns - ground_truth.front().stamp_ns));
+  std::cout << lineloc::formatEvaluationTable(
+      lineloc::evaluateTrajectory(ground_truth, estimate, evaluation_options), evaluation_options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -85,11 +106,7 @@ int main(int argc, char** argv) {
         lineloc::evaluateTrajectory(ground_truth, estimate, evaluation_options);
     std::cout << lineloc::formatEvaluationTable(evaluation, evaluation_options);
     if (!config.fix_log.empty()) {
-      const lineloc::FixConsistencyOptions consistency_options{config.max_ground_truth_gap_s};
-      std::cout << lineloc::formatFixConsistency(
-          lineloc::evaluateFixConsistency(ground_truth, lineloc::readFixLog(config.fix_log),
-                                          consistency_options),
-          consistency_options);
+      printFixReport(config, ground_truth, estimate, evaluation_options);
     }
     const std::optional<lineloc::SceneMesh> footprints = loadFootprints(config);
     const cv::Mat plot =

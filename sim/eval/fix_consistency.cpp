@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "common/time/percentile.h"
 #include "sim/eval/trajectory_evaluation.h"
 
@@ -18,6 +20,9 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
       continue;
     }
     ++consistency.ok;
+    if (!consistency.first_ok_received_ns) {
+      consistency.first_ok_received_ns = fix.stamp_ns + std::llround(fix.latency_ms * 1e6);
+    }
     const auto truth = interpolateGroundTruth(ground_truth, fix.stamp_ns, max_gap_ns);
     if (!truth) {
       continue;

@@ -5,6 +5,8 @@
 // a consistent estimator exceeds the bound in 0.27 % of fixes.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,10 @@ struct FixConsistencyOptions {
 struct FixConsistency {
   int answers = 0;
   int ok = 0;
+  // When the robot received the first OK fix (its stamp plus its latency),
+  // whether or not ground truth covers it: its estimate includes a fix from
+  // the next frame stamped at or after this on.
+  std::optional<int64_t> first_ok_received_ns;
   // NEES of each OK fix with ground truth at its stamp, in log order.
   std::vector<double> nees;
   int beyond_bound = 0;

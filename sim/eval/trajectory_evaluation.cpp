@@ -120,6 +120,9 @@ TrajectoryEvaluation evaluateTrajectory(const std::vector<StampedPose>& ground_t
   Eigen::Vector3d axis_sum_squares = Eigen::Vector3d::Zero();
   int within = 0;
   for (const StampedPose& pose : estimate) {
+    if (pose.stamp_ns < options.evaluate_from_ns) {
+      continue;
+    }
     const std::optional<Eigen::Isometry3d> truth =
         interpolateGroundTruth(ground_truth, pose.stamp_ns, max_gap_ns);
     if (!truth) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ struct EvaluationOptions {
   double rotation_threshold_rad = 0.5 * 3.14159265358979323846 / 180.0;
   // Ground truth is not interpolated across gaps longer than this (s).
   double max_ground_truth_gap_s = 0.5;
+  // Estimates stamped earlier are left out (the error "after the first fix").
+  int64_t evaluate_from_ns = std::numeric_limits<int64_t>::min();
 };
 
 struct ErrorStatistics {

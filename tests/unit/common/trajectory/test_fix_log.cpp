@@ -28,6 +28,7 @@ LoggedFix sampleFix() {
   fix.inliers = 17;
   fix.model_lines = 412;
   fix.residual_rms_px = 1.25;
+  fix.latency_ms = 4.75;
   return fix;
 }
 
@@ -50,6 +51,7 @@ TEST(FixLog, WriteThenReadKeepsPoseCovarianceAndCounts) {
   EXPECT_EQ(fixes[0].inliers, 17u);
   EXPECT_EQ(fixes[0].model_lines, 412u);
   EXPECT_DOUBLE_EQ(fixes[0].residual_rms_px, 1.25);
+  EXPECT_DOUBLE_EQ(fixes[0].latency_ms, 4.75);
   EXPECT_EQ(fixes[1].status, "too_few_matches");
   std::filesystem::remove(path);
 }
@@ -83,16 +85,18 @@ void expectError(const std::string& line, const std::string& expected) {
 }
 
 TEST(FixLog, MalformedLinesNameTheLineAndTheField) {
-  expectError("", "expected 33 fields");
-  expectError(formatFixLogLine(sampleFix()) + " 0.5", "got 34");
+  expectError("", "expected 34 fields");
+  expectError(formatFixLogLine(sampleFix()) + " 0.5", "got 35");
   expectError(withField(4, "2.0"), "quaternion norm");
   expectError(withField(8, "OK"), "status 'OK'");
   expectError(withField(9, "-3"), "inliers '-3'");
   expectError(withField(10, "4.5"), "model_lines '4.5'");
   expectError(withField(11, "-1"), "residual_rms_px is negative");
   expectError(withField(11, "nan"), "residual_rms_px 'nan'");
-  expectError(withField(12, "inf"), "covariance entry 'inf'");
-  expectError(withField(12, "-1e-4"), "not positive definite");
+  expectError(withField(12, "-0.5"), "latency_ms is negative");
+  expectError(withField(12, "soon"), "latency_ms 'soon'");
+  expectError(withField(13, "inf"), "covariance entry 'inf'");
+  expectError(withField(13, "-1e-4"), "not positive definite");
 }
 
 TEST(FixLog, MissingFileIsNamed) {

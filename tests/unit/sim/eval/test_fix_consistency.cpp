@@ -23,6 +23,7 @@ LoggedFix fixOff(int64_t stamp_ns, double sigmas, const std::string& status = "o
   LoggedFix fix;
   fix.stamp_ns = stamp_ns;
   fix.status = status;
+  fix.latency_ms = 4.5;
   fix.T_world_camera.covariance = diagonalPoseCovariance(0.02, 0.001);
   fix.T_world_camera.pose.translation() =
       Eigen::Vector3d(1e-9 * static_cast<double>(stamp_ns), 0.02 * sigmas, 1.5);
@@ -31,19 +32,21 @@ LoggedFix fixOff(int64_t stamp_ns, double sigmas, const std::string& status = "o
 
 TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
   const std::vector<LoggedFix> fixes = {
-      fixOff(2'050'000'000, 2.0),                      // NEES 4
-      fixOff(3'050'000'000, 5.0),                      // NEES 25: precise and wrong
-      fixOff(4'050'000'000, 50.0, "too_few_matches"),  // not an answer with a pose
-      fixOff(20'000'000'000, 0.0),                     // after the ground truth ends
+      fixOff(1'050'000'000, 0.0, "no_match_computed"),  // no pose yet
+      fixOff(2'050'000'000, 2.0),                       // NEES 4
+      fixOff(3'050'000'000, 5.0),                       // NEES 25: precise and wrong
+      fixOff(4'050'000'000, 50.0, "too_few_matches"),   // not an answer with a pose
+      fixOff(20'000'000'000, 0.0),                      // after the ground truth ends
   };
   const FixConsistencyOptions options;
   const FixConsistency consistency = evaluateFixConsistency(straightDrive(), fixes, options);
-  EXPECT_EQ(consistency.answers, 4);
+  EXPECT_EQ(consistency.answers, 5);
   EXPECT_EQ(consistency.ok, 3);
   ASSERT_EQ(consistency.nees.size(), 2u);
   EXPECT_NEAR(consistency.nees[0], 4.0, 1e-6);
   EXPECT_NEAR(consistency.nees[1], 25.0, 1e-6);
   EXPECT_EQ(consistency.beyond_bound, 1);
+  EXPECT_EQ(consistency.first_ok_received_ns, 2'050'000'000 + 4'500'000);
   const std::string line = formatFixConsistency(consistency, options);
   EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;
 }
@@ -54,6 +57,7 @@ TEST(FixConsistency, SaysSoWhenNoFixHasGroundTruth) {
   EXPECT_TRUE(consistency.nees.empty());
   EXPECT_EQ(formatFixConsistency(consistency, {}),
             "fixes: 1 answers, 1 ok, none with ground truth\n");
+  EXPECT_EQ(consistency.first_ok_received_ns, 20'004'500'000);
 }
 
 }  // namespace

@@ -94,6 +94,21 @@ TEST(TrajectoryEvaluation, TimeToFirstFixAndFirstGoodFix) {
             std::string::npos);
 }
 
+TEST(TrajectoryEvaluation, LeavesOutEstimatesBeforeTheStartOfEvaluation) {
+  const auto truth = circleDrive(20.0, 10.0);
+  auto estimate = truth;
+  for (size_t i = 0; i < 40; ++i) {
+    estimate[i].pose.translation().x() += 8.0;  // the DGPS start, before the first fix
+  }
+  EvaluationOptions options;
+  options.evaluate_from_ns = estimate[40].stamp_ns;
+  const TrajectoryEvaluation evaluation = evaluateTrajectory(truth, estimate, options);
+  EXPECT_EQ(evaluation.matched, static_cast<int>(truth.size()) - 40);
+  EXPECT_NEAR(evaluation.position_m.max, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(evaluation.fraction_within, 1.0);
+  EXPECT_GT(evaluateTrajectory(truth, estimate, EvaluationOptions{}).position_m.rmse, 3.0);
+}
+
 TEST(TrajectoryEvaluation, ReportsMissingOverlapAndGroundTruth) {
   const auto truth = circleDrive(20.0, 5.0);
   const auto later = circleDrive(20.0, 5.0, 100'000'000'000);

@@ -163,6 +163,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   Alignment alignment;
   alignment.T_world_camera = predicted_T_world_camera;
   PoseWithCovariance current = predicted_T_world_camera;
+  PoseWithCovariance gate = predicted_T_world_camera;
   MatchedProblem last_round;
   PoseOptions pose_options;
   pose_options.refinement.loss = RobustLoss::kCauchy;
@@ -172,8 +173,8 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   for (int round = 0; round < options.max_rounds; ++round) {
     alignment.rounds = round + 1;
     const int64_t matching_start_ns = steadyClockNs();
-    const auto candidates = gateCandidates(image, model, current, camera, options.matching);
-    MatchedProblem matched = buildProblem(image, model, candidates, current.pose, camera, options);
+    const auto candidates = gateCandidates(image, model, gate, camera, options.matching);
+    MatchedProblem matched = buildProblem(image, model, candidates, gate.pose, camera, options);
     alignment.matching_ns += steadyClockNs() - matching_start_ns;
     alignment.matches = static_cast<int>(matched.matches.size());
     if (alignment.matches < options.min_inliers) {
@@ -182,7 +183,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
           fmt::format("{} matches, {} needed", alignment.matches, options.min_inliers);
       return alignment;
     }
-    pose_options.prior_T_world_camera = current.pose;
+    pose_options.prior_T_world_camera = gate.pose;
     const int64_t pose_start_ns = steadyClockNs();
     const PoseEstimate estimate = estimatePose(matched.problem, pose_options);
     alignment.pose_ns += steadyClockNs() - pose_start_ns;
@@ -204,6 +205,8 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
     const bool done = converged(current.pose, estimate.T_world_camera.pose, options);
     current = estimate.T_world_camera;
     current.covariance *= varianceFactor(inlier_chi2, alignment.inliers);
+    gate = current.covariance.allFinite() ? fusePoses(predicted_T_world_camera, current)
+                                          : predicted_T_world_camera;
     last_round = std::move(matched);
     if (done) {
       break;

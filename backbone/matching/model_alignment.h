@@ -2,13 +2,18 @@
 // building lines fall on the segments the robot saw (paper §3.2), robust to
 // the image lines of things not in the model (windows, cars, trees).
 //
-// Iterated gating: candidates are gated with the current pose and its
-// covariance (line_matcher.h), each image segment keeps its best candidate,
-// and the pose is refined from the current one on all of them with a Cauchy
-// loss (common/pose); the refined pose, whose covariance is far smaller than
-// the prior's, gates again. This repeats until the pose stops moving and the
-// inlier set stops changing. A model line may take several collinear image
-// pieces; an image segment takes at most one model line.
+// Iterated gating: candidates are gated with the prior (line_matcher.h), each
+// image segment keeps its best candidate, and the pose is refined on all of
+// them with a Cauchy loss (common/pose). The refinement does not weigh the
+// prior, so the two are taken as independent estimates: the next round gates
+// with their fusion (fusePoses, common/geometry/pose.h) and refines from its
+// centre, until the pose stops moving. Gating with the refined pose alone
+// widened the gates wherever a round's matches left the pose undetermined: on
+// a Delft frame predicted at the truth with nine model segments in view, the
+// second round took in 22 candidates instead of 7 and the alignment settled
+// 1.3 m off reporting 0.2 m (tests/integration/drive). A model line may take
+// several collinear image pieces; an image segment takes at most one model
+// line.
 //
 // Each correspondence's endpoint covariance is the image fit's plus the edge
 // and model error floors below, divided by the model line's visibility weight.

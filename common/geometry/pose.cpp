@@ -20,6 +20,28 @@ Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
   return error;
 }
 
+Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
+                                 const Eigen::Matrix<double, 6, 1>& error) {
+  Eigen::Isometry3d moved = pose;
+  moved.translation() += error.head<3>();
+  const double angle = error.tail<3>().norm();
+  if (angle > 0.0) {
+    moved.linear() =
+        Eigen::AngleAxisd(angle, error.tail<3>() / angle).toRotationMatrix() * pose.linear();
+  }
+  return moved;
+}
+
+PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b) {
+  const Matrix6d information_a = a.covariance.ldlt().solve(Matrix6d::Identity());
+  const Matrix6d information_b = b.covariance.ldlt().solve(Matrix6d::Identity());
+  PoseWithCovariance fused;
+  fused.covariance = (information_a + information_b).ldlt().solve(Matrix6d::Identity());
+  fused.covariance = 0.5 * (fused.covariance + fused.covariance.transpose());
+  fused.pose = applyPoseError(a.pose, fused.covariance * information_b * poseError(a.pose, b.pose));
+  return fused;
+}
+
 double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {
   const Eigen::Matrix<double, 6, 1> error = poseError(estimate.pose, truth);
   return error.dot(estimate.covariance.ldlt().solve(error));

@@ -29,6 +29,16 @@ Matrix6d diagonalPoseCovariance(double position_sigma_m, double rotation_sigma_r
 Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
                                       const Eigen::Isometry3d& truth);
 
+// `pose` moved by the error vector e: t + dp, Exp(dtheta) R.
+Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
+                                 const Eigen::Matrix<double, 6, 1>& error);
+
+// Two independent estimates of one pose combined by their information,
+// linearised at `a`: Sigma = (Sigma_a^-1 + Sigma_b^-1)^-1 and the pose a moved
+// by Sigma Sigma_b^-1 e, e = poseError(a, b) (the Kalman update with b as the
+// measurement).
+PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b);
+
 // e^T Sigma^-1 e: the estimate's error in its own covariance, the normalized
 // estimation error squared (Bar-Shalom, Li & Kirubarajan, "Estimation with
 // Applications to Tracking and Navigation", 2001, §5.4.2); chi^2 with 6

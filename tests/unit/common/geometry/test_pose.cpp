@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/geometry/pose.h"
 
 namespace lineloc {
@@ -13,11 +15,34 @@ TEST(Pose, ErrorIsTheLeftPerturbationFromEstimateToTruth) {
       Eigen::Quaterniond(Eigen::AngleAxisd(0.8, Eigen::Vector3d(1.0, 2.0, -1.0).normalized())));
   Eigen::Matrix<double, 6, 1> error;
   error << 0.05, -0.02, 0.01, 0.003, -0.004, 0.01;
-  Eigen::Isometry3d truth = estimate;
-  truth.translation() += error.head<3>();
-  truth.linear() =
-      Eigen::AngleAxisd(error.tail<3>().norm(), error.tail<3>().normalized()) * estimate.linear();
+  const Eigen::Isometry3d truth = applyPoseError(estimate, error);
+  EXPECT_TRUE(truth.translation().isApprox(estimate.translation() + error.head<3>(), 1e-15));
+  EXPECT_TRUE(truth.linear().isApprox(
+      Eigen::AngleAxisd(error.tail<3>().norm(), error.tail<3>().normalized()) * estimate.linear(),
+      1e-15));
   EXPECT_TRUE(poseError(estimate, truth).isApprox(error, 1e-12));
+  EXPECT_TRUE(applyPoseError(estimate, Eigen::Matrix<double, 6, 1>::Zero()).isApprox(estimate));
+}
+
+// Fusing two estimates whose covariances are diagonal is the per-axis
+// inverse-variance mean: a 2 cm estimate and a 4 cm one 5 cm apart in x give
+// x moved 4^2 / (2^2 + 4^2) = 0.2 of the way, sigma 2 * 4 / sqrt(20) cm; in an
+// axis where one is a hundred times surer, the fused one follows it.
+TEST(Pose, FusingIsTheInverseVarianceMeanPerAxis) {
+  PoseWithCovariance a;
+  a.pose = makePose({1.0, 2.0, 3.0}, Eigen::Quaterniond::Identity());
+  a.covariance = diagonalPoseCovariance(0.02, 0.001);
+  PoseWithCovariance b = a;
+  b.covariance = diagonalPoseCovariance(0.04, 0.1);
+  b.pose.translation().x() += 0.05;
+  b.pose.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const PoseWithCovariance fused = fusePoses(a, b);
+  EXPECT_NEAR(fused.pose.translation().x(), 1.0 + 0.2 * 0.05, 1e-12);
+  EXPECT_NEAR(fused.pose.translation().y(), 2.0, 1e-12);
+  EXPECT_NEAR(std::sqrt(fused.covariance(0, 0)), 0.02 * 0.04 / std::hypot(0.02, 0.04), 1e-12);
+  const double yaw_weight = 1e-6 / (1e-6 + 1e-2);
+  EXPECT_NEAR(poseError(a.pose, fused.pose)(5), yaw_weight * 0.01, 1e-12);
+  EXPECT_TRUE(fusePoses(b, a).pose.isApprox(fused.pose, 1e-9));
 }
 
 // With a diagonal covariance the NEES is the sum of squared errors in sigmas.

@@ -1,5 +1,7 @@
 #include "backbone/matching/localizer.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -7,13 +9,138 @@
 #include "common/time/clock.h"
 
 namespace lineloc {
+namespace {
+
+// The prior and its sigma points: the centre moved by +-k sigma along each
+// principal axis of the position covariance, and turned by +-k sigma_yaw about
+// the world vertical (the error convention's dtheta_z); each keeps the
+// prior's covariance.
+std::vector<PoseWithCovariance> trackingStarts(const PoseWithCovariance& prior, double k) {
+  std::vector<PoseWithCovariance> starts = {prior};
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> position(
+      prior.covariance.topLeftCorner<3, 3>());
+  const double yaw_step_rad = k * std::sqrt(std::max(0.0, prior.covariance(5, 5)));
+  for (const double sign : {-1.0, 1.0}) {
+    for (int axis = 0; axis < 3; ++axis) {
+      PoseWithCovariance moved = prior;
+      moved.pose.translation() += sign * k *
+                                  std::sqrt(std::max(0.0, position.eigenvalues()[axis])) *
+                                  position.eigenvectors().col(axis);
+      starts.push_back(moved);
+    }
+    PoseWithCovariance turned = prior;
+    turned.pose.linear() =
+        Eigen::AngleAxisd(sign * yaw_step_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+        prior.pose.linear();
+    starts.push_back(turned);
+  }
+  return starts;
+}
+
+// Narrow gates around the start's centre first; its whole covariance when
+// they do not give an OK alignment.
+Alignment alignFromCentre(const std::vector<ImageSegment>& image,
+                          const std::vector<VisibleSegment>& visible,
+                          const PoseWithCovariance& start, const PinholeCamera& camera,
+                          const LocalizerOptions& options) {
+  PoseWithCovariance trusted_centre = start;
+  trusted_centre.covariance *= options.first_gate_scale * options.first_gate_scale;
+  Alignment narrow = alignModel(image, visible, trusted_centre, camera, options.alignment);
+  if (narrow.status == AlignmentStatus::kOk) {
+    return narrow;
+  }
+  Alignment wide = alignModel(image, visible, start, camera, options.alignment);
+  wide.matching_ns += narrow.matching_ns;
+  wide.pose_ns += narrow.pose_ns;
+  return wide;
+}
+
+// True when `other` lies beyond distinct_chi2 of `answer`'s own covariance.
+bool outside(const Alignment& answer, const Alignment& other, const LocalizerOptions& options) {
+  return normalizedErrorSquared(answer.T_world_camera, other.T_world_camera.pose) >
+         options.distinct_chi2;
+}
+
+// The best covered alignment, its covariance grown by d d^T for every rival
+// covered at least rival_score_fraction as well and outside it (d the rival's
+// offset); kAmbiguous when that leaves a position sigma beyond the
+// alignment's limit.
+Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<ImageSegment>& image,
+                      const std::vector<VisibleSegment>& visible,
+                      const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                      const PinholeCamera& camera, const LocalizerOptions& options) {
+  const PoseSearch scorer(lines, scene, camera, options.acquisition.search);
+  const OrientedDistanceMap verification_map(image, camera.width, camera.height,
+                                             options.acquisition.verification_distances);
+  std::vector<double> scores;
+  for (const Alignment& alignment : aligned) {
+    scores.push_back(
+        scorer.coverage(visible, alignment.T_world_camera.pose, verification_map).score);
+  }
+  const size_t best =
+      static_cast<size_t>(std::max_element(scores.begin(), scores.end()) - scores.begin());
+  Alignment answer = aligned[best];
+  int rivals = 0;
+  for (size_t i = 0; i < aligned.size(); ++i) {
+    if (scores[i] < options.rival_score_fraction * scores[best] ||
+        !outside(answer, aligned[i], options)) {
+      continue;
+    }
+    const Eigen::Matrix<double, 6, 1> offset =
+        poseError(aligned[best].T_world_camera.pose, aligned[i].T_world_camera.pose);
+    answer.T_world_camera.covariance += offset * offset.transpose();
+    ++rivals;
+  }
+  const double sigma_m = largestPositionSigma(answer.T_world_camera.covariance);
+  if (sigma_m > options.alignment.max_position_sigma_m) {
+    answer.status = AlignmentStatus::kAmbiguous;
+    answer.message = fmt::format(
+        "{} rival alignments from the prior's sigma points leave a position sigma of {:.2f} m",
+        rivals, sigma_m);
+  }
+  return answer;
+}
+
+// The OK alignments from the prior and its sigma points: the first of them
+// when the others lie within its covariance, else coverRivals. The centre's
+// failure when none is OK.
+Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
+                const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                const PoseWithCovariance& prior, const PinholeCamera& camera,
+                const LocalizerOptions& options) {
+  std::vector<Alignment> aligned;
+  Alignment answer;
+  int64_t matching_ns = 0;
+  int64_t pose_ns = 0;
+  const std::vector<PoseWithCovariance> starts = trackingStarts(prior, options.start_sigma);
+  for (size_t i = 0; i < starts.size(); ++i) {
+    Alignment alignment = alignFromCentre(image, visible, starts[i], camera, options);
+    matching_ns += alignment.matching_ns;
+    pose_ns += alignment.pose_ns;
+    if (alignment.status == AlignmentStatus::kOk) {
+      aligned.push_back(std::move(alignment));
+    } else if (i == 0) {
+      answer = std::move(alignment);
+    }
+  }
+  const auto outsideFirst = [&](const Alignment& other) {
+    return outside(aligned.front(), other, options);
+  };
+  if (!aligned.empty()) {
+    answer = std::none_of(aligned.begin(), aligned.end(), outsideFirst)
+                 ? aligned.front()
+                 : coverRivals(aligned, image, visible, lines, scene, camera, options);
+  }
+  answer.matching_ns = matching_ns;
+  answer.pose_ns = pose_ns;
+  return answer;
+}
+
+}  // namespace
 
 bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& options) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> position(
-      prior.covariance.topLeftCorner<3, 3>(), Eigen::EigenvaluesOnly);
-  const double position_sigma_m = std::sqrt(std::max(0.0, position.eigenvalues().maxCoeff()));
   const double yaw_sigma_rad = std::sqrt(std::max(0.0, prior.covariance(5, 5)));
-  return !(position_sigma_m <= options.max_tracking_position_sigma_m &&
+  return !(largestPositionSigma(prior.covariance) <= options.max_tracking_position_sigma_m &&
            yaw_sigma_rad <= options.max_tracking_yaw_sigma_rad);
 }
 
@@ -33,17 +160,7 @@ Localization localize(const std::vector<ImageSegment>& image,
   const int64_t visibility_start_ns = steadyClockNs();
   localization.visible = visibleSegments(lines, scene, prior, camera, options.visibility);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
-  PoseWithCovariance trusted_centre = prior;
-  trusted_centre.covariance *= options.first_gate_scale * options.first_gate_scale;
-  localization.alignment =
-      alignModel(image, localization.visible, trusted_centre, camera, options.alignment);
-  if (localization.alignment.status != AlignmentStatus::kOk) {
-    const Alignment narrow = std::move(localization.alignment);
-    localization.alignment =
-        alignModel(image, localization.visible, prior, camera, options.alignment);
-    localization.alignment.matching_ns += narrow.matching_ns;
-    localization.alignment.pose_ns += narrow.pose_ns;
-  }
+  localization.alignment = track(image, localization.visible, lines, scene, prior, camera, options);
   return localization;
 }
 

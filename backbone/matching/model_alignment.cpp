@@ -78,11 +78,6 @@ double varianceFactor(double chi2, int correspondences) {
   return redundancy > 0 ? std::max(1.0, chi2 / redundancy) : 1.0;
 }
 
-double largestPositionSigma(const Matrix6d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance.topLeftCorner<3, 3>());
-  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
-}
-
 // The smallest covariance at least as large as both a and b in every
 // direction: with a = L L^T and L^-1 b L^-T = V D V^T, L V max(D, 1) V^T L^T.
 Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {

@@ -1,6 +1,9 @@
 #include "common/geometry/pose.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 
 namespace lineloc {
 
@@ -40,6 +43,12 @@ PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovarian
   fused.covariance = 0.5 * (fused.covariance + fused.covariance.transpose());
   fused.pose = applyPoseError(a.pose, fused.covariance * information_b * poseError(a.pose, b.pose));
   return fused;
+}
+
+double largestPositionSigma(const Matrix6d& covariance) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance.topLeftCorner<3, 3>(),
+                                                             Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
 }
 
 double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {

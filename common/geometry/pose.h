@@ -39,6 +39,9 @@ Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
 // measurement).
 PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b);
 
+// Standard deviation along the position covariance's largest principal axis.
+double largestPositionSigma(const Matrix6d& covariance);
+
 // e^T Sigma^-1 e: the estimate's error in its own covariance, the normalized
 // estimation error squared (Bar-Shalom, Li & Kirubarajan, "Estimation with
 // Applications to Tracking and Navigation", 2001, §5.4.2); chi^2 with 6

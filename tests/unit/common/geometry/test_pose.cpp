@@ -55,5 +55,15 @@ TEST(Pose, NormalizedErrorIsTheErrorInItsOwnSigmas) {
   EXPECT_NEAR(normalizedErrorSquared(estimate, truth), 4.0 + 1.0 + 9.0, 1e-9);
 }
 
+// A 3 cm by 12 cm ellipse turned 30 degrees about the vertical: its long axis,
+// whatever the rotation and attitude entries.
+TEST(Pose, LargestPositionSigmaIsAlongTheLongestPrincipalAxis) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.5236, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Matrix6d covariance = diagonalPoseCovariance(0.0, 0.01);
+  covariance.topLeftCorner<3, 3>() =
+      R * Eigen::Vector3d(0.03 * 0.03, 0.12 * 0.12, 0.02 * 0.02).asDiagonal() * R.transpose();
+  EXPECT_NEAR(largestPositionSigma(covariance), 0.12, 1e-12);
+}
+
 }  // namespace
 }  // namespace lineloc

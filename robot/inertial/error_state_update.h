@@ -4,6 +4,10 @@
 //   S = H P H^T + R,  NIS = r^T S^-1 r,  rejected when NIS > gate,
 //   K = P H^T S^-1,  dx = K r,  P = (I - K H) P (I - K H)^T + K R K^T (Joseph),
 // then dx is injected into the nominal state and reset to zero.
+//
+// A measurement whose error it shares with measurements already applied (a
+// time-correlated error) is gated with its own R, the spread of its error,
+// but updates with c R, c >= 1: it carries less new information than that.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -34,7 +38,7 @@ struct LinearisedMeasurement {
 
 template <int M>
 UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, NavigationState& state,
-                          ErrorCovariance& covariance) {
+                          ErrorCovariance& covariance, double noise_inflation = 1.0) {
   using MatrixMM = Eigen::Matrix<double, M, M>;
   const Eigen::Matrix<double, kErrorStateSize, M> PHt = covariance * z.jacobian.transpose();
   const MatrixMM S = z.jacobian * PHt + z.noise;
@@ -46,9 +50,11 @@ UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, Naviga
   if (!(nis <= gate)) {
     return {UpdateStatus::kGated, nis};
   }
-  const Eigen::Matrix<double, kErrorStateSize, M> K = llt.solve(PHt.transpose()).transpose();
+  const MatrixMM R = noise_inflation * z.noise;
+  const Eigen::LLT<MatrixMM> update_llt(z.jacobian * PHt + R);
+  const Eigen::Matrix<double, kErrorStateSize, M> K = update_llt.solve(PHt.transpose()).transpose();
   const ErrorCovariance I_KH = ErrorCovariance::Identity() - K * z.jacobian;
-  covariance = I_KH * covariance * I_KH.transpose() + K * z.noise * K.transpose();
+  covariance = I_KH * covariance * I_KH.transpose() + K * R * K.transpose();
   covariance = 0.5 * (covariance + covariance.transpose()).eval();
   injectError(K * z.residual, state);
   return {UpdateStatus::kAccepted, nis};

@@ -27,6 +27,9 @@ constexpr double kMaxGroundAcceleration_mps2 = 2.0;
 constexpr size_t kMinGatedFixesForRestart = 3;
 // Compass readings needed for a start-up heading (1 s at 10 Hz).
 constexpr size_t kMinStartupCompassReadings = 10;
+// Bound on a correlated fix's covariance inflation: a fix of an unchanged view
+// still counts, at a ten-thousandth of an independent one.
+constexpr double kMaxCorrelatedFixInflation = 1e4;
 
 void requirePositive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -113,6 +116,10 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   requirePositive(config.gps_vertical_sigma_m, "gps_vertical_sigma_m");
   requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
   requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
+  if (config.vision_error_correlation_m != 0.0) {
+    requirePositive(config.vision_error_correlation_m, "vision_error_correlation_m");
+    requirePositive(config.vision_error_correlation_rad, "vision_error_correlation_rad");
+  }
   if (!config.R_body_imu.isUnitary(1e-6) || config.R_body_imu.determinant() < 0.0) {
     throw std::invalid_argument("inertial navigator: R_body_imu is not a rotation");
   }
@@ -284,9 +291,10 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     const LinearisedMeasurement<6> z =
         linearisePoseFix(state, vision->T_world_camera, vision->T_body_camera);
     measurement.vision_residual = z.residual;
-    const UpdateOutcome outcome = applyUpdate(z, gate_by_dimension_[6], state, covariance);
+    const UpdateOutcome outcome =
+        applyUpdate(z, gate_by_dimension_[6], state, covariance, correlatedFixInflation(snapshot));
     if (outcome.status == UpdateStatus::kAccepted) {
-      snapshot.last_vision_ns = state.stamp_ns;
+      snapshot.at_last_vision = state;
     }
     return fromUpdate(outcome.status);
   }
@@ -312,6 +320,18 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     return MeasurementOutcome::kDegenerate;
   }
   return fromUpdate(applyUpdate(*z, gate_by_dimension_[1], state, covariance).status);
+}
+
+double InertialNavigator::correlatedFixInflation(const Snapshot& snapshot) const {
+  if (!snapshot.at_last_vision || config_.vision_error_correlation_m == 0.0) {
+    return 1.0;
+  }
+  const NavigationState& last = *snapshot.at_last_vision;
+  const double travel_m = (snapshot.state.p_world_body - last.p_world_body).norm();
+  const double turn_rad = snapshot.state.q_world_body.angularDistance(last.q_world_body);
+  const double rho = std::exp(-(travel_m / config_.vision_error_correlation_m +
+                                turn_rad / config_.vision_error_correlation_rad));
+  return std::min((1.0 + rho) / (1.0 - rho), kMaxCorrelatedFixInflation);
 }
 
 MeasurementCounters& InertialNavigator::countersFor(const Measurement& measurement) {
@@ -374,12 +394,12 @@ bool InertialNavigator::initialise(const NavigationState& state,
   if (!imu) {
     return false;
   }
-  startAt(state, covariance, *imu);
+  startAt(state, covariance, *imu, false);
   return true;
 }
 
 void InertialNavigator::startAt(const NavigationState& state, const ErrorCovariance& covariance,
-                                const ImuSample& imu) {
+                                const ImuSample& imu, bool from_vision) {
   snapshots_.clear();
   measurements_.clear();
   Snapshot snapshot;
@@ -387,6 +407,9 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshot.covariance = covariance;
   snapshot.imu = imu;
   snapshot.last_zero_velocity_ns = state.stamp_ns;
+  if (from_vision) {
+    snapshot.at_last_vision = state;
+  }
   snapshots_.push_back(snapshot);
   startup_gps_.reset();
   startup_compass_.clear();
@@ -441,7 +464,7 @@ void InertialNavigator::tryInitialiseFromSensors() {
       config_.gps_vertical_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
       tilt_sigma, config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
-  startAt(state, sigma.cwiseAbs2().asDiagonal(), latest);
+  startAt(state, sigma.cwiseAbs2().asDiagonal(), latest, false);
 }
 
 InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
@@ -503,7 +526,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   covariance.block<3, 3>(kAccelBias, kAccelBias)
       .diagonal()
       .setConstant(config_.accel_turn_on_bias_sigma_mps2 * config_.accel_turn_on_bias_sigma_mps2);
-  startAt(state, covariance, *imu);
+  startAt(state, covariance, *imu, true);
   return MeasurementOutcome::kAccepted;
 }
 
@@ -646,8 +669,8 @@ NavigatorHealth InertialNavigator::health() const {
   const Snapshot& latest = snapshots_.back();
   health.stamp_ns = latest.state.stamp_ns;
   health.zero_velocity_updates = latest.zero_velocity_updates;
-  if (latest.last_vision_ns) {
-    health.since_vision_fix_ns = latest.state.stamp_ns - *latest.last_vision_ns;
+  if (latest.at_last_vision) {
+    health.since_vision_fix_ns = latest.state.stamp_ns - latest.at_last_vision->stamp_ns;
   }
   health.position_sigma_m = std::sqrt(latest.covariance.block<3, 3>(kPosition, kPosition)
                                           .selfadjointView<Eigen::Lower>()

@@ -30,6 +30,26 @@
 // two wrong solutions breaks the common offset: restarting from either, with
 // the velocity of two fixes a frame apart, threw away a good filter.
 //
+// Fixes of an unchanged view. A vision fix shares its error with the fixes
+// of a similar view: the same edges, matched the same way. At a standstill it
+// is the same error, and 30 fixes a second fused as independent shrink the
+// covariance around it until the pose is precise and wrong (a simulated Delft
+// drive, seed 10: a search's fix 0.15 m short, honest with a 0.16 m sigma,
+// became 205 precise wrong fixes over the next seconds). The error is
+// modelled as a first-order Gauss-Markov process in the camera's motion,
+// rho = exp(-(|dp| / L_p + |dtheta| / L_theta)) between a fix and the last
+// one applied; each fix updates with its covariance times (1 + rho) /
+// (1 - rho), the factor by which N samples of such a process tell less than N
+// independent ones (the variance of their mean is sigma^2 (1 + rho) /
+// ((1 - rho) N)), and is gated with its covariance as it is. The correlation
+// lengths are a centimetre and a tenth of a degree: a standing robot's fixes
+// count once, a moving robot's (a few centimetres apart at 30 Hz) nearly
+// fully. Fixes are correlated over metres of travel too (0.8 within 0.5 m on
+// the 120 s Delft drive, 0.54 at 1-2 m), but their jackknife covariances are
+// already wider than their errors (NEES median about 1 against 5.35 for six
+// degrees of freedom), and with L_p = 5 cm the filter followed a run of fixes
+// drifting 0.25 m off on that drive (81 OK fixes beyond three sigma).
+//
 // Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
 // only while the filter's horizontal position sigma exceeds the DGPS sigma (its
 // errors are correlated over minutes: repeated fixes add no information, and a
@@ -101,6 +121,11 @@ struct InertialNavigatorConfig {
   // Vision fixes gated without a break for this long, moving together, restart
   // the filter from the newest (0: never).
   int64_t vision_gated_restart_after_ns = 1'000'000'000;
+
+  // Correlation lengths of the vision fixes' error in travel and in turn
+  // (L_p, L_theta above); 0: independent fixes.
+  double vision_error_correlation_m = 0.01;
+  double vision_error_correlation_rad = 0.1 * M_PI / 180.0;
 
   int64_t tracking_timeout_ns = 1'000'000'000;
   double lost_position_sigma_m = 10.0;
@@ -229,7 +254,8 @@ class InertialNavigator {
     ImuSample imu;
     int64_t last_zero_velocity_ns = 0;
     int64_t zero_velocity_updates = 0;
-    std::optional<int64_t> last_vision_ns;
+    // The state the last vision fix applied left.
+    std::optional<NavigationState> at_last_vision;
   };
   struct BufferedImu {
     ImuSample sample;
@@ -267,8 +293,11 @@ class InertialNavigator {
   void prune();
 
   std::optional<ImuSample> bufferedImuAt(int64_t stamp_ns) const;
+  // `from_vision`: the state is a vision fix's pose, which counts as applied.
   void startAt(const NavigationState& state, const ErrorCovariance& covariance,
-               const ImuSample& imu);
+               const ImuSample& imu, bool from_vision);
+  // (1 + rho) / (1 - rho) for a fix at the snapshot's state.
+  double correlatedFixInflation(const Snapshot& snapshot) const;
   void tryInitialiseFromSensors();
   static BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision);
   // Standing still since power-on: zero; else from the fix and one at most

@@ -97,5 +97,30 @@ TEST(MeasurementModels, WrapAngle) {
   EXPECT_NEAR(wrapAngle(3 * M_PI + 0.5), -M_PI + 0.5, 1e-12);
 }
 
+// An inflated update equals one with the noise c R; its gate is the one of R.
+TEST(ErrorStateUpdate, InflatedNoiseUpdatesWithCRAndGatesWithR) {
+  LinearisedMeasurement<3> z;
+  z.jacobian.block<3, 3>(0, kPosition).setIdentity();
+  z.noise = 0.01 * Eigen::Matrix3d::Identity();
+  z.residual = Eigen::Vector3d(0.1, -0.05, 0.02);
+  const ErrorCovariance prior = 0.04 * ErrorCovariance::Identity();
+
+  NavigationState inflated_state;
+  ErrorCovariance inflated = prior;
+  ASSERT_EQ(applyUpdate(z, 100.0, inflated_state, inflated, 4.0).status, UpdateStatus::kAccepted);
+  LinearisedMeasurement<3> wider = z;
+  wider.noise *= 4.0;
+  NavigationState wider_state;
+  ErrorCovariance expected = prior;
+  ASSERT_EQ(applyUpdate(wider, 100.0, wider_state, expected).status, UpdateStatus::kAccepted);
+  EXPECT_TRUE(inflated.isApprox(expected, 1e-12));
+  EXPECT_TRUE(inflated_state.p_world_body.isApprox(wider_state.p_world_body, 1e-12));
+
+  // NIS 0.258 with R (S = 0.05 I), 0.161 with 4 R: a gate of 0.2 separates them.
+  NavigationState state;
+  ErrorCovariance covariance = prior;
+  EXPECT_EQ(applyUpdate(z, 0.2, state, covariance, 4.0).status, UpdateStatus::kGated);
+}
+
 }  // namespace
 }  // namespace lineloc

@@ -63,8 +63,17 @@ inline double poseFixNis(const PoseWithCovariance& predicted, const PoseWithCova
   return r.dot((predicted.covariance + fix.covariance).ldlt().solve(r));
 }
 
-inline ScenarioResult runScenario(const ScenarioConfig& scenario,
-                                  const InertialNavigatorConfig& config = {}) {
+// The scenarios draw every fix's error anew, also at a standstill, and tell
+// the navigator so.
+inline InertialNavigatorConfig independentFixesConfig() {
+  InertialNavigatorConfig config;
+  config.vision_error_correlation_m = 0.0;
+  return config;
+}
+
+inline ScenarioResult runScenario(
+    const ScenarioConfig& scenario,
+    const InertialNavigatorConfig& config = independentFixesConfig()) {
   sim::TrajectoryConfig trajectory_config;
   trajectory_config.seed = scenario.seed;
   trajectory_config.duration_s = scenario.duration_s;

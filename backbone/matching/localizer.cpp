@@ -12,20 +12,26 @@ namespace lineloc {
 namespace {
 
 // The prior and its sigma points: the centre moved by +-k sigma along each
-// principal axis of the position covariance, and turned by +-k sigma_yaw about
-// the world vertical (the error convention's dtheta_z); each keeps the
-// prior's covariance.
-std::vector<PoseWithCovariance> trackingStarts(const PoseWithCovariance& prior, double k) {
+// principal axis of the position covariance, at least min_step_m along the
+// horizontal ones, and turned by +-k sigma_yaw about the world vertical (the
+// error convention's dtheta_z). Each keeps the prior's covariance, widened
+// along its axis to sigma = step / k where the step was floored.
+std::vector<PoseWithCovariance> trackingStarts(const PoseWithCovariance& prior, double k,
+                                               double min_step_m) {
   std::vector<PoseWithCovariance> starts = {prior};
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> position(
       prior.covariance.topLeftCorner<3, 3>());
   const double yaw_step_rad = k * std::sqrt(std::max(0.0, prior.covariance(5, 5)));
   for (const double sign : {-1.0, 1.0}) {
     for (int axis = 0; axis < 3; ++axis) {
+      const double sigma_m = std::sqrt(std::max(0.0, position.eigenvalues()[axis]));
+      const Eigen::Vector3d direction = position.eigenvectors().col(axis);
+      const bool horizontal = std::abs(direction.z()) < M_SQRT1_2;
+      const double step_m = horizontal ? std::max(k * sigma_m, min_step_m) : k * sigma_m;
       PoseWithCovariance moved = prior;
-      moved.pose.translation() += sign * k *
-                                  std::sqrt(std::max(0.0, position.eigenvalues()[axis])) *
-                                  position.eigenvectors().col(axis);
+      moved.pose.translation() += sign * step_m * direction;
+      moved.covariance.topLeftCorner<3, 3>() +=
+          (step_m * step_m / (k * k) - sigma_m * sigma_m) * direction * direction.transpose();
       starts.push_back(moved);
     }
     PoseWithCovariance turned = prior;
@@ -112,7 +118,8 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
   Alignment answer;
   int64_t matching_ns = 0;
   int64_t pose_ns = 0;
-  const std::vector<PoseWithCovariance> starts = trackingStarts(prior, options.start_sigma);
+  const std::vector<PoseWithCovariance> starts =
+      trackingStarts(prior, options.start_sigma, options.min_start_step_m);
   for (size_t i = 0; i < starts.size(); ++i) {
     Alignment alignment = alignFromCentre(image, visible, starts[i], camera, options);
     matching_ns += alignment.matching_ns;
@@ -126,10 +133,12 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
   const auto outsideFirst = [&](const Alignment& other) {
     return outside(aligned.front(), other, options);
   };
-  if (!aligned.empty()) {
-    answer = std::none_of(aligned.begin(), aligned.end(), outsideFirst)
-                 ? aligned.front()
-                 : coverRivals(aligned, image, visible, lines, scene, camera, options);
+  if (!aligned.empty() && std::none_of(aligned.begin(), aligned.end(), outsideFirst)) {
+    answer = aligned.front();
+  } else if (!aligned.empty()) {
+    const int64_t scoring_start_ns = steadyClockNs();
+    answer = coverRivals(aligned, image, visible, lines, scene, camera, options);
+    matching_ns += steadyClockNs() - scoring_start_ns;
   }
   answer.matching_ns = matching_ns;
   answer.pose_ns = pose_ns;

@@ -214,9 +214,11 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
         fmt::format("{} inliers, {} needed", alignment.inliers, options.min_inliers);
     return alignment;
   }
+  const int64_t jackknife_start_ns = steadyClockNs();
   const Matrix6d jackknife = leaveGroupOutCovariance(
       last_round.problem, current.pose,
       edgeGroups(last_round.matches, model, options.coincident_edge_m), pose_options.refinement);
+  alignment.pose_ns += steadyClockNs() - jackknife_start_ns;
   if (!jackknife.allFinite()) {
     alignment.status = AlignmentStatus::kIllConditioned;
     alignment.message = "one model line alone determines part of the pose";

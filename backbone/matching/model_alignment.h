@@ -100,7 +100,7 @@ struct Alignment {
   int inliers = 0;
   double rms_residual_px = 0.0;
   int rounds = 0;
-  // Time spent gating candidates and estimating poses, over all rounds.
+  // Time spent gating candidates, and estimating poses and their covariance.
   int64_t matching_ns = 0;
   int64_t pose_ns = 0;
 };

@@ -107,7 +107,18 @@ Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<I
   return answer;
 }
 
-// The OK alignments from the prior and its sigma points: the first of them
+// True when a sigma point's alignment lies within distinct_chi2 of the point
+// in the sum of their covariances: a sigma point probes the basins near it;
+// in a view with few model lines its wide gates can take it a metre away.
+bool reaches(const PoseWithCovariance& start, const Alignment& alignment,
+             const LocalizerOptions& options) {
+  const PoseWithCovariance difference{start.pose,
+                                      start.covariance + alignment.T_world_camera.covariance};
+  return normalizedErrorSquared(difference, alignment.T_world_camera.pose) <= options.distinct_chi2;
+}
+
+// The OK alignments from the prior and its sigma points (those within reach
+// of their point): the first of them
 // when the others lie within its covariance, else coverRivals. The centre's
 // failure when none is OK.
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
@@ -124,7 +135,8 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
     Alignment alignment = alignFromCentre(image, visible, starts[i], camera, options);
     matching_ns += alignment.matching_ns;
     pose_ns += alignment.pose_ns;
-    if (alignment.status == AlignmentStatus::kOk) {
+    if (alignment.status == AlignmentStatus::kOk &&
+        (i == 0 || reaches(starts[i], alignment, options))) {
       aligned.push_back(std::move(alignment));
     } else if (i == 0) {
       answer = std::move(alignment);

@@ -42,52 +42,105 @@ ProjectedSegment projectSegment(const Eigen::Vector3d& start_world,
   return {start_px, end_px, start_covariance, end_covariance};
 }
 
+namespace {
+
+// A projected model segment in the form the gate reads: its line's direction
+// and normal, its length, and the normal variance n^T Sigma n of each
+// endpoint, which interpolates linearly along it as the covariance does, plus
+// the floor.
+struct GatedLine {
+  Eigen::Vector2d start_px;
+  Eigen::Vector2d direction;
+  Eigen::Vector2d normal;
+  double length_px = 0.0;
+  double start_normal_variance = 0.0;
+  double end_normal_variance = 0.0;
+  double floor_variance = 0.0;
+};
+
+std::vector<GatedLine> gatedLines(const std::vector<VisibleSegment>& model,
+                                  const PoseWithCovariance& T_world_camera,
+                                  const PinholeCamera& camera, double floor_px) {
+  std::vector<GatedLine> lines;
+  lines.reserve(model.size());
+  for (const VisibleSegment& segment : model) {
+    const ProjectedSegment p =
+        projectSegment(segment.start_world, segment.end_world, T_world_camera, camera);
+    GatedLine line;
+    line.start_px = p.start_px;
+    line.length_px = (p.end_px - p.start_px).norm();
+    line.direction = (p.end_px - p.start_px) / line.length_px;
+    line.normal = {-line.direction.y(), line.direction.x()};
+    line.start_normal_variance = line.normal.dot(p.start_covariance * line.normal);
+    line.end_normal_variance = line.normal.dot(p.end_covariance * line.normal);
+    line.floor_variance = floor_px * floor_px;
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// sum over the image segment's endpoints q_i of d_i^2 / (n^T (Sigma_q_i +
+// Sigma_model(t_i)) n + floor^2), d_i = n . (q_i - start).
+double gateChi2(const GatedLine& line, const ImageSegment& segment) {
+  double chi2 = 0.0;
+  for (const auto& [point, covariance] : {std::pair{&segment.start, &segment.start_covariance},
+                                          std::pair{&segment.end, &segment.end_covariance}}) {
+    const Eigen::Vector2d offset = point->cast<double>() - line.start_px;
+    const double t = std::clamp(line.direction.dot(offset) / line.length_px, 0.0, 1.0);
+    const double variance = line.normal.dot(covariance->cast<double>() * line.normal) +
+                            (1.0 - t) * line.start_normal_variance + t * line.end_normal_variance +
+                            line.floor_variance;
+    const double distance = line.normal.dot(offset);
+    chi2 += distance * distance / variance;
+  }
+  return chi2;
+}
+
+// True when the start q0 of an image segment lies too far from the line for
+// the gate, whatever t: d_0^2 / variance_0 > gate with variance_0 at most
+// trace(Sigma_q0) plus the larger endpoint variance plus the floor. Cheaper
+// than the overlap, and it turns away most pairs.
+bool startBeyondGate(const GatedLine& line, const Eigen::Vector2d& q0, double q0_variance_bound,
+                     double gate_chi2) {
+  const double distance = line.normal.dot(q0 - line.start_px);
+  const double variance_bound = q0_variance_bound +
+                                std::max(line.start_normal_variance, line.end_normal_variance) +
+                                line.floor_variance;
+  return distance * distance > gate_chi2 * variance_bound;
+}
+
+// Length of the image segment q0-q1's extent along the line that lies on it.
+double overlapPx(const GatedLine& line, const Eigen::Vector2d& q0, const Eigen::Vector2d& q1) {
+  const double t0 = line.direction.dot(q0 - line.start_px);
+  const double t1 = line.direction.dot(q1 - line.start_px);
+  return std::min(std::max(t0, t1), line.length_px) - std::max(std::min(t0, t1), 0.0);
+}
+
+}  // namespace
+
 std::vector<std::vector<LineMatch>> gateCandidates(const std::vector<ImageSegment>& image,
                                                    const std::vector<VisibleSegment>& model,
                                                    const PoseWithCovariance& T_world_camera,
                                                    const PinholeCamera& camera,
                                                    const MatchingOptions& options) {
-  std::vector<ProjectedSegment> projected;
-  projected.reserve(model.size());
-  for (const VisibleSegment& segment : model) {
-    projected.push_back(
-        projectSegment(segment.start_world, segment.end_world, T_world_camera, camera));
-  }
-  const double floor_variance = options.model_sigma_floor_px * options.model_sigma_floor_px;
+  const std::vector<GatedLine> lines =
+      gatedLines(model, T_world_camera, camera, options.model_sigma_floor_px);
   std::vector<std::vector<LineMatch>> candidates(image.size());
   for (size_t i = 0; i < image.size(); ++i) {
     const Eigen::Vector2d q0 = image[i].start.cast<double>();
     const Eigen::Vector2d q1 = image[i].end.cast<double>();
     const double image_length = (q1 - q0).norm();
-    for (size_t m = 0; m < projected.size(); ++m) {
-      const ProjectedSegment& p = projected[m];
-      const Eigen::Vector2d along = p.end_px - p.start_px;
-      const double model_length = along.norm();
-      if (model_length < 1e-9 || image_length < 1e-9) {
+    if (!(image_length >= 1e-9)) {
+      continue;
+    }
+    const double q0_variance_bound = image[i].start_covariance.trace();
+    for (size_t m = 0; m < lines.size(); ++m) {
+      if (!(lines[m].length_px >= 1e-9) ||
+          startBeyondGate(lines[m], q0, q0_variance_bound, options.gate_chi2) ||
+          overlapPx(lines[m], q0, q1) < options.min_overlap_fraction * image_length) {
         continue;
       }
-      const Eigen::Vector2d direction = along / model_length;
-      const Eigen::Vector2d normal(-direction.y(), direction.x());
-      // Overlap of the image segment's extent along the model line.
-      const double t0 = direction.dot(q0 - p.start_px);
-      const double t1 = direction.dot(q1 - p.start_px);
-      const double overlap =
-          std::min(std::max(t0, t1), model_length) - std::max(std::min(t0, t1), 0.0);
-      if (overlap < options.min_overlap_fraction * image_length) {
-        continue;
-      }
-      double chi2 = 0.0;
-      for (const auto& [q, covariance] :
-           {std::pair{q0, image[i].start_covariance.cast<double>().eval()},
-            std::pair{q1, image[i].end_covariance.cast<double>().eval()}}) {
-        const double t = std::clamp(direction.dot(q - p.start_px) / model_length, 0.0, 1.0);
-        const Eigen::Matrix2d model_covariance =
-            (1.0 - t) * p.start_covariance + t * p.end_covariance;
-        const double variance =
-            normal.dot((covariance + model_covariance) * normal) + floor_variance;
-        const double distance = normal.dot(q - p.start_px);
-        chi2 += distance * distance / variance;
-      }
+      const double chi2 = gateChi2(lines[m], image[i]);
       if (chi2 <= options.gate_chi2) {
         candidates[i].push_back({static_cast<int>(i), static_cast<int>(m), chi2});
       }

@@ -61,10 +61,17 @@ Alignment alignFromCentre(const std::vector<ImageSegment>& image,
   return wide;
 }
 
-// True when `other` lies beyond distinct_chi2 of `answer`'s own covariance.
+// True when `pose` lies within distinct_chi2 of `centre` in `covariance`:
+// e^T C^-1 e <= chi2, e = pose's error from centre (pose.h).
+bool within(const Eigen::Isometry3d& centre, const Matrix6d& covariance,
+            const Eigen::Isometry3d& pose, const LocalizerOptions& options) {
+  return normalizedErrorSquared({centre, covariance}, pose) <= options.distinct_chi2;
+}
+
+// True when `other` lies beyond distinct_chi2 of `answer` in answer's own covariance.
 bool outside(const Alignment& answer, const Alignment& other, const LocalizerOptions& options) {
-  return normalizedErrorSquared(answer.T_world_camera, other.T_world_camera.pose) >
-         options.distinct_chi2;
+  return !within(answer.T_world_camera.pose, answer.T_world_camera.covariance,
+                 other.T_world_camera.pose, options);
 }
 
 // The best covered alignment, its covariance grown by d d^T for every rival
@@ -75,13 +82,10 @@ Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<I
                       const std::vector<VisibleSegment>& visible,
                       const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                       const PinholeCamera& camera, const LocalizerOptions& options) {
-  const PoseSearch scorer(lines, scene, camera, options.acquisition.search);
-  const OrientedDistanceMap verification_map(image, camera.width, camera.height,
-                                             options.acquisition.verification_distances);
+  const CoverageVerifier verifier(image, lines, scene, camera, options.acquisition);
   std::vector<double> scores;
   for (const Alignment& alignment : aligned) {
-    scores.push_back(
-        scorer.coverage(visible, alignment.T_world_camera.pose, verification_map).score);
+    scores.push_back(verifier.coverage(visible, alignment.T_world_camera.pose).score);
   }
   const size_t best =
       static_cast<size_t>(std::max_element(scores.begin(), scores.end()) - scores.begin());
@@ -112,15 +116,13 @@ Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<I
 // in a view with few model lines its wide gates can take it a metre away.
 bool reaches(const PoseWithCovariance& start, const Alignment& alignment,
              const LocalizerOptions& options) {
-  const PoseWithCovariance difference{start.pose,
-                                      start.covariance + alignment.T_world_camera.covariance};
-  return normalizedErrorSquared(difference, alignment.T_world_camera.pose) <= options.distinct_chi2;
+  return within(start.pose, start.covariance + alignment.T_world_camera.covariance,
+                alignment.T_world_camera.pose, options);
 }
 
 // The OK alignments from the prior and its sigma points (those within reach
-// of their point): the first of them
-// when the others lie within its covariance, else coverRivals. The centre's
-// failure when none is OK.
+// of their point): the first of them when the others lie within its
+// covariance, else coverRivals. The centre's failure when none is OK.
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
                 const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                 const PoseWithCovariance& prior, const PinholeCamera& camera,

@@ -77,8 +77,9 @@ struct LocalizerOptions {
   // A rival covered at least this fraction as well as the best tracked
   // alignment widens the answer's covariance to reach it.
   double rival_score_fraction = 0.8;
-  // chi^2_6(0.9973): an alignment further from another in the other's own
-  // covariance is outside it.
+  // chi^2_6(0.9973): an alignment further from the answer in the answer's
+  // covariance is outside it; a sigma point's alignment further from its
+  // point, in the sum of their covariances, is out of its reach.
   double distinct_chi2 = 20.06;
   VisibilityOptions visibility;
   AlignmentOptions alignment;

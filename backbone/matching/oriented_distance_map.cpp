@@ -28,11 +28,12 @@ int OrientedDistanceMap::binOf(double direction_rad) {
 OrientedDistanceMap::OrientedDistanceMap(const std::vector<ImageSegment>& segments, int width_px,
                                          int height_px, const DistanceMapOptions& options)
     : truncation_px_(static_cast<float>(options.truncation_px)),
+      level_px_(truncation_px_ / kTruncationLevel),
       downsample_(std::max(1, options.downsample)) {
   const cv::Size size((width_px + downsample_ - 1) / downsample_,
                       (height_px + downsample_ - 1) / downsample_);
-  for (cv::Mat1f& map : maps_) {
-    map = cv::Mat1f(size, truncation_px_);
+  for (cv::Mat1b& map : maps_) {
+    map = cv::Mat1b(size, static_cast<uchar>(kTruncationLevel));
   }
   for (const ImageSegment& segment : segments) {
     const Eigen::Vector2d a = segment.start.cast<double>();
@@ -53,10 +54,11 @@ OrientedDistanceMap::OrientedDistanceMap(const std::vector<ImageSegment>& segmen
 // Row y of the band meets the capsule {q : |q - s| <= tau} inside
 // [min x - tau, max x + tau] and, for a segment that is not horizontal, inside
 // the strip |n . (q - a)| <= tau about its line: x = x_line(y) +- tau / |n_x|.
-void OrientedDistanceMap::drawDistanceBand(cv::Mat1f& map, const Eigen::Vector2d& a,
+void OrientedDistanceMap::drawDistanceBand(cv::Mat1b& map, const Eigen::Vector2d& a,
                                            const Eigen::Vector2d& b) const {
   const double scale = downsample_;
   const double tau = truncation_px_;
+  const double levels_per_px = 1.0 / level_px_;
   const Eigen::Vector2d along = b - a;
   const double length_squared = along.squaredNorm();
   const double length = std::sqrt(length_squared);
@@ -78,28 +80,30 @@ void OrientedDistanceMap::drawDistanceBand(cv::Mat1f& map, const Eigen::Vector2d
     }
     const int col_first = std::max(0, static_cast<int>(std::ceil(from / scale)));
     const int col_last = std::min(map.cols - 1, static_cast<int>(std::floor(to / scale)));
-    float* cells = map[row];
+    uchar* cells = map[row];
     for (int col = col_first; col <= col_last; ++col) {
       const Eigen::Vector2d offset(col * scale - a.x(), y - a.y());
       const double t = std::clamp(offset.dot(along) / length_squared, 0.0, 1.0);
-      const float distance = static_cast<float>((offset - t * along).norm());
-      cells[col] = std::min(cells[col], distance);
+      const double level =
+          std::min<double>(kTruncationLevel, (offset - t * along).norm() * levels_per_px + 0.5);
+      cells[col] = std::min(cells[col], static_cast<uchar>(level));
     }
   }
 }
 
-float OrientedDistanceMap::lookup(const cv::Mat1f& map, const Eigen::Vector2d& scaled_pixel) const {
+int OrientedDistanceMap::lookup(const cv::Mat1b& map, const Eigen::Vector2d& scaled_pixel) const {
   const double u = scaled_pixel.x() + 0.5;
   const double v = scaled_pixel.y() + 0.5;
   // Written so that NaN fails the test too.
   if (!(u >= 0.0 && v >= 0.0 && u < map.cols && v < map.rows)) {
-    return truncation_px_;
+    return kTruncationLevel;
   }
   return map(static_cast<int>(v), static_cast<int>(u));
 }
 
 float OrientedDistanceMap::distance(const Eigen::Vector2d& pixel, double direction_rad) const {
-  return lookup(maps_[binOf(direction_rad)], pixel / downsample_);
+  const int level = lookup(maps_[binOf(direction_rad)], pixel / downsample_);
+  return level == kTruncationLevel ? truncation_px_ : level * level_px_;
 }
 
 double OrientedDistanceMap::coveredLength(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
@@ -110,14 +114,14 @@ double OrientedDistanceMap::coveredLength(const Eigen::Vector2d& a, const Eigen:
   if (samples == 0) {
     return 0.0;
   }
-  const cv::Mat1f& map = maps_[binOf(std::atan2(along.y(), along.x()))];
+  const cv::Mat1b& map = maps_[binOf(std::atan2(along.y(), along.x()))];
   const Eigen::Vector2d step = along / (static_cast<double>(samples) * downsample_);
   Eigen::Vector2d sample = a / downsample_ + 0.5 * step;
-  double distance_sum = 0.0;
+  int level_sum = 0;
   for (int k = 0; k < samples; ++k, sample += step) {
-    distance_sum += lookup(map, sample);
+    level_sum += lookup(map, sample);
   }
-  return length * (1.0 - distance_sum / (samples * truncation_px_));
+  return length * (1.0 - static_cast<double>(level_sum) / (samples * kTruncationLevel));
 }
 
 }  // namespace lineloc

@@ -66,6 +66,18 @@ const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& 
 
 }  // namespace
 
+CoverageVerifier::CoverageVerifier(const std::vector<ImageSegment>& image,
+                                   const std::vector<ModelSegment>& lines,
+                                   const OcclusionScene& scene, const PinholeCamera& camera,
+                                   const AcquisitionOptions& options)
+    : scorer_(lines, scene, camera, options.search),
+      map_(image, camera.width, camera.height, options.verification_distances) {}
+
+Coverage CoverageVerifier::coverage(const std::vector<VisibleSegment>& visible,
+                                    const Eigen::Isometry3d& T_world_camera) const {
+  return scorer_.coverage(visible, T_world_camera, map_);
+}
+
 Acquisition acquirePose(const std::vector<ImageSegment>& image,
                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
@@ -78,8 +90,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   acquisition.summary.search_ns = steadyClockNs() - search_start_ns;
   acquisition.summary.hypotheses = static_cast<int>(hypotheses.size());
 
-  const OrientedDistanceMap verification_map(image, camera.width, camera.height,
-                                             options.verification_distances);
+  const CoverageVerifier verifier(image, lines, scene, camera, options);
   std::vector<Verified> verified(hypotheses.size());
   parallelFor(static_cast<int>(hypotheses.size()), options.search.threads, [&](int i) {
     const PoseWithCovariance start{hypotheses[i].T_world_camera,
@@ -89,8 +100,8 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
     candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
     if (hasPose(candidate.alignment)) {
-      candidate.coverage = search.coverage(
-          candidate.visible, candidate.alignment.T_world_camera.pose, verification_map);
+      candidate.coverage =
+          verifier.coverage(candidate.visible, candidate.alignment.T_world_camera.pose);
     }
   });
   std::vector<Verified> aligned;

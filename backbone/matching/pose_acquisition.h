@@ -52,6 +52,24 @@ struct AcquisitionOptions {
   double ambiguous_score_fraction = 0.75;
 };
 
+// Coverage of aligned poses against the sharp verification distance map of
+// one frame's image: how acquisition scores its aligned hypotheses, and
+// tracking its disagreeing alignments (localizer.h).
+class CoverageVerifier {
+ public:
+  // `lines` and `scene` must outlive the verifier.
+  CoverageVerifier(const std::vector<ImageSegment>& image, const std::vector<ModelSegment>& lines,
+                   const OcclusionScene& scene, const PinholeCamera& camera,
+                   const AcquisitionOptions& options);
+
+  Coverage coverage(const std::vector<VisibleSegment>& visible,
+                    const Eigen::Isometry3d& T_world_camera) const;
+
+ private:
+  PoseSearch scorer_;
+  OrientedDistanceMap map_;
+};
+
 // What a search found, for logs and benchmarks.
 struct SearchSummary {
   // Hypotheses the grid search proposed and how many of them aligned.

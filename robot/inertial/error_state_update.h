@@ -51,7 +51,8 @@ UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, Naviga
     return {UpdateStatus::kGated, nis};
   }
   const MatrixMM R = noise_inflation * z.noise;
-  const Eigen::LLT<MatrixMM> update_llt(z.jacobian * PHt + R);
+  const Eigen::LLT<MatrixMM> update_llt =
+      noise_inflation == 1.0 ? llt : Eigen::LLT<MatrixMM>(z.jacobian * PHt + R);
   const Eigen::Matrix<double, kErrorStateSize, M> K = update_llt.solve(PHt.transpose()).transpose();
   const ErrorCovariance I_KH = ErrorCovariance::Identity() - K * z.jacobian;
   covariance = I_KH * covariance * I_KH.transpose() + K * R * K.transpose();

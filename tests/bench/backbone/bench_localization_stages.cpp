@@ -17,8 +17,10 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <array>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "backbone/matching/localizer.h"
@@ -155,23 +157,75 @@ void BM_BackboneMatchingAndPose(benchmark::State& state) {
   state.counters["pose_ms"] = pose_ms / iteration;
 }
 
-void BM_BackboneSearchFromDgps(benchmark::State& state) {
-  std::mt19937 random(3);
+// localize() on each frame from the truth moved by one draw of the given
+// uncertainty: with a tracking prediction the whole tracking step the backbone
+// runs on a frame (hidden-line removal, alignment from the prediction and its
+// sigma points, coverage scoring when their alignments disagree:
+// localizer.h); from a DGPS start the search and its verification.
+void localizeFrames(benchmark::State& state, double position_sigma_m, double rotation_sigma_rad,
+                    unsigned seed) {
+  std::mt19937 random(seed);
   int64_t iteration = 0;
   int ok = 0;
   double search_ms = 0.0;
   for (auto _ : state) {
     const Frame& frame = frameAt(iteration++);
     const PoseWithCovariance prior =
-        drive().predicted(frame, kDgpsSigmaM, kCompassSigmaRad, random);
-    const Acquisition acquisition =
-        acquirePose(frame.segments, drive().model.lines, *drive().scene, prior,
-                    drive().calibration.camera, AcquisitionOptions{});
-    ok += acquisition.alignment.status == AlignmentStatus::kOk ? 1 : 0;
-    search_ms += acquisition.summary.search_ns * 1e-6;
+        drive().predicted(frame, position_sigma_m, rotation_sigma_rad, random);
+    const Localization localization = localize(frame.segments, drive().model.lines, *drive().scene,
+                                               prior, drive().calibration.camera, {});
+    ok += localization.alignment.status == AlignmentStatus::kOk ? 1 : 0;
+    search_ms += localization.search ? localization.search->search_ns * 1e-6 : 0.0;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / iteration;
   state.counters["grid_search_ms"] = search_ms / iteration;
+}
+
+void BM_BackboneTracking(benchmark::State& state) {
+  localizeFrames(state, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, 4);
+}
+
+void BM_BackboneSearchFromDgps(benchmark::State& state) {
+  localizeFrames(state, kDgpsSigmaM, kCompassSigmaRad, 3);
+}
+
+// The sharp oriented distance map that scores rival alignments, against what
+// a user would write with OpenCV: each orientation bin's segments drawn into
+// a binary image and cv::distanceTransform (exact, L2) over it.
+void BM_VerificationMap(benchmark::State& state) {
+  const DistanceMapOptions options = AcquisitionOptions{}.verification_distances;
+  const PinholeCamera& camera = drive().calibration.camera;
+  int64_t iteration = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        OrientedDistanceMap(frameAt(iteration++).segments, camera.width, camera.height, options));
+  }
+}
+
+void BM_VerificationMapOpenCvDistanceTransform(benchmark::State& state) {
+  const DistanceMapOptions options = AcquisitionOptions{}.verification_distances;
+  const PinholeCamera& camera = drive().calibration.camera;
+  int64_t iteration = 0;
+  for (auto _ : state) {
+    std::array<cv::Mat1b, OrientedDistanceMap::kOrientationBins> edges;
+    for (cv::Mat1b& bin : edges) {
+      bin = cv::Mat1b(camera.height, camera.width, uchar{255});
+    }
+    for (const ImageSegment& segment : frameAt(iteration++).segments) {
+      const Eigen::Vector2f along = segment.end - segment.start;
+      if (along.norm() < options.min_segment_length_px) {
+        continue;
+      }
+      const int bin = OrientedDistanceMap::binOf(std::atan2(along.y(), along.x()));
+      cv::line(edges[bin], {cvRound(segment.start.x()), cvRound(segment.start.y())},
+               {cvRound(segment.end.x()), cvRound(segment.end.y())}, cv::Scalar(0));
+    }
+    std::array<cv::Mat1f, OrientedDistanceMap::kOrientationBins> distances;
+    for (size_t bin = 0; bin < edges.size(); ++bin) {
+      cv::distanceTransform(edges[bin], distances[bin], cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    }
+    benchmark::DoNotOptimize(distances);
+  }
 }
 
 // Each per-frame stage: five repetitions over the frames, their median reported.
@@ -183,6 +237,9 @@ BENCHMARK(BM_RobotFrontEnd)->Apply(perFrameStage);
 BENCHMARK(BM_LineSetEncoding)->Apply(perFrameStage);
 BENCHMARK(BM_BackboneVisibility)->Apply(perFrameStage);
 BENCHMARK(BM_BackboneMatchingAndPose)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneTracking)->Apply(perFrameStage);
+BENCHMARK(BM_VerificationMap)->Apply(perFrameStage);
+BENCHMARK(BM_VerificationMapOpenCvDistanceTransform)->Apply(perFrameStage);
 BENCHMARK(BM_BackboneSearchFromDgps)->Unit(benchmark::kMillisecond)->Iterations(8);
 
 }  // namespace

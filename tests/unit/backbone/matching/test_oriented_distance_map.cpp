@@ -11,6 +11,8 @@ namespace {
 
 constexpr double kHorizontal = 0.0;
 constexpr double kVertical = M_PI / 2.0;
+// The maps below truncate at 10 px and keep distances in 255 levels.
+constexpr double kHalfLevelPx = 10.0 / 255.0 / 2.0;
 
 ImageSegment segment(float x0, float y0, float x1, float y1) {
   ImageSegment s;
@@ -25,12 +27,12 @@ OrientedDistanceMap horizontalAt100(int downsample) {
 
 TEST(OrientedDistanceMap, MeasuresTheDistanceToASegmentOfTheSameDirection) {
   const OrientedDistanceMap map = horizontalAt100(1);
-  EXPECT_NEAR(map.distance({200, 100}, kHorizontal), 0.0, 1e-6);
+  EXPECT_NEAR(map.distance({200, 100}, kHorizontal), 0.0, kHalfLevelPx);
   // Exact Euclidean distances, also past a segment's end.
-  EXPECT_NEAR(map.distance({200, 106}, kHorizontal), 6.0, 1e-6);
-  EXPECT_NEAR(map.distance({200, 94}, M_PI), 6.0, 1e-6);  // direction is taken mod pi
-  EXPECT_NEAR(map.distance({304, 103}, kHorizontal), 5.0, 1e-6);
-  EXPECT_NEAR(map.distance({96, 97}, kHorizontal), 5.0, 1e-6);
+  EXPECT_NEAR(map.distance({200, 106}, kHorizontal), 6.0, kHalfLevelPx);
+  EXPECT_NEAR(map.distance({200, 94}, M_PI), 6.0, kHalfLevelPx);  // direction is taken mod pi
+  EXPECT_NEAR(map.distance({304, 103}, kHorizontal), 5.0, kHalfLevelPx);
+  EXPECT_NEAR(map.distance({96, 97}, kHorizontal), 5.0, kHalfLevelPx);
   EXPECT_FLOAT_EQ(map.distance({200, 150}, kHorizontal), 10.0f);  // truncated
 }
 

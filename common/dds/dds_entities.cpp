@@ -4,6 +4,7 @@
 #include <dds/ddsi/q_protocol.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <utility>
 
@@ -27,6 +28,40 @@ dds_return_t check(dds_return_t code, const char* what_failed) {
     throw DdsError(what_failed, code);
   }
   return code;
+}
+
+namespace {
+
+ParticipantGuid toParticipantGuid(const dds_guid_t& guid) {
+  ParticipantGuid result;
+  std::copy(std::begin(guid.v), std::end(guid.v), result.begin());
+  return result;
+}
+
+}  // namespace
+
+std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, EndpointKind kind) {
+  const bool is_writer = kind == EndpointKind::kWriter;
+  const auto matched = [&](dds_instance_handle_t* handles, size_t capacity) {
+    return check(is_writer ? dds_get_matched_subscriptions(endpoint, handles, capacity)
+                           : dds_get_matched_publications(endpoint, handles, capacity),
+                 "matched endpoints");
+  };
+  std::vector<dds_instance_handle_t> handles(static_cast<size_t>(matched(nullptr, 0)));
+  handles.resize(
+      std::min(handles.size(), static_cast<size_t>(matched(handles.data(), handles.size()))));
+  std::vector<ParticipantGuid> participants;
+  for (const dds_instance_handle_t handle : handles) {
+    dds_builtintopic_endpoint_t* matched_endpoint =
+        is_writer ? dds_get_matched_subscription_data(endpoint, handle)
+                  : dds_get_matched_publication_data(endpoint, handle);
+    if (matched_endpoint == nullptr) {
+      continue;  // unmatched since it was listed
+    }
+    participants.push_back(toParticipantGuid(matched_endpoint->participant_key));
+    dds_builtintopic_free_endpoint(matched_endpoint);
+  }
+  return participants;
 }
 
 Entity::Entity(dds_entity_t handle, const char* what_created) : handle_(handle) {
@@ -76,6 +111,12 @@ Domain::Domain(uint32_t domain_id, const std::string& config_file)
 
 Participant::Participant(const Domain& domain)
     : participant_(dds_create_participant(domain.id(), nullptr, nullptr), "create participant") {}
+
+ParticipantGuid Participant::guid() const {
+  dds_guid_t guid;
+  check(dds_get_guid(participant_.handle(), &guid), "participant guid");
+  return toParticipantGuid(guid);
+}
 
 Qos::Qos(int32_t history_depth) : qos_(dds_create_qos()) {
   dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));

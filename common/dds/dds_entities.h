@@ -6,9 +6,11 @@
 
 #include <dds/dds.h>
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace lineloc::dds {
 
@@ -19,6 +21,16 @@ class DdsError : public std::runtime_error {
 
 // Throws DdsError when `code` is negative; returns it otherwise.
 dds_return_t check(dds_return_t code, const char* what_failed);
+
+// The GUID of a domain participant: which process (participant) an endpoint
+// belongs to.
+using ParticipantGuid = std::array<uint8_t, 16>;
+
+enum class EndpointKind { kWriter, kReader };
+
+// Participants of the endpoints matched with `endpoint`: the readers matched
+// with a writer, or the writers matched with a reader.
+std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, EndpointKind kind);
 
 // A uniquely owned DDS entity handle.
 class Entity {
@@ -54,6 +66,7 @@ class Participant {
  public:
   explicit Participant(const Domain& domain);
   dds_entity_t handle() const { return participant_.handle(); }
+  ParticipantGuid guid() const;
 
  private:
   Entity participant_;
@@ -104,6 +117,10 @@ class Writer {
     dds_publication_matched_status_t status;
     check(dds_get_publication_matched_status(writer_.handle(), &status), "matched status");
     return status.current_count;
+  }
+
+  std::vector<ParticipantGuid> matchedReaderParticipants() const {
+    return matchedParticipants(writer_.handle(), EndpointKind::kWriter);
   }
 
  private:
@@ -167,6 +184,10 @@ class Reader {
     dds_subscription_matched_status_t status;
     check(dds_get_subscription_matched_status(reader_.handle(), &status), "matched status");
     return status.current_count;
+  }
+
+  std::vector<ParticipantGuid> matchedWriterParticipants() const {
+    return matchedParticipants(reader_.handle(), EndpointKind::kReader);
   }
 
  private:

@@ -66,6 +66,7 @@ class FixReceiver {
     exposure_wall_ns_[sequence_number] = exposure_wall_ns;
   }
   size_t outstanding() const { return exposure_wall_ns_.size(); }
+  const dds::Reader<lineloc_msg_PoseFix>& reader() const { return reader_; }
 
   void poll(int64_t timeout_ns) {
     if (reader_.waitForData(timeout_ns)) {
@@ -170,13 +171,26 @@ std::string describe(const NavigatorHealth& health) {
           health.imu.duplicate);
 }
 
-void waitForBackbone(const dds::Writer<lineloc_msg_LineSet>& writer, double timeout_s,
+// True when one participant both reads this robot's LineSets and writes
+// PoseFixes: a backbone. Any LineSet reader would not do (a logger or monitor
+// listening in would let the first frames go out before the backbone hears them).
+bool backboneMatched(const dds::Writer<lineloc_msg_LineSet>& line_sets,
+                     const dds::Reader<lineloc_msg_PoseFix>& fixes) {
+  const std::vector<dds::ParticipantGuid> readers = line_sets.matchedReaderParticipants();
+  const std::vector<dds::ParticipantGuid> writers = fixes.matchedWriterParticipants();
+  return std::any_of(readers.begin(), readers.end(), [&](const dds::ParticipantGuid& reader) {
+    return std::find(writers.begin(), writers.end(), reader) != writers.end();
+  });
+}
+
+void waitForBackbone(const dds::Writer<lineloc_msg_LineSet>& line_sets,
+                     const dds::Reader<lineloc_msg_PoseFix>& fixes, double timeout_s,
                      const std::atomic<bool>& stop) {
   const int64_t deadline = steadyClockNs() + static_cast<int64_t>(timeout_s * 1e9);
-  while (writer.matchedReaders() == 0 && steadyClockNs() < deadline && !stop) {
+  while (!backboneMatched(line_sets, fixes) && steadyClockNs() < deadline && !stop) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  if (writer.matchedReaders() == 0) {
+  if (!backboneMatched(line_sets, fixes)) {
     spdlog::warn("no backbone found after {:.1f} s; sending anyway", timeout_s);
   }
 }
@@ -284,7 +298,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(kHistoryDepth));
   dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(kHistoryDepth));
   TumWriter fused(config.fused_trajectory_out);
-  waitForBackbone(writer, config.wait_for_backbone_s, stop);
+  waitForBackbone(writer, receiver.reader(), config.wait_for_backbone_s, stop);
 
   const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
   // Frames are decoded ahead of their exposure, as a camera driver delivers them.

@@ -1,6 +1,7 @@
 // Real Cyclone DDS participants on loopback, configured by deploy/cyclonedds.xml.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -24,6 +25,27 @@ bool waitFor(Predicate&& predicate) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return true;
+}
+
+TEST(DdsLoopback, MatchedEndpointsNameTheirParticipants) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant robot(domain);
+  dds::Participant backbone(domain);
+  dds::Participant listener(domain);
+  dds::Writer<lineloc_msg_LineSet> line_sets(robot, dds::Qos(8));
+  dds::Reader<lineloc_msg_PoseFix> fixes(robot, dds::Qos(8));
+  dds::Reader<lineloc_msg_LineSet> backbone_line_sets(backbone, dds::Qos(8));
+  dds::Writer<lineloc_msg_PoseFix> backbone_fixes(backbone, dds::Qos(8));
+  dds::Reader<lineloc_msg_LineSet> listener_line_sets(listener, dds::Qos(8));
+  ASSERT_TRUE(
+      waitFor([&] { return line_sets.matchedReaders() == 2 && fixes.matchedWriters() == 1; }));
+  std::vector<dds::ParticipantGuid> readers = line_sets.matchedReaderParticipants();
+  std::sort(readers.begin(), readers.end());
+  std::vector<dds::ParticipantGuid> expected = {backbone.guid(), listener.guid()};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(readers, expected);
+  EXPECT_EQ(fixes.matchedWriterParticipants(), std::vector<dds::ParticipantGuid>{backbone.guid()});
+  EXPECT_NE(robot.guid(), backbone.guid());
 }
 
 TEST(DdsLoopback, LineSetOf300SegmentsArrivesIntactBetweenParticipants) {

@@ -51,7 +51,6 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"dropped_invalid", counters.dropped_invalid},
                                {"map_errors", counters.map_errors},
                                {"searches", counters.searches},
-                               {"searches_deferred", counters.searches_deferred},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";

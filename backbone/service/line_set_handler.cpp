@@ -109,7 +109,6 @@ void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.searches;
   }
-  recordSearchOutcome(line_set, alignment.status == AlignmentStatus::kOk);
   std::string outcome = alignment.message;
   if (alignment.status == AlignmentStatus::kOk) {
     const Confirmation confirmation =
@@ -165,31 +164,6 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   return agrees ? Confirmation::kConfirmed : Confirmation::kDisagrees;
 }
 
-void LineSetHandler::recordSearchOutcome(const LineSetData& line_set, bool found_pose) {
-  const std::lock_guard<std::mutex> lock(searches_mutex_);
-  if (found_pose) {
-    last_failed_search_.erase(line_set.robot_id);
-    return;
-  }
-  last_failed_search_.insert_or_assign(
-      line_set.robot_id, SearchedFrame{line_set.stamp_ns, line_set.predicted_T_world_camera.pose});
-}
-
-bool LineSetHandler::viewMayHaveChanged(const LineSetData& line_set) {
-  const std::lock_guard<std::mutex> lock(searches_mutex_);
-  const auto failed = last_failed_search_.find(line_set.robot_id);
-  if (failed == last_failed_search_.end()) {
-    return true;
-  }
-  const Eigen::Isometry3d& then = failed->second.T_world_camera_predicted;
-  const Eigen::Isometry3d& now = line_set.predicted_T_world_camera.pose;
-  const Eigen::AngleAxisd turn(then.linear().transpose() * now.linear());
-  const double age_s = (line_set.stamp_ns - failed->second.stamp_ns) * 1e-9;
-  return (now.translation() - then.translation()).norm() >= options_.research_after_m ||
-         std::abs(turn.angle()) >= options_.research_after_rad ||
-         !(std::abs(age_s) < options_.research_after_s);
-}
-
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   fix.timings.total = steadyClockNs() - start_ns;
   const std::lock_guard<std::mutex> lock(counters_mutex_);
@@ -237,16 +211,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     const std::shared_ptr<const PreparedMap> map = prepare(view);
     fix.timings.visibility = steadyClockNs() - prepare_start_ns;
     const PoseWithCovariance prior = groundedPrior(line_set, *map);
-    const bool needs_search = needsAcquisition(prior, options_.localizer);
-    if (needs_search && !viewMayHaveChanged(line_set)) {
-      fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
-      {
-        const std::lock_guard<std::mutex> lock(counters_mutex_);
-        ++counters_.searches_deferred;
-      }
-      return finish(fix, start_ns);
-    }
-    if (search_worker_ == nullptr || !needs_search) {
+    if (search_worker_ == nullptr || !needsAcquisition(prior, options_.localizer)) {
       localizeInto(line_set, *map, prior, fix);
       return finish(fix, start_ns);
     }

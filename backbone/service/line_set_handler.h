@@ -24,14 +24,6 @@
 // pose the search picked by chance does not repeat; until one is confirmed the
 // answer is FIX_AMBIGUOUS.
 //
-// A robot whose last search found no pose is searched again only once its
-// view may have changed: its prediction moved research_after_m or turned
-// research_after_rad since that search's frame, or research_after_s passed.
-// Its frames meanwhile are answered at once without a pose. A standing robot
-// whose view holds too few building lines, or two poses that fit alike, would
-// otherwise be searched back to back (a search takes about 0.1 s on two
-// cores), each time with the same outcome, while the backbone serves others.
-//
 // Given a way to publish late answers, a LineSet whose prediction needs a
 // search is handed to a SearchWorker thread and answered from there
 // (search_worker.h); without one, everything is answered inline.
@@ -65,8 +57,6 @@ struct BackboneCounters {
   uint64_t map_errors = 0;
   uint64_t fixes_ok = 0;
   uint64_t searches = 0;
-  // Searches not run because the robot's view had not changed since its last failed one.
-  uint64_t searches_deferred = 0;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -82,9 +72,6 @@ struct PipelineOptions {
   double confirm_rotation_rad = 0.5 * M_PI / 180.0;
   // An unconfirmed search result older than this is forgotten.
   double confirm_within_s = 5.0;
-  double research_after_m = 0.25;
-  double research_after_rad = 1.0 * M_PI / 180.0;
-  double research_after_s = 1.0;
   LocalizerOptions localizer;
 };
 
@@ -122,11 +109,6 @@ class LineSetHandler {
   // one either way.
   Confirmation confirmPreviousSearch(const LineSetData& line_set,
                                      const Eigen::Isometry3d& acquired);
-  // Remembers the robot's last search that found no pose, or forgets it when one did.
-  void recordSearchOutcome(const LineSetData& line_set, bool found_pose);
-  // False while the robot's prediction stays near the frame of its last search
-  // that found no pose (research_after_*).
-  bool viewMayHaveChanged(const LineSetData& line_set);
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -149,11 +131,6 @@ class LineSetHandler {
   };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;
-  struct SearchedFrame {
-    int64_t stamp_ns;
-    Eigen::Isometry3d T_world_camera_predicted;
-  };
-  std::map<std::string, SearchedFrame> last_failed_search_;
   // Last, so that it is destroyed first: its searches use the members above.
   std::unique_ptr<SearchWorker> search_worker_;
 };

@@ -148,34 +148,6 @@ TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {
   EXPECT_EQ(handler.counters().answered, 2u);
 }
 
-TEST_F(LineSetHandlerTest, SearchesAgainAfterAFailedSearchOnlyOnceTheViewMayHaveChanged) {
-  MapTileCache cache = makeCache(database_.conninfo());
-  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  PoseWithCovariance predicted = lookingNorth({5, -20, 1.5});
-  // Frames 50 ms apart (lineSetMessage's stamps).
-  const auto answer = [&](uint32_t sequence_number) {
-    return handler.handle(lineSetMessage(fewSegments(), predicted, sequence_number)->message())
-        ->status;
-  };
-  EXPECT_EQ(answer(2), lineloc_msg_FIX_TOO_FEW_MATCHES);
-  EXPECT_EQ(answer(3), lineloc_msg_FIX_NO_MATCH_COMPUTED);
-  EXPECT_EQ(handler.counters().searches, 1u);
-  EXPECT_EQ(handler.counters().searches_deferred, 1u);
-  // Moved 0.3 m.
-  predicted.pose.translation().x() += 0.3;
-  EXPECT_EQ(answer(4), lineloc_msg_FIX_TOO_FEW_MATCHES);
-  // Turned 2 degrees.
-  predicted.pose.linear() =
-      Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()) * predicted.pose.linear();
-  EXPECT_EQ(answer(5), lineloc_msg_FIX_TOO_FEW_MATCHES);
-  EXPECT_EQ(answer(6), lineloc_msg_FIX_NO_MATCH_COMPUTED);
-  // 1.05 s after the last search.
-  EXPECT_EQ(answer(26), lineloc_msg_FIX_TOO_FEW_MATCHES);
-  EXPECT_EQ(handler.counters().searches, 4u);
-  EXPECT_EQ(handler.counters().searches_deferred, 2u);
-  EXPECT_EQ(handler.counters().answered, 6u);
-}
-
 TEST_F(LineSetHandlerTest, DropsAndCountsMalformedInputThenKeepsServing) {
   MapTileCache cache = makeCache(database_.conninfo());
   MessageLimits limits;

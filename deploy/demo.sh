@@ -7,13 +7,13 @@
 # in real time, and prints lineloc-eval's report against the ground truth.
 #
 # Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
-# LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42).
-# Everything goes to out/demo/.
+# LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42),
+# LINELOC_DEMO_OUT (where everything goes, out/demo/).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD_DIR/bin"
-OUT="$ROOT/out/demo"
+OUT="${LINELOC_DEMO_OUT:-$ROOT/out/demo}"
 DOMAIN_ID="${LINELOC_DEMO_DOMAIN:-42}"
 DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
 SEED="${LINELOC_DEMO_SEED:-1}"

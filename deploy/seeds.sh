@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# The main job over many drives: deploy/demo.sh on seeds FIRST..FIRST+N-1,
+# each its own route, clutter and sensor noise, LINELOC_DEMO_DURATION_S long
+# (default 20 s here), then one row per seed and the totals: fixes OK, fixes
+# beyond chi2_6(0.9973) of their own covariance (precise wrong poses, which
+# the system must never give), when the robot received its first OK fix, the
+# position and attitude RMSE from then on, and the exposure -> fix latency.
+# Exits 1 when any seed gave a precise wrong pose, 2 when a run failed.
+#
+# Usage: deploy/seeds.sh [N=50] [FIRST=1]   (about 45 s per 20 s drive)
+# Each run's files stay in out/seeds/<seed>/.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SEEDS="${1:-50}"
+FIRST_SEED="${2:-1}"
+export LINELOC_DEMO_DURATION_S="${LINELOC_DEMO_DURATION_S:-20}"
+OUT="$ROOT/out/seeds"
+mkdir -p "$OUT"
+
+# One row from a demo's report (lineloc-robot's summary and lineloc-eval's
+# tables, whose "after the first OK fix" part follows the full-run part).
+summarise() {
+  awk -v seed="$1" '
+    /exposure -> fix median/ {
+      for (i = 1; i <= NF; ++i) {
+        if ($i == "median") latency_median = $(i + 1)
+        if ($i == "p99") latency_p99 = $(i + 1)
+      }
+    }
+    /^fixes: / {
+      answers = $2; ok = $4; beyond = 0
+      if (match($0, /; [0-9]+ beyond/)) beyond = substr($0, RSTART + 2, RLENGTH - 9) + 0
+    }
+    /^after the first OK fix/ { after = 1; first_fix = $7 }
+    after && /^position / { position_rmse = $2 }
+    after && /^attitude / { attitude_rmse = $2 }
+    END {
+      if (answers == "") { exit 1 }
+      if (first_fix == "") { first_fix = "-"; position_rmse = "-"; attitude_rmse = "-" }
+      printf "%5d %8d %6d %7d %10s %9s %10s %9s %8s\n", seed, answers, ok, beyond, first_fix,
+             position_rmse, attitude_rmse, latency_median, latency_p99
+    }' "$2"
+}
+
+header="$(printf "%5s %8s %6s %7s %10s %9s %10s %9s %8s" seed answers ok beyond \
+  first_ok_s pos_rmse_m att_rmse_deg lat_med_ms lat_p99_ms)"
+rows=""
+failed=0
+for ((seed = FIRST_SEED; seed < FIRST_SEED + SEEDS; ++seed)); do
+  log="$OUT/$seed.log"
+  echo "seeds: seed $seed of $FIRST_SEED..$((FIRST_SEED + SEEDS - 1))"
+  if ! LINELOC_DEMO_SEED="$seed" LINELOC_DEMO_OUT="$OUT/$seed" "$ROOT/deploy/demo.sh" >"$log" 2>&1 ||
+    ! row="$(summarise "$seed" "$log")"; then
+    echo "seeds: seed $seed failed, see $log" >&2
+    failed=1
+    continue
+  fi
+  rows+="$row"$'\n'
+done
+
+echo "$header"
+printf "%s" "$rows"
+printf "%s" "$rows" | awk '
+  { answers += $2; ok += $3; beyond += $4; ++runs; if ($5 == "-") ++never }
+  END {
+    printf "total: %d runs, %d answers, %d OK (%.1f %%), %d beyond 3 sigma, %d never fixed\n",
+           runs, answers, ok, answers ? 100.0 * ok / answers : 0, beyond, never
+    exit beyond > 0
+  }' || exit 1
+exit $((failed * 2))

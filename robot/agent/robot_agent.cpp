@@ -102,6 +102,7 @@ class FixReceiver {
                        1e-6 * static_cast<double>(latency_ns)});
     }
     if (fix.status == lineloc_msg_FIX_OK) {
+      summary_.pose_latency_ns.push_back(latency_ns);
       trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});
       handler_(fix);
     }

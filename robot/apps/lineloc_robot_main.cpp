@@ -68,13 +68,16 @@ int main(int argc, char** argv) {
     const lineloc::RobotRunSummary summary = lineloc::runRobot(config, g_stop);
     std::cout << fmt::format(
         "lineloc-robot: {} frames sent ({} before the filter started), {} fixes received, {} "
-        "dropped, {} applied, {} rejected; exposure -> fix median {:.2f} ms, p99 {:.2f} ms\n"
+        "dropped, {} applied, {} rejected; exposure -> fix median {:.2f} ms, p99 {:.2f} ms; "
+        "with a pose median {:.2f} ms, p99 {:.2f} ms\n"
         "lineloc-robot: LineSet on the wire median {} bytes, p99 {} bytes\n"
         "lineloc-robot: {} states published; {} sensor lines dropped; {}\n",
         summary.frames_sent, summary.frames_before_start, summary.fixes_received,
         summary.fixes_dropped, summary.fixes_applied, summary.fixes_rejected,
         lineloc::percentile(summary.latency_ns, 50) * 1e-6,
         lineloc::percentile(summary.latency_ns, 99) * 1e-6,
+        lineloc::percentile(summary.pose_latency_ns, 50) * 1e-6,
+        lineloc::percentile(summary.pose_latency_ns, 99) * 1e-6,
         lineloc::percentile(summary.line_set_bytes, 50),
         lineloc::percentile(summary.line_set_bytes, 99), summary.states_published,
         summary.sensor_lines_dropped, summary.health);

@@ -45,9 +45,8 @@ ProjectedSegment projectSegment(const Eigen::Vector3d& start_world,
 namespace {
 
 // A projected model segment in the form the gate reads: its line's direction
-// and normal, its length, and the normal variance n^T Sigma n of each
-// endpoint, which interpolates linearly along it as the covariance does, plus
-// the floor.
+// and normal, its length, and the normal variance n^T Sigma n + floor^2 of
+// each endpoint, which interpolates linearly along it as the covariance does.
 struct GatedLine {
   Eigen::Vector2d start_px;
   Eigen::Vector2d direction;
@@ -55,12 +54,12 @@ struct GatedLine {
   double length_px = 0.0;
   double start_normal_variance = 0.0;
   double end_normal_variance = 0.0;
-  double floor_variance = 0.0;
 };
 
 std::vector<GatedLine> gatedLines(const std::vector<VisibleSegment>& model,
                                   const PoseWithCovariance& T_world_camera,
                                   const PinholeCamera& camera, double floor_px) {
+  const double floor_variance = floor_px * floor_px;
   std::vector<GatedLine> lines;
   lines.reserve(model.size());
   for (const VisibleSegment& segment : model) {
@@ -71,9 +70,8 @@ std::vector<GatedLine> gatedLines(const std::vector<VisibleSegment>& model,
     line.length_px = (p.end_px - p.start_px).norm();
     line.direction = (p.end_px - p.start_px) / line.length_px;
     line.normal = {-line.direction.y(), line.direction.x()};
-    line.start_normal_variance = line.normal.dot(p.start_covariance * line.normal);
-    line.end_normal_variance = line.normal.dot(p.end_covariance * line.normal);
-    line.floor_variance = floor_px * floor_px;
+    line.start_normal_variance = line.normal.dot(p.start_covariance * line.normal) + floor_variance;
+    line.end_normal_variance = line.normal.dot(p.end_covariance * line.normal) + floor_variance;
     lines.push_back(line);
   }
   return lines;
@@ -88,8 +86,7 @@ double gateChi2(const GatedLine& line, const ImageSegment& segment) {
     const Eigen::Vector2d offset = point->cast<double>() - line.start_px;
     const double t = std::clamp(line.direction.dot(offset) / line.length_px, 0.0, 1.0);
     const double variance = line.normal.dot(covariance->cast<double>() * line.normal) +
-                            (1.0 - t) * line.start_normal_variance + t * line.end_normal_variance +
-                            line.floor_variance;
+                            (1.0 - t) * line.start_normal_variance + t * line.end_normal_variance;
     const double distance = line.normal.dot(offset);
     chi2 += distance * distance / variance;
   }
@@ -98,14 +95,13 @@ double gateChi2(const GatedLine& line, const ImageSegment& segment) {
 
 // True when the start q0 of an image segment lies too far from the line for
 // the gate, whatever t: d_0^2 / variance_0 > gate with variance_0 at most
-// trace(Sigma_q0) plus the larger endpoint variance plus the floor. Cheaper
+// trace(Sigma_q0) plus the larger endpoint variance (floor included). Cheaper
 // than the overlap, and it turns away most pairs.
 bool startBeyondGate(const GatedLine& line, const Eigen::Vector2d& q0, double q0_variance_bound,
                      double gate_chi2) {
   const double distance = line.normal.dot(q0 - line.start_px);
-  const double variance_bound = q0_variance_bound +
-                                std::max(line.start_normal_variance, line.end_normal_variance) +
-                                line.floor_variance;
+  const double variance_bound =
+      q0_variance_bound + std::max(line.start_normal_variance, line.end_normal_variance);
   return distance * distance > gate_chi2 * variance_bound;
 }
 

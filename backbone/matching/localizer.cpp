@@ -79,10 +79,9 @@ bool outside(const Alignment& answer, const Alignment& other, const LocalizerOpt
 // offset); kAmbiguous when that leaves a position sigma beyond the
 // alignment's limit.
 Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<ImageSegment>& image,
-                      const std::vector<VisibleSegment>& visible,
-                      const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
-                      const PinholeCamera& camera, const LocalizerOptions& options) {
-  const CoverageVerifier verifier(image, lines, scene, camera, options.acquisition);
+                      const std::vector<VisibleSegment>& visible, const PinholeCamera& camera,
+                      const LocalizerOptions& options) {
+  const CoverageVerifier verifier(image, camera, options.acquisition);
   std::vector<double> scores;
   for (const Alignment& alignment : aligned) {
     scores.push_back(verifier.coverage(visible, alignment.T_world_camera.pose).score);
@@ -124,7 +123,6 @@ bool reaches(const PoseWithCovariance& start, const Alignment& alignment,
 // of their point): the first of them when the others lie within its
 // covariance, else coverRivals. The centre's failure when none is OK.
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
-                const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                 const PoseWithCovariance& prior, const PinholeCamera& camera,
                 const LocalizerOptions& options) {
   std::vector<Alignment> aligned;
@@ -151,7 +149,7 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
     answer = aligned.front();
   } else if (!aligned.empty()) {
     const int64_t scoring_start_ns = steadyClockNs();
-    answer = coverRivals(aligned, image, visible, lines, scene, camera, options);
+    answer = coverRivals(aligned, image, visible, camera, options);
     matching_ns += steadyClockNs() - scoring_start_ns;
   }
   answer.matching_ns = matching_ns;
@@ -183,7 +181,7 @@ Localization localize(const std::vector<ImageSegment>& image,
   const int64_t visibility_start_ns = steadyClockNs();
   localization.visible = visibleSegments(lines, scene, prior, camera, options.visibility);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
-  localization.alignment = track(image, localization.visible, lines, scene, prior, camera, options);
+  localization.alignment = track(image, localization.visible, prior, camera, options);
   return localization;
 }
 

@@ -67,15 +67,14 @@ const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& 
 }  // namespace
 
 CoverageVerifier::CoverageVerifier(const std::vector<ImageSegment>& image,
-                                   const std::vector<ModelSegment>& lines,
-                                   const OcclusionScene& scene, const PinholeCamera& camera,
-                                   const AcquisitionOptions& options)
-    : scorer_(lines, scene, camera, options.search),
+                                   const PinholeCamera& camera, const AcquisitionOptions& options)
+    : camera_(camera),
+      options_(options.search),
       map_(image, camera.width, camera.height, options.verification_distances) {}
 
 Coverage CoverageVerifier::coverage(const std::vector<VisibleSegment>& visible,
                                     const Eigen::Isometry3d& T_world_camera) const {
-  return scorer_.coverage(visible, T_world_camera, map_);
+  return measureCoverage(visible, T_world_camera, camera_, map_, options_);
 }
 
 Acquisition acquirePose(const std::vector<ImageSegment>& image,
@@ -90,7 +89,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   acquisition.summary.search_ns = steadyClockNs() - search_start_ns;
   acquisition.summary.hypotheses = static_cast<int>(hypotheses.size());
 
-  const CoverageVerifier verifier(image, lines, scene, camera, options);
+  const CoverageVerifier verifier(image, camera, options);
   std::vector<Verified> verified(hypotheses.size());
   parallelFor(static_cast<int>(hypotheses.size()), options.search.threads, [&](int i) {
     const PoseWithCovariance start{hypotheses[i].T_world_camera,

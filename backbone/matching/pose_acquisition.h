@@ -57,16 +57,15 @@ struct AcquisitionOptions {
 // tracking its disagreeing alignments (localizer.h).
 class CoverageVerifier {
  public:
-  // `lines` and `scene` must outlive the verifier.
-  CoverageVerifier(const std::vector<ImageSegment>& image, const std::vector<ModelSegment>& lines,
-                   const OcclusionScene& scene, const PinholeCamera& camera,
+  CoverageVerifier(const std::vector<ImageSegment>& image, const PinholeCamera& camera,
                    const AcquisitionOptions& options);
 
   Coverage coverage(const std::vector<VisibleSegment>& visible,
                     const Eigen::Isometry3d& T_world_camera) const;
 
  private:
-  PoseSearch scorer_;
+  PinholeCamera camera_;
+  PoseSearchOptions options_;
   OrientedDistanceMap map_;
 };
 

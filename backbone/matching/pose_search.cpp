@@ -130,9 +130,9 @@ std::vector<VisibleSegment> PoseSearch::visibleFrom(const Eigen::Vector3d& posit
   return visibleSegments(lines_, scene_, viewpoint, camera_, options);
 }
 
-Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
-                              const Eigen::Isometry3d& T_world_camera,
-                              const OrientedDistanceMap& map) const {
+Coverage measureCoverage(const std::vector<VisibleSegment>& visible,
+                         const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                         const OrientedDistanceMap& map, const PoseSearchOptions& options) {
   const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
   Coverage coverage;
   for (const VisibleSegment& segment : visible) {
@@ -141,19 +141,19 @@ Coverage PoseSearch::coverage(const std::vector<VisibleSegment>& visible,
     if (!clipNear(a, b)) {
       continue;
     }
-    Eigen::Vector2d pa = camera_.project(a);
-    Eigen::Vector2d pb = camera_.project(b);
-    if (!clipToImage(pa, pb, camera_.width, camera_.height)) {
+    Eigen::Vector2d pa = camera.project(a);
+    Eigen::Vector2d pb = camera.project(b);
+    if (!clipToImage(pa, pb, camera.width, camera.height)) {
       continue;
     }
     const double length = (pb - pa).norm();
-    if (length < options_.sample_spacing_px) {
+    if (length < options.sample_spacing_px) {
       continue;
     }
-    coverage.covered_px += map.coveredLength(pa, pb, options_.sample_spacing_px);
+    coverage.covered_px += map.coveredLength(pa, pb, options.sample_spacing_px);
     coverage.model_px += length;
   }
-  if (coverage.model_px >= options_.min_model_length_px) {
+  if (coverage.model_px >= options.min_model_length_px) {
     coverage.score = coverage.covered_px / std::sqrt(coverage.model_px);
   }
   return coverage;
@@ -172,7 +172,7 @@ PoseSearch::GridPose PoseSearch::refine(const GridPose& start, const Eigen::Matr
         for (const double yaw : gridOffsets(fine.yaw_range_rad, fine.yaw_step_rad)) {
           GridPose pose{
               start.position_world + Eigen::Vector3d(dx, dy, dz), start.yaw_offset_rad + yaw, {}};
-          pose.coverage = coverage(visible, poseOf(pose, R_prior), map);
+          pose.coverage = measureCoverage(visible, poseOf(pose, R_prior), camera_, map, options_);
           if (pose.coverage.score > best.coverage.score) {
             best = pose;
           }
@@ -236,7 +236,8 @@ std::vector<PoseHypothesis> PoseSearch::search(const std::vector<ImageSegment>& 
     for (size_t k = 0; k < yaws.size(); ++k) {
       GridPose& pose = scored[index * yaws.size() + k];
       pose = {position, yaws[k], {}};
-      pose.coverage = coverage(visible_by_cell[cell], poseOf(pose, R_prior), coarse_map);
+      pose.coverage = measureCoverage(visible_by_cell[cell], poseOf(pose, R_prior), camera_,
+                                      coarse_map, options_);
     }
   });
 

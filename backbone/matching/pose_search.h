@@ -86,6 +86,13 @@ struct PoseHypothesis {
   Coverage coverage;
 };
 
+// Coverage C / sqrt(L) of the visible model lines seen from one pose against a
+// distance map, sampled every options.sample_spacing_px pixels; 0 below
+// options.min_model_length_px.
+Coverage measureCoverage(const std::vector<VisibleSegment>& visible,
+                         const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                         const OrientedDistanceMap& map, const PoseSearchOptions& options);
+
 class PoseSearch {
  public:
   // `lines` and `scene` must outlive the search.
@@ -96,10 +103,6 @@ class PoseSearch {
   // is inside a building or nothing can be seen.
   std::vector<PoseHypothesis> search(const std::vector<ImageSegment>& image,
                                      const PoseWithCovariance& prior) const;
-
-  // Coverage of one pose against a distance map (exposed for tests).
-  Coverage coverage(const std::vector<VisibleSegment>& visible,
-                    const Eigen::Isometry3d& T_world_camera, const OrientedDistanceMap& map) const;
 
  private:
   std::vector<VisibleSegment> visibleFrom(const Eigen::Vector3d& position_world,

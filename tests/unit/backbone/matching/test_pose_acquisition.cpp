@@ -84,17 +84,18 @@ TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
   const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(9);
   const Scene scene = render(street, occlusion, 10, random);
-  const PoseSearch search(street.edges, occlusion, kCamera, PoseSearchOptions{});
+  const PoseSearchOptions options;
   const OrientedDistanceMap map(scene.image, kCamera.width, kCamera.height, {15.0, 6.0, 1});
-  const Coverage truth = search.coverage(scene.visible, truePose().pose, map);
+  const Coverage truth = measureCoverage(scene.visible, truePose().pose, kCamera, map, options);
   EXPECT_GT(truth.covered_px, 0.8 * truth.model_px);
   for (const Eigen::Vector3d& offset :
        {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 5, 0), Eigen::Vector3d(-3, -3, 0)}) {
     Eigen::Isometry3d moved = truePose().pose;
     moved.translation() += offset;
     const PoseWithCovariance viewpoint{moved, Matrix6d::Zero()};
-    const Coverage elsewhere = search.coverage(
-        visibleSegments(street.edges, occlusion, viewpoint, kCamera, {}), moved, map);
+    const Coverage elsewhere =
+        measureCoverage(visibleSegments(street.edges, occlusion, viewpoint, kCamera, {}), moved,
+                        kCamera, map, options);
     EXPECT_LT(elsewhere.score, truth.score) << offset.transpose();
   }
 }

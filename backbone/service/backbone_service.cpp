@@ -84,8 +84,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
   dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::Qos(kHistoryDepth));
-  const auto publish = [&writer](const PoseFixData& fix) { writer.write(toMessage(fix)); };
-  LineSetHandler handler(map, limits, pipeline, publish);
+  LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 
   const int64_t stats_period_ns = static_cast<int64_t>(config.stats_period_s * 1e9);
@@ -94,7 +93,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     if (reader.waitForData(kWaitNs)) {
       reader.takeEach([&](const lineloc_msg_LineSet& message) {
         if (const auto fix = handler.handle(message)) {
-          publish(*fix);
+          writer.write(toMessage(*fix));
         }
       });
     }

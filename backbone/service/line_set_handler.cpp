@@ -28,13 +28,12 @@ lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
 }
 
 LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
-                               const PipelineOptions& options,
-                               SearchWorker::Publish publish_searches)
-    : map_(map),
-      limits_(limits),
-      options_(options),
-      search_worker_(publish_searches ? std::make_unique<SearchWorker>(std::move(publish_searches))
-                                      : nullptr) {}
+                               const PipelineOptions& options)
+    : map_(map), limits_(limits), options_(options) {}
+
+void LineSetHandler::waitForSearches() {
+  search_worker_.waitUntilIdle();
+}
 
 BackboneCounters LineSetHandler::counters() const {
   const std::lock_guard<std::mutex> lock(counters_mutex_);
@@ -88,8 +87,8 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
   return prior;
 }
 
-void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap& map,
-                                  const PoseWithCovariance& prior, PoseFixData& fix) {
+void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& map,
+                               const PoseWithCovariance& prior, PoseFixData& fix) {
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
                                              line_set.camera, options_.localizer);
   const Alignment& alignment = localization.alignment;
@@ -102,30 +101,30 @@ void LineSetHandler::localizeInto(const LineSetData& line_set, const PreparedMap
   if (alignment.status == AlignmentStatus::kOk) {
     fix.T_world_camera = alignment.T_world_camera;
   }
-  if (!localization.search) {
-    return;
-  }
+}
+
+void LineSetHandler::search(const LineSetData& line_set, const PreparedMap& map,
+                            const PoseWithCovariance& prior) {
+  const int64_t start_ns = steadyClockNs();
+  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
+                                             line_set.camera, options_.localizer);
+  const int64_t search_ns = steadyClockNs() - start_ns;
+  const Alignment& alignment = localization.alignment;
   {
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.searches;
   }
-  std::string outcome = alignment.message;
-  if (alignment.status == AlignmentStatus::kOk) {
-    const Confirmation confirmation =
-        confirmPreviousSearch(line_set, alignment.T_world_camera.pose);
-    outcome = describe(confirmation);
-    if (confirmation != Confirmation::kConfirmed) {
-      fix.status = lineloc_msg_FIX_AMBIGUOUS;
-      fix.T_world_camera = line_set.predicted_T_world_camera;
-    }
-  }
-  const SearchSummary& search = *localization.search;
+  const std::string outcome =
+      alignment.status == AlignmentStatus::kOk
+          ? describe(confirmPreviousSearch(line_set, alignment.T_world_camera))
+          : alignment.message;
+  const SearchSummary summary = localization.search.value_or(SearchSummary{});
   spdlog::info(
       "search for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
-      "best / {:.1f} rival, {} inliers, grid search {:.0f} ms",
-      line_set.robot_id, line_set.sequence_number, toString(fix.status), outcome, search.aligned,
-      search.hypotheses, search.best_score, search.rival_score, alignment.inliers,
-      search.search_ns * 1e-6);
+      "best / {:.1f} rival, {} inliers, {:.0f} ms (grid search {:.0f} ms)",
+      line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)), outcome,
+      summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
+      alignment.inliers, search_ns * 1e-6, summary.search_ns * 1e-6);
 }
 
 const char* LineSetHandler::describe(Confirmation confirmation) {
@@ -140,9 +139,15 @@ const char* LineSetHandler::describe(Confirmation confirmation) {
   return "";
 }
 
+PoseWithCovariance LineSetHandler::movedByPrediction(const SearchResult& search,
+                                                     const Eigen::Isometry3d& predicted) {
+  return composeExactMotion(search.T_world_camera_found,
+                            search.T_world_camera_predicted.pose.inverse() * predicted);
+}
+
 LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
-    const LineSetData& line_set, const Eigen::Isometry3d& acquired) {
-  const SearchResult current{line_set.stamp_ns, acquired, line_set.predicted_T_world_camera.pose};
+    const LineSetData& line_set, const PoseWithCovariance& acquired) {
+  const SearchResult current{line_set.stamp_ns, acquired, line_set.predicted_T_world_camera};
   const std::lock_guard<std::mutex> lock(searches_mutex_);
   const auto previous = last_search_.find(line_set.robot_id);
   if (previous == last_search_.end()) {
@@ -154,14 +159,36 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   if (!(age_s > 0.0 && age_s <= options_.confirm_within_s)) {
     return Confirmation::kFirst;
   }
-  const Eigen::Isometry3d expected = last.T_world_camera_found *
-                                     last.T_world_camera_predicted.inverse() *
-                                     current.T_world_camera_predicted;
-  const Eigen::AngleAxisd rotation(expected.linear().transpose() * acquired.linear());
-  const bool agrees =
-      (expected.translation() - acquired.translation()).norm() <= options_.confirm_position_m &&
-      std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
-  return agrees ? Confirmation::kConfirmed : Confirmation::kDisagrees;
+  const Eigen::Isometry3d expected =
+      movedByPrediction(last, current.T_world_camera_predicted.pose).pose;
+  const Eigen::AngleAxisd rotation(expected.linear().transpose() * acquired.pose.linear());
+  const bool agrees = (expected.translation() - acquired.pose.translation()).norm() <=
+                          options_.confirm_position_m &&
+                      std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
+  if (!agrees) {
+    return Confirmation::kDisagrees;
+  }
+  confirmed_search_.insert_or_assign(line_set.robot_id, current);
+  return Confirmation::kConfirmed;
+}
+
+std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set) {
+  const std::lock_guard<std::mutex> lock(searches_mutex_);
+  const auto confirmed = confirmed_search_.find(line_set.robot_id);
+  if (confirmed == confirmed_search_.end()) {
+    return std::nullopt;
+  }
+  const SearchResult& search = confirmed->second;
+  const double age_s = (line_set.stamp_ns - search.stamp_ns) * 1e-9;
+  const auto positionVariance = [](const PoseWithCovariance& pose) {
+    return pose.covariance.topLeftCorner<3, 3>().trace();
+  };
+  if (!(age_s > 0.0 && age_s <= options_.carry_search_s) ||
+      positionVariance(line_set.predicted_T_world_camera) <
+          positionVariance(search.T_world_camera_predicted)) {
+    return std::nullopt;
+  }
+  return movedByPrediction(search, line_set.predicted_T_world_camera.pose);
 }
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
@@ -211,24 +238,23 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     const std::shared_ptr<const PreparedMap> map = prepare(view);
     fix.timings.visibility = steadyClockNs() - prepare_start_ns;
     const PoseWithCovariance prior = groundedPrior(line_set, *map);
-    if (search_worker_ == nullptr || !needsAcquisition(prior, options_.localizer)) {
-      localizeInto(line_set, *map, prior, fix);
+    if (!needsAcquisition(prior, options_.localizer)) {
+      trackInto(line_set, *map, prior, fix);
       return finish(fix, start_ns);
     }
-    auto search = [this, line_set, map, prior, fix, start_ns]() mutable {
+    const std::optional<PoseWithCovariance> carried = carriedSearch(line_set);
+    if (carried && !needsAcquisition(*carried, options_.localizer)) {
+      trackInto(line_set, *map, *carried, fix);
+      return finish(fix, start_ns);
+    }
+    search_worker_.submit(line_set.robot_id, [this, line_set, map, prior] {
       try {
-        localizeInto(line_set, *map, prior, fix);
+        search(line_set, *map, prior);
       } catch (const std::exception& error) {
-        spdlog::error("search for {} #{} failed: {}", fix.robot_id, fix.sequence_number,
+        spdlog::error("search for {} #{} failed: {}", line_set.robot_id, line_set.sequence_number,
                       error.what());
-        fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
       }
-      return finish(fix, start_ns);
-    };
-    if (search_worker_->submit(line_set.robot_id, std::move(search))) {
-      return std::nullopt;
-    }
-    // The robot's search runs on an earlier frame.
+    });
     fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
     spdlog::error("map for {} #{} failed: {}", fix.robot_id, fix.sequence_number, error.what());

@@ -16,17 +16,20 @@
 // the few most recent views (the tile cache hands out the same view object
 // while its tiles stay the same), so steady frames build nothing.
 //
-// A pose found by a search is only answered FIX_OK once a second search, on a
-// later frame of the same robot, finds the pose the first one predicts: the
-// first acquired pose A1 moved by the robot's own predicted motion between the
-// two frames, A1 P1^-1 P2 (dead reckoning over a second is centimetres, DGPS
-// metres), within confirm_position_m and confirm_rotation_rad of A2. A wrong
-// pose the search picked by chance does not repeat; until one is confirmed the
-// answer is FIX_AMBIGUOUS.
-//
-// Given a way to publish late answers, a LineSet whose prediction needs a
-// search is handed to a SearchWorker thread and answered from there
-// (search_worker.h); without one, everything is answered inline.
+// A frame whose prediction is too poor to track starts a search for the
+// camera on a SearchWorker thread (search_worker.h), unless the robot's last
+// search is still running, and is answered at once with
+// FIX_NO_MATCH_COMPUTED: every LineSet is answered within the time of a
+// tracked frame, never after a search. A pose found by a search is only taken
+// once a second search, on a later frame of the same robot, finds the pose
+// the first one predicts: the first found pose A1 moved by the robot's own
+// predicted motion between the two frames, A1 P1^-1 P2 (dead reckoning over a
+// second is centimetres, DGPS metres), within confirm_position_m and
+// confirm_rotation_rad of A2. A wrong pose the search picked by chance does
+// not repeat. The robot's next frames are then tracked from the confirmed
+// pose moved the same way, A2 P2^-1 P, for carry_search_s — unless the
+// robot's own predicted position variance shrank in between: a DGPS update
+// moved its prediction, so P2^-1 P is not its motion alone.
 //
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
@@ -72,17 +75,20 @@ struct PipelineOptions {
   double confirm_rotation_rad = 0.5 * M_PI / 180.0;
   // An unconfirmed search result older than this is forgotten.
   double confirm_within_s = 5.0;
+  // A confirmed search result starts tracking for this long after its frame.
+  double carry_search_s = 1.0;
   LocalizerOptions localizer;
 };
 
 class LineSetHandler {
  public:
-  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options,
-                 SearchWorker::Publish publish_searches = {});
+  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
 
-  // The fix to publish now, or nullopt when the message was dropped or handed
-  // to the search worker, which publishes its fix through publish_searches.
+  // The fix to publish, or nullopt when the message was dropped.
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);
+
+  // Blocks until the searches under way have finished.
+  void waitForSearches();
 
   BackboneCounters counters() const;
 
@@ -99,16 +105,21 @@ class LineSetHandler {
   static constexpr size_t kPreparedMaps = 8;
 
   std::shared_ptr<const PreparedMap> prepare(const std::shared_ptr<const MapView>& view);
-  void localizeInto(const LineSetData& line_set, const PreparedMap& map,
-                    const PoseWithCovariance& prior, PoseFixData& fix);
+  void trackInto(const LineSetData& line_set, const PreparedMap& map,
+                 const PoseWithCovariance& prior, PoseFixData& fix);
+  // Runs on the search worker.
+  void search(const LineSetData& line_set, const PreparedMap& map, const PoseWithCovariance& prior);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   enum class Confirmation { kConfirmed, kFirst, kDisagrees };
   static const char* describe(Confirmation confirmation);
   // Whether `acquired` at `line_set`'s time confirms the robot's previous
   // search result (kFirst: there is none recent); remembers it for the next
-  // one either way.
+  // one either way, and a confirmed one for carriedSearch.
   Confirmation confirmPreviousSearch(const LineSetData& line_set,
-                                     const Eigen::Isometry3d& acquired);
+                                     const PoseWithCovariance& acquired);
+  // The robot's confirmed search result moved to `line_set`'s time, when
+  // there is one to carry (see above).
+  std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set);
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -126,13 +137,17 @@ class LineSetHandler {
   std::list<std::shared_ptr<const PreparedMap>> prepared_maps_;  // most recent first
   struct SearchResult {
     int64_t stamp_ns;
-    Eigen::Isometry3d T_world_camera_found;
-    Eigen::Isometry3d T_world_camera_predicted;
+    PoseWithCovariance T_world_camera_found;
+    PoseWithCovariance T_world_camera_predicted;
   };
+  // A found at P moved by the robot's predicted motion to `predicted`: A P^-1 predicted.
+  static PoseWithCovariance movedByPrediction(const SearchResult& search,
+                                              const Eigen::Isometry3d& predicted);
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;
+  std::map<std::string, SearchResult> confirmed_search_;
   // Last, so that it is destroyed first: its searches use the members above.
-  std::unique_ptr<SearchWorker> search_worker_;
+  SearchWorker search_worker_;
 };
 
 lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);

@@ -4,8 +4,7 @@
 
 namespace lineloc {
 
-SearchWorker::SearchWorker(Publish publish)
-    : publish_(std::move(publish)), worker_([this] { work(); }) {}
+SearchWorker::SearchWorker() : worker_([this] { work(); }) {}
 
 SearchWorker::~SearchWorker() {
   {
@@ -28,6 +27,11 @@ bool SearchWorker::submit(const std::string& robot_id, Search search) {
   return true;
 }
 
+void SearchWorker::waitUntilIdle() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  idle_.wait(lock, [this] { return busy_robots_.empty(); });
+}
+
 void SearchWorker::work() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
@@ -38,9 +42,12 @@ void SearchWorker::work() {
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
     lock.unlock();
-    publish_(job.search());
+    job.search();
     lock.lock();
     busy_robots_.erase(job.robot_id);
+    if (busy_robots_.empty()) {
+      idle_.notify_all();
+    }
   }
 }
 

@@ -1,10 +1,8 @@
-// Searches for the camera of robots whose prediction is poor (a DGPS + compass
-// start takes a search of a few hundred milliseconds, pose_acquisition.h) on a
-// thread of their own, so that the LineSets of robots being tracked are
-// answered meanwhile. One search per robot at a time: a robot's LineSets that
-// arrive while its search runs are answered at once, without a pose, and its
-// next LineSet after the search starts the next one. Each search publishes the
-// PoseFix of the LineSet it was given when it is done.
+// Runs the searches for the camera of robots whose prediction is poor (a DGPS
+// + compass start takes a search of about a tenth of a second,
+// pose_acquisition.h) on a thread of their own, so that every LineSet is
+// answered while they run. One search per robot at a time: a robot's next
+// search is accepted once its last one has finished.
 #pragma once
 
 #include <condition_variable>
@@ -15,16 +13,13 @@
 #include <string>
 #include <thread>
 
-#include "common/messages/messages.h"
-
 namespace lineloc {
 
 class SearchWorker {
  public:
-  using Search = std::function<PoseFixData()>;
-  using Publish = std::function<void(const PoseFixData&)>;
+  using Search = std::function<void()>;
 
-  explicit SearchWorker(Publish publish);
+  SearchWorker();
   // Finishes the search that is running and every one queued.
   ~SearchWorker();
   SearchWorker(const SearchWorker&) = delete;
@@ -34,6 +29,9 @@ class SearchWorker {
   // previous search is still queued or running.
   bool submit(const std::string& robot_id, Search search);
 
+  // Blocks until every accepted search has finished.
+  void waitUntilIdle();
+
  private:
   struct Job {
     std::string robot_id;
@@ -42,9 +40,9 @@ class SearchWorker {
 
   void work();
 
-  Publish publish_;
   std::mutex mutex_;
   std::condition_variable job_ready_;
+  std::condition_variable idle_;
   std::deque<Job> jobs_;
   std::set<std::string> busy_robots_;
   bool stopping_ = false;

@@ -35,6 +35,15 @@ Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
   return moved;
 }
 
+PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
+                                      const Eigen::Isometry3d& T_a_b) {
+  const Eigen::Vector3d lever = T_world_a.pose.linear() * T_a_b.translation();
+  Matrix6d jacobian = Matrix6d::Identity();
+  jacobian.topRightCorner<3, 3>() << 0.0, lever.z(), -lever.y(), -lever.z(), 0.0, lever.x(),
+      lever.y(), -lever.x(), 0.0;
+  return {T_world_a.pose * T_a_b, jacobian * T_world_a.covariance * jacobian.transpose()};
+}
+
 PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b) {
   const Matrix6d information_a = a.covariance.ldlt().solve(Matrix6d::Identity());
   const Matrix6d information_b = b.covariance.ldlt().solve(Matrix6d::Identity());

@@ -33,6 +33,13 @@ Eigen::Matrix<double, 6, 1> poseError(const Eigen::Isometry3d& estimate,
 Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
                                  const Eigen::Matrix<double, 6, 1>& error);
 
+// T_world_a T_a_b for an exactly known motion T_a_b (dead reckoning over a
+// fraction of a second) with its covariance carried along: t_b = t_a + R_a t_ab
+// with R_a = Exp(dtheta) R_a,est gives dp_b = dp_a - [l]x dtheta, l = R_a t_ab,
+// and dtheta_b = dtheta, so Sigma_b = J Sigma_a J^T, J = [I, -[l]x; 0, I].
+PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
+                                      const Eigen::Isometry3d& T_a_b);
+
 // Two independent estimates of one pose combined by their information,
 // linearised at `a`: Sigma = (Sigma_a^-1 + Sigma_b^-1)^-1 and the pose a moved
 // by Sigma Sigma_b^-1 e, e = poseError(a, b) (the Kalman update with b as the

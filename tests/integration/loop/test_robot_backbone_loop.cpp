@@ -131,6 +131,8 @@ LineSetData probeLineSet(const std::string& robot_id, uint32_t sequence, int seg
     segment.end = {200, 10};
   }
   data.predicted_T_world_camera.pose = makePose({5, -20, 1.5}, Eigen::Quaterniond::Identity());
+  // Close enough to be tracked rather than searched for.
+  data.predicted_T_world_camera.covariance = diagonalPoseCovariance(0.05, 0.005);
   return data;
 }
 

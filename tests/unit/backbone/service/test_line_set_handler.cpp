@@ -17,14 +17,15 @@ namespace {
 
 const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
 
-// Camera 1.5 m above ground, looking north.
-PoseWithCovariance lookingNorth(const Eigen::Vector3d& position) {
+// Camera looking north; by default with a covariance too wide to track from.
+PoseWithCovariance lookingNorth(const Eigen::Vector3d& position, double position_sigma_m = 0.3,
+                                double rotation_sigma_rad = 0.02) {
   Eigen::Matrix3d R_world_camera;
   R_world_camera << 1, 0, 0, 0, 0, 1, 0, -1, 0;
   PoseWithCovariance pose;
   pose.pose.linear() = R_world_camera;
   pose.pose.translation() = position;
-  pose.covariance = diagonalPoseCovariance(0.3, 0.02);
+  pose.covariance = diagonalPoseCovariance(position_sigma_m, rotation_sigma_rad);
   return pose;
 }
 
@@ -89,59 +90,111 @@ std::vector<ImageSegment> observedEdges(const std::string& conninfo,
   return segments;
 }
 
-TEST_F(LineSetHandlerTest, AlignsTheModelSeenFromAPerturbedPrediction) {
+void expectWithinThreeSigma(const PoseWithCovariance& fix, const PoseWithCovariance& truth) {
+  const Eigen::Vector3d error = fix.pose.translation() - truth.pose.translation();
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_LT(std::abs(error[axis]), 3.0 * std::sqrt(fix.covariance(axis, axis)))
+        << "axis " << axis;
+  }
+}
+
+TEST_F(LineSetHandlerTest, TracksFromAGoodPrediction) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
   const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
-  PoseWithCovariance predicted = truth;
-  predicted.pose.translation() += Eigen::Vector3d(0.25, -0.2, 0.05);
-  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
-  ASSERT_GE(seen.size(), 6u);
-
-  // The prediction is too poor to track: the first search's pose waits for a
-  // second search to confirm it.
-  const auto first = handler.handle(lineSetMessage(seen, predicted, 2)->message());
-  ASSERT_TRUE(first.has_value());
-  EXPECT_EQ(first->status, lineloc_msg_FIX_AMBIGUOUS) << toString(first->status);
-  const std::optional<PoseFixData> fix =
-      handler.handle(lineSetMessage(seen, predicted, 3)->message());
+  PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  const auto fix = handler.handle(
+      lineSetMessage(observedEdges(database_.conninfo(), truth), predicted)->message());
   ASSERT_TRUE(fix.has_value());
   EXPECT_EQ(fix->robot_id, "handler-test");
   EXPECT_EQ(fix->sequence_number, 3u);
   EXPECT_EQ(fix->stamp_ns, 151'000'000);
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   EXPECT_EQ(fix->model_lines, 24u);
-  // Within 3 sigma of the reported covariance along each axis.
-  const Eigen::Vector3d error = fix->T_world_camera.pose.translation() - truth.pose.translation();
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_LT(std::abs(error[axis]), 3.0 * std::sqrt(fix->T_world_camera.covariance(axis, axis)))
-        << "axis " << axis;
-  }
+  expectWithinThreeSigma(fix->T_world_camera, truth);
   EXPECT_GT(fix->timings.total, 0);
   EXPECT_GE(fix->timings.total, fix->timings.map);
   EXPECT_EQ(handler.counters().fixes_ok, 1u);
+  EXPECT_EQ(handler.counters().searches, 0u);
+}
+
+// A robot 0.3 m off (too far to track) whose frames 2, 3 see the view from
+// `truth`, and whose frame 4 sees it 1 m further north, where its own
+// prediction moved too.
+struct PoorStart {
+  PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  PoseWithCovariance predicted = lookingNorth({13.25, -30.2, 1.55});
+  PoseWithCovariance truth_moved = lookingNorth({13, -29, 1.5});
+  PoseWithCovariance predicted_moved = lookingNorth({13.25, -29.2, 1.55});
+};
+
+// A frame the handler must search from: answered at once, without a pose;
+// returns once its search has finished.
+void expectSearched(LineSetHandler& handler, const std::vector<ImageSegment>& seen,
+                    const PoseWithCovariance& predicted, uint32_t sequence) {
+  const auto answer = handler.handle(lineSetMessage(seen, predicted, sequence)->message());
+  ASSERT_TRUE(answer.has_value());
+  EXPECT_EQ(answer->status, lineloc_msg_FIX_NO_MATCH_COMPUTED) << toString(answer->status);
+  handler.waitForSearches();
+}
+
+TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoorStart start;
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
+  ASSERT_GE(seen.size(), 6u);
+
+  // The first found pose waits for the second search to confirm it.
+  expectSearched(handler, seen, start.predicted, 2);
+  expectSearched(handler, seen, start.predicted, 3);
+  EXPECT_EQ(handler.counters().searches, 2u);
+  EXPECT_EQ(handler.counters().fixes_ok, 0u);
+
+  const auto fix =
+      handler.handle(lineSetMessage(observedEdges(database_.conninfo(), start.truth_moved),
+                                    start.predicted_moved, 4)
+                         ->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  expectWithinThreeSigma(fix->T_world_camera, start.truth_moved);
+  EXPECT_LT((fix->T_world_camera.pose.translation() - start.truth_moved.pose.translation()).norm(),
+            0.1);
+  EXPECT_EQ(handler.counters().searches, 2u);
+  EXPECT_EQ(handler.counters().fixes_ok, 1u);
+}
+
+TEST_F(LineSetHandlerTest, ASearchIsNotCarriedAcrossAnUpdateOfTheRobotsPrediction) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  PoorStart start;
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
+  expectSearched(handler, seen, start.predicted, 2);
+  expectSearched(handler, seen, start.predicted, 3);
+  // Its covariance shrank: a DGPS update moved the prediction, not the robot.
+  start.predicted.covariance = diagonalPoseCovariance(0.25, 0.02);
+  expectSearched(handler, seen, start.predicted, 4);
+  EXPECT_EQ(handler.counters().searches, 3u);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
-  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
-  PoseWithCovariance predicted = truth;
-  predicted.pose.translation() += Eigen::Vector3d(0.25, -0.2, 0.05);
-  handler.handle(lineSetMessage(seen, predicted, 2)->message());
+  PoorStart start;
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
+  expectSearched(handler, seen, start.predicted, 2);
   // The robot believes it drove 2 m, yet the camera sees the same view.
-  predicted.pose.translation() += Eigen::Vector3d(0.0, 2.0, 0.0);
-  const auto fix = handler.handle(lineSetMessage(seen, predicted, 3)->message());
-  ASSERT_TRUE(fix.has_value());
-  EXPECT_EQ(fix->status, lineloc_msg_FIX_AMBIGUOUS) << toString(fix->status);
+  start.predicted.pose.translation() += Eigen::Vector3d(0.0, 2.0, 0.0);
+  expectSearched(handler, seen, start.predicted, 3);
+  expectSearched(handler, seen, start.predicted, 4);
+  EXPECT_EQ(handler.counters().searches, 3u);
   EXPECT_EQ(handler.counters().fixes_ok, 0u);
 }
 
 TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  const auto near = lineSetMessage(fewSegments(), lookingNorth({5, -20, 1.5}));
+  const auto near = lineSetMessage(fewSegments(), lookingNorth({5, -20, 1.5}, 0.1, 0.003));
   EXPECT_EQ(handler.handle(near->message())->status, lineloc_msg_FIX_TOO_FEW_MATCHES);
   const auto far = lineSetMessage(fewSegments(), lookingNorth({5000, 0, 1.5}));
   EXPECT_EQ(handler.handle(far->message())->status, lineloc_msg_FIX_NO_MAP_LINES);

@@ -1,0 +1,118 @@
+// How many of the robot's image lines come from things the city model does not
+// hold (paper §3.2: parked cars, trees, façade detail), on the README's main
+// drive: the bundled Delft model, seed 1, 120 s, seen once a second. Each frame
+// is rendered by the simulator and its segments are extracted with the robot's
+// default settings; a segment is explained by the model when the backbone's gate
+// (line_matcher.h) takes it for a model line visible from the true pose, with
+// no pose uncertainty: within chi^2_2(0.999) of the line given the segment's
+// own endpoint covariance and the 1 px model floor, overlapping it by 30 %.
+// Every other segment comes from something not in the model. So that a
+// mismatch of frames and poses cannot pass for clutter, the true poses must
+// explain at least twice as many segments as poses 1 m to the camera's side,
+// where only chance alignments with the model remain.
+//
+// The issue asks that the accuracy and availability bounds hold with 30 % of
+// the image lines from things not in the model. The demo's drive and the
+// drive test's (tests/integration/drive/test_delft_drive.cpp) are this drive
+// or its first 30 s; this test fails if the simulated streets ever hold fewer
+// than that, so the bounds those runs report are measured at 30 % or more.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "backbone/matching/line_matcher.h"
+#include "backbone/tracker/model_file.h"
+#include "robot/vision/features/feature_extractor.h"
+#include "tests/support/delft_drive.h"
+
+namespace fs = std::filesystem;
+
+namespace lineloc {
+namespace {
+
+constexpr double kMinUnmodelledFraction = 0.30;
+constexpr double kSideStepM = 1.0;
+
+struct LineCounts {
+  int segments = 0;
+  int unmodelled = 0;
+  double length_px = 0.0;
+  double unmodelled_length_px = 0.0;
+};
+
+double lengthPx(const ImageSegment& segment) {
+  return (segment.end - segment.start).cast<double>().norm();
+}
+
+// The segments of one frame that no model line visible from T_world_camera explains.
+LineCounts countUnmodelled(const std::vector<ImageSegment>& segments, const TrackedModel& model,
+                           const OcclusionScene& scene, const Eigen::Isometry3d& T_world_camera,
+                           const PinholeCamera& camera) {
+  const PoseWithCovariance exact{T_world_camera, Matrix6d::Zero()};
+  const std::vector<std::vector<LineMatch>> candidates = gateCandidates(
+      segments, visibleSegments(model.lines, scene, exact, camera, {}), exact, camera, {});
+  LineCounts counts;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const double length_px = lengthPx(segments[i]);
+    ++counts.segments;
+    counts.length_px += length_px;
+    if (candidates[i].empty()) {
+      ++counts.unmodelled;
+      counts.unmodelled_length_px += length_px;
+    }
+  }
+  return counts;
+}
+
+TEST(UnmodelledLines, AtLeastThirtyPercentOfTheDemoDrivesImageLinesAreNotInTheModel) {
+  const fs::path work = fs::temp_directory_path() / ("unmodelled_" + std::to_string(getpid()));
+  fs::remove_all(work);
+  DriveSimulationConfig config;
+  config.seed = 1;
+  config.duration_s = 120.0;
+  config.camera_rate_hz = 1.0;
+  const test::SimulatedFrames drive = test::simulateDelftDrive(config, work);
+  ASSERT_GE(drive.images.size(), 100u);
+
+  const TrackedModel model =
+      readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt).model;
+  const OcclusionScene scene(model.faces, model.face_building_ids);
+  FeatureExtractor extractor(drive.calibration);
+  LineCounts total;
+  int explained_beside = 0;
+  for (size_t frame = 0; frame < drive.images.size(); ++frame) {
+    const std::vector<ImageSegment> segments =
+        extractor.extract(cv::imread(drive.images[frame], cv::IMREAD_GRAYSCALE)).segments;
+    const LineCounts counts =
+        countUnmodelled(segments, model, scene, drive.truth[frame], drive.calibration.camera);
+    fmt::print("frame {:3d}: {:3d} segments, {:3d} not in the model\n", frame, counts.segments,
+               counts.unmodelled);
+    const Eigen::Isometry3d beside =
+        drive.truth[frame] * Eigen::Translation3d(kSideStepM, 0.0, 0.0);
+    const LineCounts counts_beside =
+        countUnmodelled(segments, model, scene, beside, drive.calibration.camera);
+    explained_beside += counts_beside.segments - counts_beside.unmodelled;
+    total.segments += counts.segments;
+    total.unmodelled += counts.unmodelled;
+    total.length_px += counts.length_px;
+    total.unmodelled_length_px += counts.unmodelled_length_px;
+  }
+  ASSERT_GT(total.segments, 0);
+  const double fraction = static_cast<double>(total.unmodelled) / total.segments;
+  fmt::print(
+      "{} of {} image segments ({:.1f} %, {:.1f} % of their length) come from things "
+      "not in the model\n",
+      total.unmodelled, total.segments, 100.0 * fraction,
+      100.0 * total.unmodelled_length_px / total.length_px);
+  EXPECT_GE(fraction, kMinUnmodelledFraction);
+  const int explained = total.segments - total.unmodelled;
+  fmt::print("the model explains {} segments from the true poses, {} from {} m beside them\n",
+             explained, explained_beside, kSideStepM);
+  EXPECT_GE(explained, 2 * explained_beside);
+  fs::remove_all(work);
+}
+
+}  // namespace
+}  // namespace lineloc

@@ -61,8 +61,7 @@ struct RobotRunSummary {
   int sensor_lines_dropped = 0;
   std::map<std::string, int> fixes_by_status;
   // Frame exposure -> PoseFix received, per answered frame, and for the
-  // answers that carried a pose (FIX_OK): a search's answer takes about 0.1 s,
-  // a tracked frame's a few milliseconds.
+  // answers that carried a pose (FIX_OK).
   std::vector<int64_t> latency_ns;
   std::vector<int64_t> pose_latency_ns;
   // Each LineSet's bytes on the wire (dds::serializedSizeBytes), per frame sent.

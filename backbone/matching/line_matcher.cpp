@@ -6,12 +6,6 @@
 namespace lineloc {
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
 // Pixel of a world point and its 2x2 covariance under the pose covariance.
 std::pair<Eigen::Vector2d, Eigen::Matrix2d> projectWithCovariance(
     const Eigen::Vector3d& p_world, const PoseWithCovariance& T_world_camera,

@@ -7,6 +7,12 @@
 
 namespace lineloc {
 
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
 Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quaterniond& rotation) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = rotation.normalized().toRotationMatrix();
@@ -39,8 +45,7 @@ PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
                                       const Eigen::Isometry3d& T_a_b) {
   const Eigen::Vector3d lever = T_world_a.pose.linear() * T_a_b.translation();
   Matrix6d jacobian = Matrix6d::Identity();
-  jacobian.topRightCorner<3, 3>() << 0.0, lever.z(), -lever.y(), -lever.z(), 0.0, lever.x(),
-      lever.y(), -lever.x(), 0.0;
+  jacobian.topRightCorner<3, 3>() = -skew(lever);
   return {T_world_a.pose * T_a_b, jacobian * T_world_a.covariance * jacobian.transpose()};
 }
 

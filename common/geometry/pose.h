@@ -18,6 +18,9 @@ struct PoseWithCovariance {
   Matrix6d covariance = Matrix6d::Identity();
 };
 
+// [v]x, the cross-product matrix: skew(a) b = a x b.
+Eigen::Matrix3d skew(const Eigen::Vector3d& v);
+
 // Builds a pose from translation (x, y, z) and unit quaternion (x, y, z, w).
 Eigen::Isometry3d makePose(const Eigen::Vector3d& translation, const Eigen::Quaterniond& rotation);
 

@@ -26,12 +26,6 @@ constexpr double kMaxTranslationM = 1e3 * kMaxAbsCoordinate;
 // Cost of a correspondence behind the camera: that of a 1000-sigma residual.
 constexpr double kBehindCameraCost = 0.5 * 1e6;
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 Eigen::Matrix3d expSO3(const Eigen::Vector3d& rotation_vector) {
   const double angle = rotation_vector.norm();
   if (angle < 1e-300) {

@@ -469,16 +469,11 @@ void InertialNavigator::tryInitialiseFromSensors() {
 
 InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
                                                         const VisionPayload& vision) {
-  BodyFix fix;
-  fix.stamp_ns = stamp_ns;
-  fix.T_world_body = vision.T_world_camera.pose * vision.T_body_camera.inverse();
-  // e_body = J^-1 e_camera with J^-1 = [I, [R t_bc]x; 0, I], the inverse of
-  // the lever-arm Jacobian of cameraPoseOf().
-  Matrix6d J_inverse = Matrix6d::Identity();
-  J_inverse.topRightCorner<3, 3>() =
-      skew(fix.T_world_body.linear() * vision.T_body_camera.translation());
-  fix.covariance = J_inverse * vision.T_world_camera.covariance * J_inverse.transpose();
-  return fix;
+  // The camera's pose moved by the exact camera -> body transform: the inverse
+  // of the lever-arm Jacobian of cameraPoseOf().
+  const PoseWithCovariance T_world_body =
+      composeExactMotion(vision.T_world_camera, vision.T_body_camera.inverse());
+  return {stamp_ns, T_world_body.pose, T_world_body.covariance};
 }
 
 std::optional<InertialNavigator::StartVelocity> InertialNavigator::startVelocity(

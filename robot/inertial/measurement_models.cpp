@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/geometry/pose.h"
+
 namespace lineloc {
 namespace {
 

@@ -10,12 +10,6 @@ constexpr double kSmallAngle_rad = 1e-8;
 
 }  // namespace
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 Eigen::Quaterniond expSO3(const Eigen::Vector3d& rotation_vector) {
   const double angle = rotation_vector.norm();
   // q = [cos(angle/2), sin(angle/2) axis]; sin(angle/2)/angle -> 1/2 - angle^2/48.

@@ -47,7 +47,4 @@ ErrorVector errorBetween(const NavigationState& truth, const NavigationState& es
 Eigen::Quaterniond expSO3(const Eigen::Vector3d& rotation_vector);
 Eigen::Vector3d logSO3(const Eigen::Quaterniond& rotation);
 
-// [v]x: the matrix with [v]x w = v x w.
-Eigen::Matrix3d skew(const Eigen::Vector3d& v);
-
 }  // namespace lineloc

@@ -1,5 +1,7 @@
 #include "robot/inertial/strapdown.h"
 
+#include "common/geometry/pose.h"
+
 namespace lineloc {
 namespace {
 

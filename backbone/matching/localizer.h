@@ -40,16 +40,9 @@
 // covariance along the axis widened to reach them: a prediction can be more
 // confident than its error allows (the robot fuses fixes whose errors are
 // correlated), and from 0.15 m short along that view with a 3 cm sigma the
-// alignment settled 0.13 m short, beyond three of its sigmas. The floor,
-// 0.3 m, reaches the next depth basin of a street view: window frames inset
-// from the building corners fit the model lines 0.25-0.35 m short of the
-// truth, and once the robot's prediction had slid there, sigma points 0.15 m
-// out (the reach of the search's fine grid) no longer reached the truth. Over
-// 50 simulated Delft drives of 20 s, 182 OK fixes lay beyond three sigma with
-// the 0.3 m floor against 258 with 0.15 m (seed 10: 5 against 59, seed 28: 2
-// against 49), and the median position RMSE after the first fix was 4.0 cm
-// against 4.8 cm; the farther points also find that basin where the nearer
-// ones did not (seed 46: 84 against 0). The height is not floored: a ground
+// alignment settled 0.13 m short, beyond three of its sigmas. 0.15 m is the
+// reach of the search's fine grid, whose neighbouring basins an acquired pose
+// can carry into the fixes after it. The height is not floored: a ground
 // robot's camera rides at a known height, and probing 0.15 m up and down let
 // rivals of a few centimetres widen the answers (seed 3: 48 % of frames
 // within 5 cm and 0.5 degrees, 71 % without). A sigma point's alignment
@@ -59,7 +52,7 @@
 // their own covariance (0.15 m and 0.3 degrees horizontally, 3 cm and 0.05
 // degrees in height, roll and pitch), 86 of 617 OK answers were beyond three
 // sigma with the centre alone, 28 of 591 with the sigma points and 27 of 628
-// with a 0.15 m floor; from 5 cm and 0.1 degrees, 36 of 606, 4 of 611 and 5 of
+// with the floor; from 5 cm and 0.1 degrees, 36 of 606, 4 of 611 and 5 of
 // 622.
 #pragma once
 
@@ -80,7 +73,7 @@ struct LocalizerOptions {
   double start_sigma = 1.5;
   // ... and at least this far along the horizontal axes, with the prior's
   // sigma along the axis widened to step / start_sigma.
-  double min_start_step_m = 0.3;
+  double min_start_step_m = 0.15;
   // A rival covered at least this fraction as well as the best tracked
   // alignment widens the answer's covariance to reach it.
   double rival_score_fraction = 0.8;

@@ -26,6 +26,9 @@ DDS=(--domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml")
 # The simulated robot's camera rides this high above the road; the robot knows
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5
+# The sun the city is rendered under (azimuth clockwise from grid north,
+# elevation, deg); the backbone is told it too, as one would be on the street.
+SUN_DEG=(135 40)
 
 [ -f "$CITY_MODEL" ] || { echo "demo: city model $CITY_MODEL missing" >&2; exit 1; }
 "$ROOT/deploy/build.sh"
@@ -41,9 +44,10 @@ READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 echo "demo: simulating a ${DURATION_S} s drive (seed $SEED, camera ${CAMERA_HZ} Hz)"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
-  --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ"
+  --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
+  --sun-azimuth-deg "${SUN_DEG[0]}" --sun-elevation-deg "${SUN_DEG[1]}"
 
-"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft \
+"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft --sun "${SUN_DEG[@]}" \
   --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
+#include <vector>
 
 #include "backbone/service/backbone_service.h"
 #include "common/config/program_options.h"
@@ -34,12 +35,21 @@ int main(int argc, char** argv) {
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
   options.add("stats_period_s", config.stats_period_s, "how often the stats file is rewritten");
+  std::vector<double> sun_deg;
+  double ambient = 0.35;
+  options.addFixedSize("sun", sun_deg, 2,
+                       "sun azimuth clockwise from grid north and elevation (deg): corners "
+                       "between walls it lights alike are no edges (default: sun unknown)");
+  options.add("ambient", ambient, "with --sun: fraction of the light in the shade, 0..1");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
   try {
+    if (!sun_deg.empty()) {
+      config.sunlight = lineloc::Sunlight::fromAzimuthElevation(sun_deg[0], sun_deg[1], ambient);
+    }
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(
         "lineloc-backbone: {} received, {} answered ({} with a pose, {} searched from a poor "

@@ -33,6 +33,8 @@ struct TrackConfig {
   int crs = 0;
   std::string out = "poses.tum";
   std::string overlay_dir;
+  std::vector<double> sun_deg;
+  double ambient = 0.35;
 };
 
 int run(const TrackConfig& config) {
@@ -61,7 +63,12 @@ int run(const TrackConfig& config) {
                Eigen::Quaterniond(config.init[6], config.init[3], config.init[4], config.init[5]));
   start.covariance = diagonalPoseCovariance(config.init_position_sigma_m,
                                             config.init_rotation_sigma_deg * M_PI / 180.0);
-  ModelTracker tracker(local.model, calibration.camera, start, TrackerOptions{});
+  TrackerOptions tracker_options;
+  if (!config.sun_deg.empty()) {
+    tracker_options.localizer.visibility.sunlight =
+        Sunlight::fromAzimuthElevation(config.sun_deg[0], config.sun_deg[1], config.ambient);
+  }
+  ModelTracker tracker(local.model, calibration.camera, start, tracker_options);
   FeatureExtractor extractor(calibration);
   TumWriter trajectory(config.out);
   if (!config.overlay_dir.empty()) {
@@ -113,6 +120,10 @@ int main(int argc, char** argv) {
   options.add("crs", config.crs, "EPSG code for a model file that names no CRS");
   options.add("out", config.out, "TUM trajectory file written");
   options.add("overlay_dir", config.overlay_dir, "folder for overlay PNGs (empty: none)");
+  options.addFixedSize("sun", config.sun_deg, 2,
+                       "sun azimuth clockwise from grid north and elevation (deg): corners "
+                       "between walls it lights alike are no edges (default: sun unknown)");
+  options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

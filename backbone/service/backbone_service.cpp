@@ -80,6 +80,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   PipelineOptions pipeline;
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
+  pipeline.localizer.visibility.sunlight = config.sunlight;
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "backbone/service/line_set_handler.h"
+#include "common/geometry/sunlight.h"
 
 namespace lineloc {
 
@@ -25,6 +27,8 @@ struct BackboneConfig {
   // Written on exit (and every stats_period_s): counters as JSON; empty: none.
   std::string stats_file;
   double stats_period_s = 1.0;
+  // The sun over the site, when known (see VisibilityOptions::sunlight).
+  std::optional<Sunlight> sunlight;
 };
 
 // Serves until `stop` is true; returns the final counters.

@@ -51,7 +51,8 @@ double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
 }
 
 // Whether the surfaces seen through two pixels may differ (see the header):
-// false only when both rays meet faces of one building and one orientation.
+// false when both rays meet faces of one building that share an orientation
+// or, under a known sun, receive the same light.
 class ContrastProbe {
  public:
   ContrastProbe(const OcclusionScene& scene, const Eigen::Isometry3d& T_world_camera,
@@ -59,29 +60,49 @@ class ContrastProbe {
       : scene_(scene),
         T_world_camera_(T_world_camera),
         K_inverse_(camera.K().inverse()),
-        same_plane_cos_(std::cos(options.same_plane_angle_rad)) {}
+        same_plane_cos_(std::cos(options.same_plane_angle_rad)),
+        sunlight_(options.sunlight),
+        min_irradiance_difference_(options.min_irradiance_difference) {}
 
   bool differ(const Eigen::Vector2d& pixel_a, const Eigen::Vector2d& pixel_b) const {
-    const std::optional<SurfaceHit> a = surfaceAt(pixel_a);
-    const std::optional<SurfaceHit> b = surfaceAt(pixel_b);
-    if (!a || !b) {
+    const std::optional<SeenSurface> a = surfaceAt(pixel_a);
+    const std::optional<SeenSurface> b = surfaceAt(pixel_b);
+    if (!a || !b || a->building_id != b->building_id) {
       return true;
     }
-    return a->building_id != b->building_id ||
-           std::abs(a->unit_normal.dot(b->unit_normal)) < same_plane_cos_;
+    return std::abs(a->seen_normal.dot(b->seen_normal)) < same_plane_cos_ && !litAlike(*a, *b);
   }
 
  private:
-  std::optional<SurfaceHit> surfaceAt(const Eigen::Vector2d& pixel) const {
-    const Eigen::Vector3d ray_camera = K_inverse_ * pixel.homogeneous();
-    return scene_.firstSurface(T_world_camera_.translation(),
-                               (T_world_camera_.linear() * ray_camera).normalized());
+  // A face met by a ray, with the unit normal of the side the ray sees.
+  struct SeenSurface {
+    Eigen::Vector3d seen_normal;
+    int64_t building_id;
+  };
+
+  std::optional<SeenSurface> surfaceAt(const Eigen::Vector2d& pixel) const {
+    const Eigen::Vector3d ray_world =
+        (T_world_camera_.linear() * (K_inverse_ * pixel.homogeneous())).normalized();
+    const std::optional<SurfaceHit> hit =
+        scene_.firstSurface(T_world_camera_.translation(), ray_world);
+    if (!hit) {
+      return std::nullopt;
+    }
+    const double facing = hit->unit_normal.dot(ray_world) < 0.0 ? 1.0 : -1.0;
+    return SeenSurface{facing * hit->unit_normal, hit->building_id};
+  }
+
+  bool litAlike(const SeenSurface& a, const SeenSurface& b) const {
+    return sunlight_ && std::abs(sunlight_->irradiance(a.seen_normal) -
+                                 sunlight_->irradiance(b.seen_normal)) < min_irradiance_difference_;
   }
 
   const OcclusionScene& scene_;
   const Eigen::Isometry3d& T_world_camera_;
   Eigen::Matrix3d K_inverse_;
   double same_plane_cos_;
+  std::optional<Sunlight> sunlight_;
+  double min_irradiance_difference_;
 };
 
 HalfSpaces visibilityFrustum(const PinholeCamera& camera, const VisibilityOptions& options) {

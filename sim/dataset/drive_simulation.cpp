@@ -56,14 +56,9 @@ Eigen::Isometry3d bodyPose(const sim::TruthSample& sample) {
 
 RenderOptions renderOptions(const DriveSimulationConfig& config, double ground_z_m) {
   RenderOptions options;
-  const double azimuth = config.sun_azimuth_deg * kDegree;
-  const double elevation = config.sun_elevation_deg * kDegree;
-  options.shading.sun_direction =
-      Eigen::Vector3d(std::sin(azimuth) * std::cos(elevation),
-                      std::cos(azimuth) * std::cos(elevation), std::sin(elevation))
-          .cast<float>()
-          .normalized();
-  options.shading.ambient = static_cast<float>(config.ambient);
+  const Sunlight sun = drivingSunlight(config);
+  options.shading.sun_direction = sun.direction_world.cast<float>();
+  options.shading.ambient = static_cast<float>(sun.ambient_fraction);
   options.ground_z_m = static_cast<float>(ground_z_m);
   options.shadows = config.shadows;
   options.noise_sigma = static_cast<float>(config.noise_sigma);
@@ -110,9 +105,11 @@ void writeWorldFile(const DriveSimulationConfig& config, const std::string& crs,
   std::ofstream world(root / "world.yaml");
   world << fmt::format(
       "# lineloc-sim: the world this dataset was rendered from\ncity_model: \"{}\"\ncrs: \"{}\"\n"
-      "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\n",
+      "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\n"
+      "sun_azimuth_deg: {:.3f}\nsun_elevation_deg: {:.3f}\nambient: {:.3f}\n",
       config.city_model, crs, city.site_origin.x(), city.site_origin.y(), city.site_origin.z(),
-      city.ground_z_m, config.seed);
+      city.ground_z_m, config.seed, config.sun_azimuth_deg, config.sun_elevation_deg,
+      config.ambient);
   std::ofstream waypoints(root / "route.txt");
   waypoints << "# x y (m, site frame): the route the robot drove\n";
   for (const Eigen::Vector2d& point : route) {
@@ -152,6 +149,11 @@ void writeSensors(const DriveSimulationConfig& config, const RouteTrajectory& tr
 }
 
 }  // namespace
+
+Sunlight drivingSunlight(const DriveSimulationConfig& config) {
+  return Sunlight::fromAzimuthElevation(config.sun_azimuth_deg, config.sun_elevation_deg,
+                                        config.ambient);
+}
 
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   if (!(config.camera_rate_hz > 0.0) || !(config.duration_s > 0.0) || config.output.empty()) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/geometry/sunlight.h"
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
 #include "sim/world/street_clutter.h"
@@ -69,5 +70,9 @@ struct DriveSimulationSummary {
 
 // Throws std::runtime_error naming the input that is missing or malformed.
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config);
+
+// The sun the drive's images are rendered under; throws std::invalid_argument
+// for an elevation outside [-90, 90] deg or an ambient fraction outside [0, 1].
+Sunlight drivingSunlight(const DriveSimulationConfig& config);
 
 }  // namespace lineloc

@@ -69,6 +69,8 @@ struct Drive {
     model = readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt)
                 .model;
     scene = std::make_unique<OcclusionScene>(model.faces, model.face_building_ids);
+    // The backbone knows the sun the drive is rendered under, as the demo's does.
+    localizer.visibility.sunlight = drivingSunlight(config);
   }
 
   // The truth moved by one draw of the given uncertainty.
@@ -89,6 +91,7 @@ struct Drive {
   std::vector<Frame> frames;
   TrackedModel model;
   std::unique_ptr<OcclusionScene> scene;
+  LocalizerOptions localizer;
 };
 
 const Drive& drive() {
@@ -127,7 +130,8 @@ void BM_BackboneVisibility(benchmark::State& state) {
     const PoseWithCovariance prior =
         drive().predicted(frame, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, random);
     benchmark::DoNotOptimize(visibleSegments(drive().model.lines, *drive().scene, prior,
-                                             drive().calibration.camera, VisibilityOptions{}));
+                                             drive().calibration.camera,
+                                             drive().localizer.visibility));
   }
 }
 
@@ -144,7 +148,8 @@ void BM_BackboneMatchingAndPose(benchmark::State& state) {
     const PoseWithCovariance prior =
         drive().predicted(frame, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, random);
     const std::vector<VisibleSegment> visible =
-        visibleSegments(drive().model.lines, *drive().scene, prior, drive().calibration.camera, {});
+        visibleSegments(drive().model.lines, *drive().scene, prior, drive().calibration.camera,
+                        drive().localizer.visibility);
     state.ResumeTiming();
     const Alignment alignment =
         alignModel(frame.segments, visible, prior, drive().calibration.camera, {});
@@ -172,8 +177,9 @@ void localizeFrames(benchmark::State& state, double position_sigma_m, double rot
     const Frame& frame = frameAt(iteration++);
     const PoseWithCovariance prior =
         drive().predicted(frame, position_sigma_m, rotation_sigma_rad, random);
-    const Localization localization = localize(frame.segments, drive().model.lines, *drive().scene,
-                                               prior, drive().calibration.camera, {});
+    const Localization localization =
+        localize(frame.segments, drive().model.lines, *drive().scene, prior,
+                 drive().calibration.camera, drive().localizer);
     ok += localization.alignment.status == AlignmentStatus::kOk ? 1 : 0;
     search_ms += localization.search ? localization.search->search_ns * 1e-6 : 0.0;
   }

@@ -86,6 +86,9 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
   }
   MapTileCache map([&] { return makeDatabaseTileFetcher(database.conninfo(), "delft"); }, 100.0,
                    1024);
+  // The backbone knows the sun, as the demo's does.
+  PipelineOptions pipeline;
+  pipeline.localizer.visibility.sunlight = drivingSunlight(DriveSimulationConfig{});
   int fixed = 0;
   int wrong = 0;
   for (int seed = 1; seed <= kSeeds; ++seed) {
@@ -98,7 +101,7 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
     const Eigen::Matrix3d yaw_error =
         Eigen::AngleAxisd(kYawSigmaRad * n(random), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     // A fresh handler per seed: no robot state carries over.
-    LineSetHandler handler(map, MessageLimits{}, PipelineOptions{});
+    LineSetHandler handler(map, MessageLimits{}, pipeline);
     FeatureExtractor extractor(start.calibration);
     std::optional<PoseFixData> answer;
     for (uint32_t frame = 0; frame < kFrames; ++frame) {

@@ -149,7 +149,11 @@ class DelftDrive : public ::testing::Test {
 
   std::unique_ptr<test::ChildProcess> startBackbone(const std::string& log_name) const {
     std::vector<std::string> args = dds();
-    args.insert(args.end(), {"--db", database_.conninfo(), "--site", "delft"});
+    const DriveSimulationConfig simulated;
+    args.insert(args.end(), {"--db", database_.conninfo(), "--site", "delft", "--sun",
+                             fmt::format("{}", simulated.sun_azimuth_deg),
+                             fmt::format("{}", simulated.sun_elevation_deg), "--ambient",
+                             fmt::format("{}", simulated.ambient)});
     return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
                                                 args, (work_ / log_name).string());
   }

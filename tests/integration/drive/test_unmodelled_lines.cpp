@@ -3,7 +3,8 @@
 // drive: the bundled Delft model, seed 1, 120 s, seen once a second. Each frame
 // is rendered by the simulator and its segments are extracted with the robot's
 // default settings; a segment is explained by the model when the backbone's gate
-// (line_matcher.h) takes it for a model line visible from the true pose, with
+// (line_matcher.h) takes it for a model line visible from the true pose under
+// the drive's sun (the demo tells the backbone the sun), with
 // no pose uncertainty: within chi^2_2(0.999) of the line given the segment's
 // own endpoint covariance and the 1 px model floor, overlapping it by 30 %.
 // Every other segment comes from something not in the model. So that a
@@ -46,13 +47,14 @@ double lengthPx(const ImageSegment& segment) {
   return (segment.end - segment.start).cast<double>().norm();
 }
 
-// The segments of one frame that no model line visible from T_world_camera explains.
+// The segments of one frame that no model line visible from T_world_camera
+// (under `visibility`) explains.
 LineCounts countUnmodelled(const std::vector<ImageSegment>& segments, const TrackedModel& model,
                            const OcclusionScene& scene, const Eigen::Isometry3d& T_world_camera,
-                           const PinholeCamera& camera) {
+                           const PinholeCamera& camera, const VisibilityOptions& visibility) {
   const PoseWithCovariance exact{T_world_camera, Matrix6d::Zero()};
   const std::vector<std::vector<LineMatch>> candidates = gateCandidates(
-      segments, visibleSegments(model.lines, scene, exact, camera, {}), exact, camera, {});
+      segments, visibleSegments(model.lines, scene, exact, camera, visibility), exact, camera, {});
   LineCounts counts;
   for (size_t i = 0; i < segments.size(); ++i) {
     const double length_px = lengthPx(segments[i]);
@@ -80,19 +82,20 @@ TEST(UnmodelledLines, AtLeastThirtyPercentOfTheDemoDrivesImageLinesAreNotInTheMo
       readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt).model;
   const OcclusionScene scene(model.faces, model.face_building_ids);
   FeatureExtractor extractor(drive.calibration);
+  const VisibilityOptions visibility{.sunlight = drivingSunlight(config)};
   LineCounts total;
   int explained_beside = 0;
   for (size_t frame = 0; frame < drive.images.size(); ++frame) {
     const std::vector<ImageSegment> segments =
         extractor.extract(cv::imread(drive.images[frame], cv::IMREAD_GRAYSCALE)).segments;
-    const LineCounts counts =
-        countUnmodelled(segments, model, scene, drive.truth[frame], drive.calibration.camera);
+    const LineCounts counts = countUnmodelled(segments, model, scene, drive.truth[frame],
+                                              drive.calibration.camera, visibility);
     fmt::print("frame {:3d}: {:3d} segments, {:3d} not in the model\n", frame, counts.segments,
                counts.unmodelled);
     const Eigen::Isometry3d beside =
         drive.truth[frame] * Eigen::Translation3d(kSideStepM, 0.0, 0.0);
     const LineCounts counts_beside =
-        countUnmodelled(segments, model, scene, beside, drive.calibration.camera);
+        countUnmodelled(segments, model, scene, beside, drive.calibration.camera, visibility);
     explained_beside += counts_beside.segments - counts_beside.unmodelled;
     total.segments += counts.segments;
     total.unmodelled += counts.unmodelled;

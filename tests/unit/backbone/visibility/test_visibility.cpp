@@ -79,16 +79,41 @@ TEST(Visibility, HeadOnCubeShowsOnlyItsFrontWall) {
   }
 }
 
+// Camera at (-15, -15, 5) looking north-east, level: at the south-west corner
+// of a cube [0, 10]^3.
+PoseWithCovariance diagonalView() {
+  PoseWithCovariance pose = lookingNorth({-15, -15, 5}, 0.01);
+  pose.pose.linear() = Eigen::AngleAxisd(-M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                       pose.pose.linear();
+  return pose;
+}
+
 // From the south-west diagonal two walls show: 7 edges.
 TEST(Visibility, DiagonalViewShowsTwoWalls) {
   const Box cube = makeBox(0, 0, 10, 10, 10, 0);
   const OcclusionScene scene = sceneOf({&cube});
-  PoseWithCovariance pose = lookingNorth({-15, -15, 5}, 0.01);
-  pose.pose.linear() = Eigen::AngleAxisd(-M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                       pose.pose.linear();
-  const auto visible = visibleSegments(cube.edges, scene, pose, kCamera, {});
+  const auto visible = visibleSegments(cube.edges, scene, diagonalView(), kCamera, {});
   // bottom 0 (south) and 3 (west), top 4 and 7, verticals 8 (SW), 9 (SE), 11 (NW).
   EXPECT_EQ(ids(visible), (std::vector<int64_t>{0, 3, 4, 7, 8, 9, 11}));
+}
+
+// The same view under a known sun: the south-west vertical (8) lies between
+// the south wall (normal -y) and the west wall (-x). A sun in the south-west
+// lights both alike (n . s equal), a sun in the north-east leaves both in the
+// shade (E = ambient): no edge. A sun in the south lights only the south wall,
+// E = 0.35 + 0.65 cos 40 deg = 0.85 against 0.35: an edge.
+TEST(Visibility, CornerBetweenWallsTheSunLightsAlikeShowsNoEdge) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene scene = sceneOf({&cube});
+  const auto visibleUnder = [&](double azimuth_deg) {
+    VisibilityOptions options;
+    options.sunlight = Sunlight::fromAzimuthElevation(azimuth_deg, 40, 0.35);
+    return ids(visibleSegments(cube.edges, scene, diagonalView(), kCamera, options));
+  };
+  const std::vector<int64_t> without_corner = {0, 3, 4, 7, 9, 11};
+  EXPECT_EQ(visibleUnder(225), without_corner);
+  EXPECT_EQ(visibleUnder(45), without_corner);
+  EXPECT_EQ(visibleUnder(180), (std::vector<int64_t>{0, 3, 4, 7, 8, 9, 11}));
 }
 
 // A low wall (height 4) in front of the cube hides the lower part of its

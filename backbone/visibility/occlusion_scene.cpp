@@ -118,7 +118,8 @@ std::optional<SurfaceHit> OcclusionScene::firstSurface(const Eigen::Vector3d& or
     return std::nullopt;
   }
   const Eigen::Vector3d normal(ray_hit.hit.Ng_x, ray_hit.hit.Ng_y, ray_hit.hit.Ng_z);
-  return SurfaceHit{normal.normalized(), triangle_building_ids_[ray_hit.hit.primID]};
+  return SurfaceHit{normal.normalized(), triangle_building_ids_[ray_hit.hit.primID],
+                    ray_hit.ray.tfar};
 }
 
 }  // namespace lineloc

@@ -18,10 +18,12 @@ namespace lineloc {
 // A planar face: its outer ring, without the repeated closing vertex.
 using FaceRing = std::vector<Eigen::Vector3d>;
 
-// What a ray meets first: the plane and the building of a face.
+// What a ray meets first: the plane and the building of a face, and how far
+// along the (unit) ray.
 struct SurfaceHit {
   Eigen::Vector3d unit_normal = Eigen::Vector3d::Zero();  // sign as the ring winds
   int64_t building_id = 0;
+  double distance_m = 0.0;
 };
 
 class OcclusionScene {

@@ -50,6 +50,9 @@ double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
   return static_cast<double>(seen) / from.count;
 }
 
+// A ray towards the sun this long leaves every building of a map view behind.
+constexpr double kSunRayLength_m = 2000.0;
+
 // Whether the surfaces seen through two pixels may differ (see the header):
 // false when both rays meet faces of one building that share an orientation
 // or, under a known sun, receive the same light.
@@ -62,7 +65,8 @@ class ContrastProbe {
         K_inverse_(camera.K().inverse()),
         same_plane_cos_(std::cos(options.same_plane_angle_rad)),
         sunlight_(options.sunlight),
-        min_irradiance_difference_(options.min_irradiance_difference) {}
+        min_irradiance_difference_(options.min_irradiance_difference),
+        surface_clearance_m_(options.surface_clearance_m) {}
 
   bool differ(const Eigen::Vector2d& pixel_a, const Eigen::Vector2d& pixel_b) const {
     const std::optional<SeenSurface> a = surfaceAt(pixel_a);
@@ -74,8 +78,9 @@ class ContrastProbe {
   }
 
  private:
-  // A face met by a ray, with the unit normal of the side the ray sees.
+  // Where a ray meets a face, with the unit normal of the side the ray sees.
   struct SeenSurface {
+    Eigen::Vector3d point_world;
     Eigen::Vector3d seen_normal;
     int64_t building_id;
   };
@@ -89,12 +94,22 @@ class ContrastProbe {
       return std::nullopt;
     }
     const double facing = hit->unit_normal.dot(ray_world) < 0.0 ? 1.0 : -1.0;
-    return SeenSurface{facing * hit->unit_normal, hit->building_id};
+    return SeenSurface{T_world_camera_.translation() + hit->distance_m * ray_world,
+                       facing * hit->unit_normal, hit->building_id};
+  }
+
+  // E(n) of the sun (sunlight.h), or its ambient share alone where a face
+  // stands between the surface and the sun: a cast shadow.
+  double irradiance(const SeenSurface& surface) const {
+    const Eigen::Vector3d& towards_sun = sunlight_->direction_world;
+    const bool shadowed = surface.seen_normal.dot(towards_sun) > 0.0 &&
+                          scene_.blocked(surface.point_world + kSunRayLength_m * towards_sun,
+                                         surface.point_world, surface_clearance_m_);
+    return shadowed ? sunlight_->ambient_fraction : sunlight_->irradiance(surface.seen_normal);
   }
 
   bool litAlike(const SeenSurface& a, const SeenSurface& b) const {
-    return sunlight_ && std::abs(sunlight_->irradiance(a.seen_normal) -
-                                 sunlight_->irradiance(b.seen_normal)) < min_irradiance_difference_;
+    return sunlight_ && std::abs(irradiance(a) - irradiance(b)) < min_irradiance_difference_;
   }
 
   const OcclusionScene& scene_;
@@ -103,6 +118,7 @@ class ContrastProbe {
   double same_plane_cos_;
   std::optional<Sunlight> sunlight_;
   double min_irradiance_difference_;
+  double surface_clearance_m_;
 };
 
 HalfSpaces visibilityFrustum(const PinholeCamera& camera, const VisibilityOptions& options) {

@@ -1,6 +1,8 @@
 // Hidden-line removal on scenes whose visible edges follow from elementary geometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "backbone/visibility/visible_lines.h"
 
 namespace lineloc {
@@ -114,6 +116,24 @@ TEST(Visibility, CornerBetweenWallsTheSunLightsAlikeShowsNoEdge) {
   EXPECT_EQ(visibleUnder(225), without_corner);
   EXPECT_EQ(visibleUnder(45), without_corner);
   EXPECT_EQ(visibleUnder(180), (std::vector<int64_t>{0, 3, 4, 7, 8, 9, 11}));
+}
+
+// A tower [-5, 5] x [-12, -8] x [0, 30] south of the cube, clear of the
+// view of the south-west corner (the sight line crosses y = -8 at x = -8),
+// shades that corner from a sun in the south at 40 degrees: the ray from
+// (0, 0, z <= 10) towards it reaches y = -8 at z + 8 tan 40 deg < 17 m. Both
+// walls then receive the ambient share alone, and the corner shows no edge.
+TEST(Visibility, CornerInTheShadowOfAnotherBuildingShowsNoEdge) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const Box tower = makeBox(-5, -12, 5, -8, 30, 100);
+  VisibilityOptions options;
+  options.sunlight = Sunlight::fromAzimuthElevation(180, 40, 0.35);
+  const auto corner_shows = [&](const OcclusionScene& scene) {
+    const auto visible = ids(visibleSegments(cube.edges, scene, diagonalView(), kCamera, options));
+    return std::find(visible.begin(), visible.end(), 8) != visible.end();
+  };
+  EXPECT_TRUE(corner_shows(sceneOf({&cube})));
+  EXPECT_FALSE(corner_shows(sceneOf({&cube, &tower})));
 }
 
 // A low wall (height 4) in front of the cube hides the lower part of its
@@ -236,6 +256,7 @@ TEST(OcclusionScene, FirstSurfaceGivesThePlaneAndBuildingOfTheNearestFace) {
   const auto near_wall = scene.firstSurface({5, -10, 5}, Eigen::Vector3d::UnitY());
   ASSERT_TRUE(near_wall.has_value());
   EXPECT_EQ(near_wall->building_id, 7);
+  EXPECT_NEAR(near_wall->distance_m, 10.0, 1e-5);
   EXPECT_NEAR(std::abs(near_wall->unit_normal.y()), 1.0, 1e-6);
   const auto side = scene.firstSurface({15, 1, 5}, -Eigen::Vector3d::UnitX());
   ASSERT_TRUE(side.has_value());

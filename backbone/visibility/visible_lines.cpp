@@ -98,14 +98,14 @@ class ContrastProbe {
                        facing * hit->unit_normal, hit->building_id};
   }
 
-  // E(n) of the sun (sunlight.h), or its ambient share alone where a face
-  // stands between the surface and the sun: a cast shadow.
+  // E(n) of sunlight.h, in shadow where a face stands between the surface and
+  // the sun (cast only for a surface that faces the sun).
   double irradiance(const SeenSurface& surface) const {
     const Eigen::Vector3d& towards_sun = sunlight_->direction_world;
-    const bool shadowed = surface.seen_normal.dot(towards_sun) > 0.0 &&
-                          scene_.blocked(surface.point_world + kSunRayLength_m * towards_sun,
-                                         surface.point_world, surface_clearance_m_);
-    return shadowed ? sunlight_->ambient_fraction : sunlight_->irradiance(surface.seen_normal);
+    const bool in_shadow = surface.seen_normal.dot(towards_sun) > 0.0 &&
+                           scene_.blocked(surface.point_world + kSunRayLength_m * towards_sun,
+                                          surface.point_world, surface_clearance_m_);
+    return sunlight_->irradiance(surface.seen_normal, in_shadow);
   }
 
   bool litAlike(const SeenSurface& a, const SeenSurface& b) const {

@@ -24,13 +24,13 @@
 //
 // Under a known sun (`sunlight`), two faces of one building at an angle show
 // no edge either where the light they receive differs by less than
-// `min_irradiance_difference` of full sun: the vertical corner between two
-// walls the sun lights alike. A face receives E(n) of common/geometry/
-// sunlight.h, or its ambient share alone where the ray from the probed point
-// towards the sun meets a face (the shadow another building casts). Without that rule,
-// the window columns inset from such corners on a street view fit the model's
-// outline as seen from 0.25-0.35 m behind the true camera along its view, and
-// tracking on the simulated Delft drives settled there, precise and wrong.
+// `min_irradiance_difference` of full sun (E(n) of common/geometry/sunlight.h):
+// the vertical corner between two walls the sun lights alike. Without that
+// rule, the window columns inset from such corners on a street view fit the
+// model's outline as seen from 0.25-0.35 m behind the true camera along its
+// view, and tracking on the simulated Delft drives settled there, precise and
+// wrong. A probed point is in shadow where the ray from it towards the sun
+// meets a face: the shadow another building casts.
 #pragma once
 
 #include <Eigen/Core>

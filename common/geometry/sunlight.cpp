@@ -22,9 +22,10 @@ Sunlight Sunlight::fromAzimuthElevation(double azimuth_deg, double elevation_deg
           ambient_fraction};
 }
 
-double Sunlight::irradiance(const Eigen::Vector3d& unit_normal) const {
+double Sunlight::irradiance(const Eigen::Vector3d& unit_normal, bool in_shadow) const {
+  const double lit = in_shadow ? 0.0 : 1.0;
   return ambient_fraction +
-         (1.0 - ambient_fraction) * std::max(0.0, unit_normal.dot(direction_world));
+         (1.0 - ambient_fraction) * std::max(0.0, unit_normal.dot(direction_world)) * lit;
 }
 
 }  // namespace lineloc

@@ -2,8 +2,9 @@
 // shading model the simulator renders with and the backbone predicts edges
 // from. With s the unit vector towards the sun and a the ambient fraction, a
 // surface whose outward unit normal is n receives, relative to full sun,
-//   E(n) = a + (1 - a) max(0, n . s)            (Lambert's cosine law).
-// Shadows cast by other surfaces are not part of E.
+//   E(n) = a + (1 - a) max(0, n . s) lit         (Lambert's cosine law),
+// lit = 0 where another surface stands between it and the sun (a cast
+// shadow; finding those is the caller's ray casting), 1 elsewhere.
 //
 // World frame: the site's, x east (grid), y north (grid), z up.
 #pragma once
@@ -22,7 +23,7 @@ struct Sunlight {
                                        double ambient_fraction);
 
   // E(n) above; `unit_normal` is the side of the surface that is seen.
-  double irradiance(const Eigen::Vector3d& unit_normal) const;
+  double irradiance(const Eigen::Vector3d& unit_normal, bool in_shadow) const;
 };
 
 }  // namespace lineloc

@@ -22,13 +22,15 @@ TEST(Sunlight, AzimuthIsClockwiseFromNorthAndElevationAboveTheHorizon) {
   EXPECT_NEAR((south_west - Eigen::Vector3d(-horizontal, -horizontal, 0.5)).norm(), 0.0, 1e-12);
 }
 
-// E(n) = a + (1 - a) max(0, n . s).
+// E(n) = a + (1 - a) max(0, n . s) lit.
 TEST(Sunlight, IrradianceFollowsLambertsCosineLawAboveTheAmbientShare) {
   const Sunlight sun = Sunlight::fromAzimuthElevation(180, 60, 0.35);  // south, 60 degrees up
-  EXPECT_NEAR(sun.irradiance(Eigen::Vector3d::UnitZ()), 0.35 + 0.65 * std::sqrt(3.0) / 2.0, 1e-12);
-  EXPECT_NEAR(sun.irradiance(-Eigen::Vector3d::UnitY()), 0.35 + 0.65 * 0.5, 1e-12);
-  EXPECT_DOUBLE_EQ(sun.irradiance(Eigen::Vector3d::UnitY()), 0.35);  // north wall: shade
-  EXPECT_DOUBLE_EQ(sun.irradiance(-Eigen::Vector3d::UnitZ()), 0.35);
+  EXPECT_NEAR(sun.irradiance(Eigen::Vector3d::UnitZ(), false), 0.35 + 0.65 * std::sqrt(3.0) / 2.0,
+              1e-12);
+  EXPECT_NEAR(sun.irradiance(-Eigen::Vector3d::UnitY(), false), 0.35 + 0.65 * 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(sun.irradiance(Eigen::Vector3d::UnitY(), false), 0.35);  // north wall: shade
+  EXPECT_DOUBLE_EQ(sun.irradiance(-Eigen::Vector3d::UnitZ(), false), 0.35);
+  EXPECT_DOUBLE_EQ(sun.irradiance(Eigen::Vector3d::UnitZ(), true), 0.35);  // a cast shadow
 }
 
 TEST(Sunlight, RejectsAnElevationOrAmbientShareOutOfRange) {

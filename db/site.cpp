@@ -19,6 +19,14 @@ std::optional<Site> findSite(Connection& connection, const std::string& name) {
   return site;
 }
 
+Site requireSite(Connection& connection, const std::string& name) {
+  std::optional<Site> site = findSite(connection, name);
+  if (!site) {
+    throw DatabaseError(fmt::format("site '{}' is not in the database", name));
+  }
+  return *site;
+}
+
 Site ensureSite(Connection& connection, const std::string& name, int srid,
                 const Eigen::Vector3d& origin) {
   if (std::optional<Site> existing = findSite(connection, name)) {

@@ -19,6 +19,9 @@ struct Site {
 
 std::optional<Site> findSite(Connection& connection, const std::string& name);
 
+// The site of that name; throws DatabaseError naming it when there is none.
+Site requireSite(Connection& connection, const std::string& name);
+
 // Creates the site, or returns the existing one when name, CRS and origin agree;
 // throws DatabaseError when a site of that name exists with another CRS or origin.
 Site ensureSite(Connection& connection, const std::string& name, int srid,

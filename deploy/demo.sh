@@ -26,9 +26,11 @@ DDS=(--domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml")
 # The simulated robot's camera rides this high above the road; the robot knows
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5
-# The sun the city is rendered under (azimuth clockwise from grid north,
-# elevation, deg); the backbone is told it too, as one would be on the street.
-SUN_DEG=(135 40)
+# The drive starts on a sunny April morning (UTC). The simulator renders the
+# city under the sun that stands over Delft then, about 137 deg from grid
+# north and 40 deg high; the backbone works the sun out from each LineSet's
+# time, as it would on the street.
+START_UTC=2026-04-14T09:30:00Z
 
 [ -f "$CITY_MODEL" ] || { echo "demo: city model $CITY_MODEL missing" >&2; exit 1; }
 "$ROOT/deploy/build.sh"
@@ -45,9 +47,9 @@ echo "demo: simulating a ${DURATION_S} s drive (seed $SEED, camera ${CAMERA_HZ} 
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
   --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
-  --sun-azimuth-deg "${SUN_DEG[0]}" --sun-elevation-deg "${SUN_DEG[1]}"
+  --start-utc "$START_UTC" --sun-from-clock
 
-"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft --sun "${SUN_DEG[@]}" \
+"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft --sun-from-clock \
   --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT

@@ -36,11 +36,14 @@ int main(int argc, char** argv) {
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
   options.add("stats_period_s", config.stats_period_s, "how often the stats file is rewritten");
   std::vector<double> sun_deg;
-  double ambient = 0.35;
   options.addFixedSize("sun", sun_deg, 2,
                        "sun azimuth clockwise from grid north and elevation (deg): corners "
                        "between walls it lights alike are no edges (default: sun unknown)");
-  options.add("ambient", ambient, "with --sun: fraction of the light in the shade, 0..1");
+  options.addFlag("sun_from_clock", config.sun_from_clock,
+                  "instead of --sun: the sun over the site at each LineSet's time (UTC), for "
+                  "sunny days");
+  options.add("ambient", config.ambient_fraction,
+              "with a sun: fraction of the light in the shade, 0..1");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }
@@ -48,7 +51,8 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, requestStop);
   try {
     if (!sun_deg.empty()) {
-      config.sunlight = lineloc::Sunlight::fromAzimuthElevation(sun_deg[0], sun_deg[1], ambient);
+      config.sunlight =
+          lineloc::Sunlight::fromAzimuthElevation(sun_deg[0], sun_deg[1], config.ambient_fraction);
     }
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(

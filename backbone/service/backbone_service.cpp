@@ -12,12 +12,32 @@
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "common/time/percentile.h"
+#include "db/site.h"
 
 namespace lineloc {
 namespace {
 
 constexpr int kHistoryDepth = 32;
 constexpr int64_t kWaitNs = 100'000'000;
+
+// The sun over the configured site by the clock, when asked for.
+std::optional<SiteSun> clockSun(const BackboneConfig& config) {
+  if (!config.sun_from_clock) {
+    return std::nullopt;
+  }
+  if (config.sunlight) {
+    throw std::runtime_error(
+        "give the sun's azimuth and elevation or take it from the clock, not both");
+  }
+  db::Connection connection(config.db);
+  const db::Site site = db::requireSite(connection, config.site);
+  const SiteSun sun(SiteProjection(fmt::format("EPSG:{}", site.srid), site.origin),
+                    config.ambient_fraction);
+  const GeodeticPosition& place = sun.place();
+  spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
+               config.site, place.latitude_deg, place.longitude_deg);
+  return sun;
+}
 
 }  // namespace
 
@@ -81,6 +101,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
   pipeline.localizer.visibility.sunlight = config.sunlight;
+  pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));

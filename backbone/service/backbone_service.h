@@ -29,6 +29,10 @@ struct BackboneConfig {
   double stats_period_s = 1.0;
   // The sun over the site, when known (see VisibilityOptions::sunlight).
   std::optional<Sunlight> sunlight;
+  // Instead: the sun that stands over the site at each LineSet's stamp (UTC),
+  // common/geodesy/site_sun.h, with this ambient fraction; for sunny days.
+  bool sun_from_clock = false;
+  double ambient_fraction = 0.35;
 };
 
 // Serves until `stop` is true; returns the final counters.

@@ -87,10 +87,18 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
   return prior;
 }
 
+LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) const {
+  LocalizerOptions options = options_.localizer;
+  if (options_.sun_from_clock) {
+    options.visibility.sunlight = options_.sun_from_clock->at(line_set.stamp_ns);
+  }
+  return options;
+}
+
 void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& map,
                                const PoseWithCovariance& prior, PoseFixData& fix) {
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, options_.localizer);
+                                             line_set.camera, localizerOptions(line_set));
   const Alignment& alignment = localization.alignment;
   fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
@@ -107,7 +115,7 @@ void LineSetHandler::search(const LineSetData& line_set, const PreparedMap& map,
                             const PoseWithCovariance& prior) {
   const int64_t start_ns = steadyClockNs();
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, options_.localizer);
+                                             line_set.camera, localizerOptions(line_set));
   const int64_t search_ns = steadyClockNs() - start_ns;
   const Alignment& alignment = localization.alignment;
   {

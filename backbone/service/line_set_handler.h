@@ -48,6 +48,7 @@
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
 #include "backbone/service/search_worker.h"
+#include "common/geodesy/site_sun.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 
@@ -78,6 +79,9 @@ struct PipelineOptions {
   // A confirmed search result starts tracking for this long after its frame.
   double carry_search_s = 1.0;
   LocalizerOptions localizer;
+  // When set, each LineSet is localized under the sun of its stamp instead
+  // of localizer.visibility.sunlight (none while the sun is down).
+  std::optional<SiteSun> sun_from_clock;
 };
 
 class LineSetHandler {
@@ -105,6 +109,9 @@ class LineSetHandler {
   static constexpr size_t kPreparedMaps = 8;
 
   std::shared_ptr<const PreparedMap> prepare(const std::shared_ptr<const MapView>& view);
+  // The localizer's options for `line_set`: under the sun of its stamp when
+  // that comes from the clock.
+  LocalizerOptions localizerOptions(const LineSetData& line_set) const;
   void trackInto(const LineSetData& line_set, const PreparedMap& map,
                  const PoseWithCovariance& prior, PoseFixData& fix);
   // Runs on the search worker.

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/config/program_options.h"
+#include "common/time/utc_time.h"
 #include "sim/dataset/drive_simulation.h"
 
 int main(int argc, char** argv) {
@@ -53,6 +54,12 @@ int main(int argc, char** argv) {
   options.add("exposure_time_s", config.exposure_time_s, "exposure time for motion blur (s)");
   options.add("sun_azimuth_deg", config.sun_azimuth_deg, "sun bearing from grid north (deg)");
   options.add("sun_elevation_deg", config.sun_elevation_deg, "sun elevation (deg)");
+  std::string start_utc;
+  options.add("start_utc", start_utc,
+              "UTC time of the drive's start, e.g. 2026-05-21T08:30:00Z (empty: "
+              "2023-11-14T22:13:20Z)");
+  options.addFlag("sun_from_clock", config.sun_from_clock,
+                  "render under the sun that stands over the site at the start, not the given one");
   options.add("ambient", config.ambient, "fraction of light in the shade, 0..1");
   options.add("imu_noise", config.imu.noise, "false: exact IMU rates and forces, no biases");
   options.add("imu_rate_hz", config.imu.rate_hz, "IMU rate (Hz)");
@@ -75,6 +82,9 @@ int main(int argc, char** argv) {
     return *exit_code;
   }
   try {
+    if (!start_utc.empty()) {
+      config.drive.start_stamp_ns = lineloc::parseUtcTime_ns(start_utc);
+    }
     const lineloc::DriveSimulationSummary summary = lineloc::simulateDrive(config);
     fmt::print(
         "lineloc-sim: {} images ({:.1f} frames/s rendering on one core), {} IMU samples, {} GPS "

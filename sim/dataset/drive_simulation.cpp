@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "common/geodesy/site_projection.h"
 #include "common/time/clock.h"
+#include "common/time/utc_time.h"
 #include "sim/dataset/euroc_writer.h"
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
@@ -54,9 +56,9 @@ Eigen::Isometry3d bodyPose(const sim::TruthSample& sample) {
   return T_world_body;
 }
 
-RenderOptions renderOptions(const DriveSimulationConfig& config, double ground_z_m) {
+RenderOptions renderOptions(const DriveSimulationConfig& config, const Sunlight& sun,
+                            double ground_z_m) {
   RenderOptions options;
-  const Sunlight sun = drivingSunlight(config);
   options.shading.sun_direction = sun.direction_world.cast<float>();
   options.shading.ambient = static_cast<float>(sun.ambient_fraction);
   options.ground_z_m = static_cast<float>(ground_z_m);
@@ -100,16 +102,19 @@ std::vector<Eigen::Vector2d> planRoute(const DriveSimulationConfig& config,
 }
 
 void writeWorldFile(const DriveSimulationConfig& config, const std::string& crs,
-                    const CityMesh& city, const std::vector<Eigen::Vector2d>& route) {
+                    const CityMesh& city, const Sunlight& sun,
+                    const std::vector<Eigen::Vector2d>& route) {
   const std::filesystem::path root(config.output);
   std::ofstream world(root / "world.yaml");
+  const Eigen::Vector3d& s = sun.direction_world;
+  const double sun_azimuth_deg = std::fmod(std::atan2(s.x(), s.y()) / kDegree + 360.0, 360.0);
   world << fmt::format(
       "# lineloc-sim: the world this dataset was rendered from\ncity_model: \"{}\"\ncrs: \"{}\"\n"
-      "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\n"
+      "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\nstart_utc: {}\n"
       "sun_azimuth_deg: {:.3f}\nsun_elevation_deg: {:.3f}\nambient: {:.3f}\n",
       config.city_model, crs, city.site_origin.x(), city.site_origin.y(), city.site_origin.z(),
-      city.ground_z_m, config.seed, config.sun_azimuth_deg, config.sun_elevation_deg,
-      config.ambient);
+      city.ground_z_m, config.seed, formatUtcTime(config.drive.start_stamp_ns), sun_azimuth_deg,
+      std::asin(s.z()) / kDegree, sun.ambient_fraction);
   std::ofstream waypoints(root / "route.txt");
   waypoints << "# x y (m, site frame): the route the robot drove\n";
   for (const Eigen::Vector2d& point : route) {
@@ -151,8 +156,26 @@ void writeSensors(const DriveSimulationConfig& config, const RouteTrajectory& tr
 }  // namespace
 
 Sunlight drivingSunlight(const DriveSimulationConfig& config) {
+  if (config.sun_from_clock) {
+    throw std::invalid_argument("the clock's sun needs the site: drivingSunlight(config, site)");
+  }
   return Sunlight::fromAzimuthElevation(config.sun_azimuth_deg, config.sun_elevation_deg,
                                         config.ambient);
+}
+
+Sunlight drivingSunlight(const DriveSimulationConfig& config, const SiteSun& site) {
+  if (!config.sun_from_clock) {
+    return drivingSunlight(config);
+  }
+  const std::optional<Sunlight> sun = site.at(config.drive.start_stamp_ns);
+  if (!sun) {
+    throw std::runtime_error(fmt::format(
+        "the sun is below the horizon at {} at latitude {:.4f}, longitude {:.4f}: nothing to "
+        "shade with; start by day or give the sun's azimuth and elevation",
+        formatUtcTime(config.drive.start_stamp_ns), site.place().latitude_deg,
+        site.place().longitude_deg));
+  }
+  return *sun;
 }
 
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
@@ -194,12 +217,13 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
               config.imu.gyro_bias_random_walk_radps2_per_sqrt_hz,
               config.imu.accel_noise_mps2_per_sqrt_hz,
               config.imu.accel_bias_random_walk_mps3_per_sqrt_hz};
-  EurocWriter writer(config.output, spec);
-  writeWorldFile(config, crs, city, route);
   const SiteProjection projection(crs, origin);
+  const Sunlight sun = drivingSunlight(config, SiteSun(projection, config.ambient));
+  EurocWriter writer(config.output, spec);
+  writeWorldFile(config, crs, city, sun, route);
   writeSensors(config, trajectory, projection, writer, summary);
 
-  const CityRenderer renderer(scene, calibration, renderOptions(config, city.ground_z_m));
+  const CityRenderer renderer(scene, calibration, renderOptions(config, sun, city.ground_z_m));
   const int64_t period_ns = seconds_to_ns(1.0 / config.camera_rate_hz);
   const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
   const int64_t camera_offset_ns = seconds_to_ns(config.camera_time_offset_s);

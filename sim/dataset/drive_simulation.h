@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/geodesy/site_sun.h"
 #include "common/geometry/sunlight.h"
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
@@ -51,6 +52,10 @@ struct DriveSimulationConfig {
   double exposure_time_s = 0.008;
   double sun_azimuth_deg = 135.0;  // clockwise from grid north
   double sun_elevation_deg = 40.0;
+  // Instead: the sun over the site at the drive's start (drive.start_stamp_ns,
+  // UTC), as common/geodesy/site_sun.h places it. The sun moves 0.25 degree
+  // a minute; the drive is rendered under its start's.
+  bool sun_from_clock = false;
   double ambient = 0.35;
   sim::ImuModel imu;
   sim::GpsModel gps;
@@ -71,8 +76,13 @@ struct DriveSimulationSummary {
 // Throws std::runtime_error naming the input that is missing or malformed.
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config);
 
-// The sun the drive's images are rendered under; throws std::invalid_argument
-// for an elevation outside [-90, 90] deg or an ambient fraction outside [0, 1].
+// The sun the drive's images are rendered under, given by its azimuth and
+// elevation; throws std::invalid_argument for an elevation outside [-90, 90]
+// deg, an ambient fraction outside [0, 1], or a config whose sun is the clock's.
 Sunlight drivingSunlight(const DriveSimulationConfig& config);
+
+// The same, or the clock's sun over `site` when config.sun_from_clock; throws
+// std::runtime_error when that is below the horizon.
+Sunlight drivingSunlight(const DriveSimulationConfig& config, const SiteSun& site);
 
 }  // namespace lineloc

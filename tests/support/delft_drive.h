@@ -16,6 +16,8 @@
 namespace lineloc::test {
 
 inline constexpr double kDelftCameraHeightM = 1.5;
+// When the demo's drive starts (deploy/demo.sh): a sunny April morning.
+inline constexpr const char* kDelftDriveStartUtc = "2026-04-14T09:30:00Z";
 
 // ../shared/data/citymodels/delft.json.
 std::filesystem::path delftCityModel();

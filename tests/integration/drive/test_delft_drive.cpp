@@ -1,6 +1,7 @@
 // The README's main job, shortened: the bundled Delft model loaded into a real
 // PostGIS database, a 30 s simulated drive (DGPS + compass start, parked cars,
-// trees, pedestrians), lineloc-backbone and lineloc-robot as separate
+// trees, pedestrians, the sun over Delft at the drive's time, which the
+// backbone works out from each frame's stamp), lineloc-backbone and lineloc-robot as separate
 // processes over DDS on loopback in real time, and the robot's poses checked
 // against the simulator's ground truth — once as it is, once with the
 // backbone killed mid-drive and started again.
@@ -132,6 +133,9 @@ class DelftDrive : public ::testing::Test {
                                          std::to_string(kDriveSeconds),
                                          "--camera-height-m",
                                          fmt::format("{}", test::kDelftCameraHeightM),
+                                         "--start-utc",
+                                         test::kDelftDriveStartUtc,
+                                         "--sun-from-clock",
                                          "--site-origin"};
     simulate.insert(simulate.end(), origin_.begin(), origin_.end());
     runOrFail("lineloc-sim", simulate, work_ / "sim.log", 600'000);
@@ -150,10 +154,8 @@ class DelftDrive : public ::testing::Test {
   std::unique_ptr<test::ChildProcess> startBackbone(const std::string& log_name) const {
     std::vector<std::string> args = dds();
     const DriveSimulationConfig simulated;
-    args.insert(args.end(), {"--db", database_.conninfo(), "--site", "delft", "--sun",
-                             fmt::format("{}", simulated.sun_azimuth_deg),
-                             fmt::format("{}", simulated.sun_elevation_deg), "--ambient",
-                             fmt::format("{}", simulated.ambient)});
+    args.insert(args.end(), {"--db", database_.conninfo(), "--site", "delft", "--sun-from-clock",
+                             "--ambient", fmt::format("{}", simulated.ambient)});
     return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
                                                 args, (work_ / log_name).string());
   }

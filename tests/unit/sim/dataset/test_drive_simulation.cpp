@@ -8,6 +8,7 @@
 
 #include "common/geodesy/site_projection.h"
 #include "common/nmea/nmea_sentence.h"
+#include "common/time/utc_time.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "sim/dataset/drive_simulation.h"
 #include "tests/unit/sim/dataset/read_file.h"
@@ -32,6 +33,14 @@ DriveSimulationConfig shortDelftDrive(const std::string& name) {
   config.camera_rate_hz = 2.0;
   config.camera_time_offset_s = 0.01;
   return config;
+}
+
+// The site frame a dataset's world.yaml describes.
+SiteProjection worldProjection(const YAML::Node& world) {
+  return SiteProjection(
+      world["crs"].as<std::string>(),
+      Eigen::Vector3d(world["site_origin"][0].as<double>(), world["site_origin"][1].as<double>(),
+                      world["site_origin"][2].as<double>()));
 }
 
 TEST(DriveSimulation, WritesADatasetOfTheDriveThroughDelft) {
@@ -73,11 +82,7 @@ TEST(DriveSimulation, NmeaSentencesHaveValidChecksumsAndParseBackNearTheTruth) {
   config.camera_rate_hz = 1.0;  // ground truth at every fix
   simulateDrive(config);
   const fs::path root(config.output);
-  const YAML::Node world = YAML::LoadFile((root / "world.yaml").string());
-  const SiteProjection projection(
-      world["crs"].as<std::string>(),
-      Eigen::Vector3d(world["site_origin"][0].as<double>(), world["site_origin"][1].as<double>(),
-                      world["site_origin"][2].as<double>()));
+  const SiteProjection projection = worldProjection(YAML::LoadFile((root / "world.yaml").string()));
   const std::vector<StampedPose> truth = readTumFile((root / "groundtruth_cam0.tum").string());
   std::istringstream lines(readAll(root / "gps0" / "nmea.txt"));
   std::string line;
@@ -100,6 +105,47 @@ TEST(DriveSimulation, NmeaSentencesHaveValidChecksumsAndParseBackNearTheTruth) {
     EXPECT_LT((p_site - at_fix.pose.translation()).head<2>().norm(), 30.0) << line;
   }
   EXPECT_EQ(fixes, 21);
+}
+
+TEST(DriveSimulation, RendersUnderTheSunOverTheSiteAtItsStart) {
+  DriveSimulationConfig config = shortDelftDrive("clock_sun");
+  config.duration_s = 1.0;
+  config.camera_rate_hz = 1.0;
+  config.drive.start_stamp_ns = parseUtcTime_ns("2026-06-21T12:00:00Z");
+  config.sun_from_clock = true;
+  simulateDrive(config);
+  const fs::path root(config.output);
+  const YAML::Node world = YAML::LoadFile((root / "world.yaml").string());
+  EXPECT_EQ(world["start_utc"].as<std::string>(), "2026-06-21T12:00:00Z");
+  EXPECT_EQ(readTumFile((root / "groundtruth_cam0.tum").string()).front().stamp_ns,
+            config.drive.start_stamp_ns);
+  const std::optional<Sunlight> sun =
+      SiteSun(worldProjection(world), config.ambient).at(config.drive.start_stamp_ns);
+  ASSERT_TRUE(sun.has_value());
+  // world.yaml gives the sun's angles to 0.001 deg: its direction to 2e-5.
+  const Eigen::Vector3d written =
+      Sunlight::fromAzimuthElevation(world["sun_azimuth_deg"].as<double>(),
+                                     world["sun_elevation_deg"].as<double>(), config.ambient)
+          .direction_world;
+  EXPECT_LT((written - sun->direction_world).norm(), 2e-5);
+  // Not the configured angles, which the clock replaces: a midsummer noon sun
+  // stands about 61 deg high in Delft.
+  EXPECT_GT(std::abs(world["sun_elevation_deg"].as<double>() - config.sun_elevation_deg), 20.0);
+}
+
+TEST(DriveSimulation, ClocksSunBelowTheHorizonIsRefused) {
+  DriveSimulationConfig config = shortDelftDrive("night");
+  config.drive.start_stamp_ns = parseUtcTime_ns("2026-04-14T22:00:00Z");
+  config.sun_from_clock = true;
+  try {
+    simulateDrive(config);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("below the horizon at 2026-04-14T22:00:00Z"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(drivingSunlight(config), std::invalid_argument);
 }
 
 TEST(DriveSimulation, SameSeedSameBytes) {

@@ -87,11 +87,16 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
   return prior;
 }
 
+std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp_ns) {
+  if (options.sun_from_clock) {
+    return options.sun_from_clock->at(stamp_ns);
+  }
+  return options.localizer.visibility.sunlight;
+}
+
 LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) const {
   LocalizerOptions options = options_.localizer;
-  if (options_.sun_from_clock) {
-    options.visibility.sunlight = options_.sun_from_clock->at(line_set.stamp_ns);
-  }
+  options.visibility.sunlight = sunlightAt(options_, line_set.stamp_ns);
   return options;
 }
 

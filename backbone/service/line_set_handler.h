@@ -84,6 +84,10 @@ struct PipelineOptions {
   std::optional<SiteSun> sun_from_clock;
 };
 
+// The sun a LineSet taken at `stamp_ns` is localized under: the clock's when
+// options.sun_from_clock is set (none while it is down), else the localizer's.
+std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp_ns);
+
 class LineSetHandler {
  public:
   LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
@@ -109,8 +113,7 @@ class LineSetHandler {
   static constexpr size_t kPreparedMaps = 8;
 
   std::shared_ptr<const PreparedMap> prepare(const std::shared_ptr<const MapView>& view);
-  // The localizer's options for `line_set`: under the sun of its stamp when
-  // that comes from the clock.
+  // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
   void trackInto(const LineSetData& line_set, const PreparedMap& map,
                  const PoseWithCovariance& prior, PoseFixData& fix);

@@ -10,6 +10,7 @@
 #include "backbone/matching/line_matcher.h"
 #include "backbone/service/line_set_handler.h"
 #include "backbone/service/map_geometry.h"
+#include "common/time/utc_time.h"
 #include "tests/support/test_database.h"
 
 namespace lineloc {
@@ -116,6 +117,27 @@ TEST_F(LineSetHandlerTest, TracksFromAGoodPrediction) {
   EXPECT_GE(fix->timings.total, fix->timings.map);
   EXPECT_EQ(handler.counters().fixes_ok, 1u);
   EXPECT_EQ(handler.counters().searches, 0u);
+}
+
+TEST(SunlightAt, IsTheClocksSunOverTheSiteWhenAskedForElseTheGivenOne) {
+  PipelineOptions options;
+  const int64_t morning_ns = parseUtcTime_ns("2026-04-14T09:30:00Z");
+  EXPECT_FALSE(sunlightAt(options, morning_ns).has_value());
+  options.localizer.visibility.sunlight = Sunlight::fromAzimuthElevation(135.0, 40.0, 0.35);
+  EXPECT_EQ(sunlightAt(options, morning_ns)->direction_world,
+            options.localizer.visibility.sunlight->direction_world);
+  const SiteSun delft(SiteProjection("EPSG:7415", {84900, 447600, 0}), 0.35);
+  options.sun_from_clock = delft;
+  // The clock's sun replaces the given one, each LineSet under its own time's.
+  const std::optional<Sunlight> morning = sunlightAt(options, morning_ns);
+  ASSERT_TRUE(morning.has_value());
+  EXPECT_EQ(morning->direction_world, delft.at(morning_ns)->direction_world);
+  const int64_t later_ns = morning_ns + 3'600'000'000'000;
+  EXPECT_EQ(sunlightAt(options, later_ns)->direction_world, delft.at(later_ns)->direction_world);
+  EXPECT_GT((morning->direction_world - sunlightAt(options, later_ns)->direction_world).norm(),
+            0.1);
+  // At night no sun, not the given one.
+  EXPECT_FALSE(sunlightAt(options, parseUtcTime_ns("2026-04-14T22:00:00Z")).has_value());
 }
 
 // A robot 0.3 m off (too far to track) whose frames 2, 3 see the view from

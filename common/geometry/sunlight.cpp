@@ -22,6 +22,15 @@ Sunlight Sunlight::fromAzimuthElevation(double azimuth_deg, double elevation_deg
           ambient_fraction};
 }
 
+double Sunlight::azimuth_deg() const {
+  const double azimuth_deg = std::atan2(direction_world.x(), direction_world.y()) * 180.0 / M_PI;
+  return azimuth_deg < 0.0 ? azimuth_deg + 360.0 : azimuth_deg;
+}
+
+double Sunlight::elevation_deg() const {
+  return std::asin(direction_world.z()) * 180.0 / M_PI;
+}
+
 double Sunlight::irradiance(const Eigen::Vector3d& unit_normal, bool in_shadow) const {
   const double lit = in_shadow ? 0.0 : 1.0;
   return ambient_fraction +

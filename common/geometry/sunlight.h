@@ -22,6 +22,10 @@ struct Sunlight {
   static Sunlight fromAzimuthElevation(double azimuth_deg, double elevation_deg,
                                        double ambient_fraction);
 
+  // The inverse: azimuth clockwise from grid north (0..360) and elevation (deg).
+  double azimuth_deg() const;
+  double elevation_deg() const;
+
   // E(n) above; `unit_normal` is the side of the surface that is seen.
   double irradiance(const Eigen::Vector3d& unit_normal, bool in_shadow) const;
 };

@@ -106,15 +106,13 @@ void writeWorldFile(const DriveSimulationConfig& config, const std::string& crs,
                     const std::vector<Eigen::Vector2d>& route) {
   const std::filesystem::path root(config.output);
   std::ofstream world(root / "world.yaml");
-  const Eigen::Vector3d& s = sun.direction_world;
-  const double sun_azimuth_deg = std::fmod(std::atan2(s.x(), s.y()) / kDegree + 360.0, 360.0);
   world << fmt::format(
       "# lineloc-sim: the world this dataset was rendered from\ncity_model: \"{}\"\ncrs: \"{}\"\n"
       "site_origin: [{:.3f}, {:.3f}, {:.3f}]\nground_z_m: {:.3f}\nseed: {}\nstart_utc: {}\n"
       "sun_azimuth_deg: {:.3f}\nsun_elevation_deg: {:.3f}\nambient: {:.3f}\n",
       config.city_model, crs, city.site_origin.x(), city.site_origin.y(), city.site_origin.z(),
-      city.ground_z_m, config.seed, formatUtcTime(config.drive.start_stamp_ns), sun_azimuth_deg,
-      std::asin(s.z()) / kDegree, sun.ambient_fraction);
+      city.ground_z_m, config.seed, formatUtcTime(config.drive.start_stamp_ns), sun.azimuth_deg(),
+      sun.elevation_deg(), sun.ambient_fraction);
   std::ofstream waypoints(root / "route.txt");
   waypoints << "# x y (m, site frame): the route the robot drove\n";
   for (const Eigen::Vector2d& point : route) {

@@ -22,6 +22,16 @@ TEST(Sunlight, AzimuthIsClockwiseFromNorthAndElevationAboveTheHorizon) {
   EXPECT_NEAR((south_west - Eigen::Vector3d(-horizontal, -horizontal, 0.5)).norm(), 0.0, 1e-12);
 }
 
+TEST(Sunlight, AzimuthAndElevationComeBackFromTheDirection) {
+  for (const double azimuth_deg : {0.0, 45.0, 136.5, 225.0, 359.0}) {
+    for (const double elevation_deg : {-10.0, 0.0, 39.6, 89.0}) {
+      const Sunlight sun = Sunlight::fromAzimuthElevation(azimuth_deg, elevation_deg, 0.3);
+      EXPECT_NEAR(sun.azimuth_deg(), azimuth_deg, 1e-9) << elevation_deg;
+      EXPECT_NEAR(sun.elevation_deg(), elevation_deg, 1e-9) << azimuth_deg;
+    }
+  }
+}
+
 // E(n) = a + (1 - a) max(0, n . s) lit.
 TEST(Sunlight, IrradianceFollowsLambertsCosineLawAboveTheAmbientShare) {
   const Sunlight sun = Sunlight::fromAzimuthElevation(180, 60, 0.35);  // south, 60 degrees up

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "backbone/map/ground_level.h"
@@ -116,8 +117,8 @@ void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& m
   }
 }
 
-void LineSetHandler::search(const LineSetData& line_set, const PreparedMap& map,
-                            const PoseWithCovariance& prior) {
+void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odometry,
+                            const PreparedMap& map, const PoseWithCovariance& prior) {
   const int64_t start_ns = steadyClockNs();
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
                                              line_set.camera, localizerOptions(line_set));
@@ -129,15 +130,22 @@ void LineSetHandler::search(const LineSetData& line_set, const PreparedMap& map,
   }
   const std::string outcome =
       alignment.status == AlignmentStatus::kOk
-          ? describe(confirmPreviousSearch(line_set, alignment.T_world_camera))
+          ? describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera))
           : alignment.message;
   const SearchSummary summary = localization.search.value_or(SearchSummary{});
+  // Where the best aligned hypothesis puts the camera, and its optical axis'
+  // azimuth clockwise from grid north: atan2(r_x, r_y) of R's third column.
+  const Eigen::Isometry3d& best = alignment.T_world_camera.pose;
+  const Eigen::Vector3d axis_world = best.linear().col(2);
   spdlog::info(
       "search for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
-      "best / {:.1f} rival, {} inliers, {:.0f} ms (grid search {:.0f} ms)",
+      "best / {:.1f} rival, {} inliers, best at ({:.2f}, {:.2f}, {:.2f}) m looking {:.2f} deg, "
+      "{:.0f} ms (grid search {:.0f} ms)",
       line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)), outcome,
       summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
-      alignment.inliers, search_ns * 1e-6, summary.search_ns * 1e-6);
+      alignment.inliers, best.translation().x(), best.translation().y(), best.translation().z(),
+      std::atan2(axis_world.x(), axis_world.y()) * 180.0 / M_PI, search_ns * 1e-6,
+      summary.search_ns * 1e-6);
 }
 
 const char* LineSetHandler::describe(Confirmation confirmation) {
@@ -152,15 +160,18 @@ const char* LineSetHandler::describe(Confirmation confirmation) {
   return "";
 }
 
-PoseWithCovariance LineSetHandler::movedByPrediction(const SearchResult& search,
-                                                     const Eigen::Isometry3d& predicted) {
+std::optional<PoseWithCovariance> LineSetHandler::movedByOdometry(const SearchResult& search,
+                                                                  const OdometryPose& odometry) {
+  if (search.odometry.epoch != odometry.epoch) {
+    return std::nullopt;
+  }
   return composeExactMotion(search.T_world_camera_found,
-                            search.T_world_camera_predicted.pose.inverse() * predicted);
+                            search.odometry.T_odom_camera.inverse() * odometry.T_odom_camera);
 }
 
 LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
-    const LineSetData& line_set, const PoseWithCovariance& acquired) {
-  const SearchResult current{line_set.stamp_ns, acquired, line_set.predicted_T_world_camera};
+    const LineSetData& line_set, const OdometryPose& odometry, const PoseWithCovariance& acquired) {
+  const SearchResult current{line_set.stamp_ns, acquired, odometry};
   const std::lock_guard<std::mutex> lock(searches_mutex_);
   const auto previous = last_search_.find(line_set.robot_id);
   if (previous == last_search_.end()) {
@@ -169,11 +180,11 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   }
   const SearchResult last = std::exchange(previous->second, current);
   const double age_s = (current.stamp_ns - last.stamp_ns) * 1e-9;
-  if (!(age_s > 0.0 && age_s <= options_.confirm_within_s)) {
+  const std::optional<PoseWithCovariance> moved = movedByOdometry(last, odometry);
+  if (!(age_s > 0.0 && age_s <= options_.confirm_within_s) || !moved) {
     return Confirmation::kFirst;
   }
-  const Eigen::Isometry3d expected =
-      movedByPrediction(last, current.T_world_camera_predicted.pose).pose;
+  const Eigen::Isometry3d& expected = moved->pose;
   const Eigen::AngleAxisd rotation(expected.linear().transpose() * acquired.pose.linear());
   const bool agrees = (expected.translation() - acquired.pose.translation()).norm() <=
                           options_.confirm_position_m &&
@@ -185,7 +196,8 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   return Confirmation::kConfirmed;
 }
 
-std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set) {
+std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set,
+                                                                const OdometryPose& odometry) {
   const std::lock_guard<std::mutex> lock(searches_mutex_);
   const auto confirmed = confirmed_search_.find(line_set.robot_id);
   if (confirmed == confirmed_search_.end()) {
@@ -193,15 +205,10 @@ std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetDat
   }
   const SearchResult& search = confirmed->second;
   const double age_s = (line_set.stamp_ns - search.stamp_ns) * 1e-9;
-  const auto positionVariance = [](const PoseWithCovariance& pose) {
-    return pose.covariance.topLeftCorner<3, 3>().trace();
-  };
-  if (!(age_s > 0.0 && age_s <= options_.carry_search_s) ||
-      positionVariance(line_set.predicted_T_world_camera) <
-          positionVariance(search.T_world_camera_predicted)) {
+  if (!(age_s > 0.0 && age_s <= options_.carry_search_s)) {
     return std::nullopt;
   }
-  return movedByPrediction(search, line_set.predicted_T_world_camera.pose);
+  return movedByOdometry(search, odometry);
 }
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
@@ -232,6 +239,9 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     return std::nullopt;
   }
   const LineSetData line_set = fromMessage(message);
+  const OdometryPose odometry =
+      motion_.try_emplace(line_set.robot_id, options_.motion)
+          .first->second.add(line_set.stamp_ns, line_set.predicted_T_world_camera);
   PoseFixData fix;
   fix.robot_id = line_set.robot_id;
   fix.sequence_number = line_set.sequence_number;
@@ -255,14 +265,14 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       trackInto(line_set, *map, prior, fix);
       return finish(fix, start_ns);
     }
-    const std::optional<PoseWithCovariance> carried = carriedSearch(line_set);
+    const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
     if (carried && !needsAcquisition(*carried, options_.localizer)) {
       trackInto(line_set, *map, *carried, fix);
       return finish(fix, start_ns);
     }
-    search_worker_.submit(line_set.robot_id, [this, line_set, map, prior] {
+    search_worker_.submit(line_set.robot_id, [this, line_set, odometry, map, prior] {
       try {
-        search(line_set, *map, prior);
+        search(line_set, odometry, *map, prior);
       } catch (const std::exception& error) {
         spdlog::error("search for {} #{} failed: {}", line_set.robot_id, line_set.sequence_number,
                       error.what());

@@ -23,13 +23,16 @@
 // tracked frame, never after a search. A pose found by a search is only taken
 // once a second search, on a later frame of the same robot, finds the pose
 // the first one predicts: the first found pose A1 moved by the robot's own
-// predicted motion between the two frames, A1 P1^-1 P2 (dead reckoning over a
-// second is centimetres, DGPS metres), within confirm_position_m and
+// motion between the two frames, A1 O1^-1 O2 (dead reckoning over a second is
+// centimetres, DGPS metres), within confirm_position_m and
 // confirm_rotation_rad of A2. A wrong pose the search picked by chance does
 // not repeat. The robot's next frames are then tracked from the confirmed
-// pose moved the same way, A2 P2^-1 P, for carry_search_s — unless the
-// robot's own predicted position variance shrank in between: a DGPS update
-// moved its prediction, so P2^-1 P is not its motion alone.
+// pose moved the same way, A2 O2^-1 O, for carry_search_s. O is the robot's
+// odometry pose, read from its predictions with the jumps of its DGPS
+// corrections left out (predicted_motion.h): right after a start those move
+// the prediction of a robot standing still by decimetres, and over 16
+// simulated Delft drives all 6 searches that disagreed with the one before
+// were both within 0.2 m of the truth.
 //
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
@@ -47,6 +50,7 @@
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
+#include "backbone/service/predicted_motion.h"
 #include "backbone/service/search_worker.h"
 #include "common/geodesy/site_sun.h"
 #include "common/messages/message_validator.h"
@@ -78,6 +82,7 @@ struct PipelineOptions {
   double confirm_within_s = 5.0;
   // A confirmed search result starts tracking for this long after its frame.
   double carry_search_s = 1.0;
+  PredictedMotionOptions motion;
   LocalizerOptions localizer;
   // When set, each LineSet is localized under the sun of its stamp instead
   // of localizer.visibility.sunlight (none while the sun is down).
@@ -117,19 +122,21 @@ class LineSetHandler {
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
   void trackInto(const LineSetData& line_set, const PreparedMap& map,
                  const PoseWithCovariance& prior, PoseFixData& fix);
-  // Runs on the search worker.
-  void search(const LineSetData& line_set, const PreparedMap& map, const PoseWithCovariance& prior);
+  // Runs on the search worker; `odometry` is the frame's.
+  void search(const LineSetData& line_set, const OdometryPose& odometry, const PreparedMap& map,
+              const PoseWithCovariance& prior);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   enum class Confirmation { kConfirmed, kFirst, kDisagrees };
   static const char* describe(Confirmation confirmation);
   // Whether `acquired` at `line_set`'s time confirms the robot's previous
   // search result (kFirst: there is none recent); remembers it for the next
   // one either way, and a confirmed one for carriedSearch.
-  Confirmation confirmPreviousSearch(const LineSetData& line_set,
+  Confirmation confirmPreviousSearch(const LineSetData& line_set, const OdometryPose& odometry,
                                      const PoseWithCovariance& acquired);
   // The robot's confirmed search result moved to `line_set`'s time, when
   // there is one to carry (see above).
-  std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set);
+  std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
+                                                  const OdometryPose& odometry);
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -144,15 +151,17 @@ class LineSetHandler {
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
+  std::map<std::string, PredictedMotion> motion_;
   std::list<std::shared_ptr<const PreparedMap>> prepared_maps_;  // most recent first
   struct SearchResult {
     int64_t stamp_ns;
     PoseWithCovariance T_world_camera_found;
-    PoseWithCovariance T_world_camera_predicted;
+    OdometryPose odometry;
   };
-  // A found at P moved by the robot's predicted motion to `predicted`: A P^-1 predicted.
-  static PoseWithCovariance movedByPrediction(const SearchResult& search,
-                                              const Eigen::Isometry3d& predicted);
+  // A found at odometry O_A moved by the robot's motion to odometry O: A O_A^-1 O;
+  // nullopt when the two are of different epochs.
+  static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
+                                                           const OdometryPose& odometry);
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;
   std::map<std::string, SearchResult> confirmed_search_;

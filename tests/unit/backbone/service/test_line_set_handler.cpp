@@ -160,6 +160,20 @@ void expectSearched(LineSetHandler& handler, const std::vector<ImageSegment>& se
   handler.waitForSearches();
 }
 
+// Frame 4, after frames 2 and 3 were searched: the camera at `truth`, tracked
+// from the confirmed search's pose moved by the robot's motion, without a search.
+void expectTrackedAfterSearches(LineSetHandler& handler, const std::string& conninfo,
+                                const PoseWithCovariance& truth,
+                                const PoseWithCovariance& predicted) {
+  const auto fix =
+      handler.handle(lineSetMessage(observedEdges(conninfo, truth), predicted, 4)->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  expectWithinThreeSigma(fix->T_world_camera, truth);
+  EXPECT_LT((fix->T_world_camera.pose.translation() - truth.pose.translation()).norm(), 0.1);
+  EXPECT_EQ(handler.counters().searches, 2u);
+}
+
 TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
@@ -173,30 +187,24 @@ TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmed
   EXPECT_EQ(handler.counters().searches, 2u);
   EXPECT_EQ(handler.counters().fixes_ok, 0u);
 
-  const auto fix =
-      handler.handle(lineSetMessage(observedEdges(database_.conninfo(), start.truth_moved),
-                                    start.predicted_moved, 4)
-                         ->message());
-  ASSERT_TRUE(fix.has_value());
-  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
-  expectWithinThreeSigma(fix->T_world_camera, start.truth_moved);
-  EXPECT_LT((fix->T_world_camera.pose.translation() - start.truth_moved.pose.translation()).norm(),
-            0.1);
-  EXPECT_EQ(handler.counters().searches, 2u);
+  expectTrackedAfterSearches(handler, database_.conninfo(), start.truth_moved,
+                             start.predicted_moved);
   EXPECT_EQ(handler.counters().fixes_ok, 1u);
 }
 
-TEST_F(LineSetHandlerTest, ASearchIsNotCarriedAcrossAnUpdateOfTheRobotsPrediction) {
+TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPrediction) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
   PoorStart start;
   const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
   expectSearched(handler, seen, start.predicted, 2);
   expectSearched(handler, seen, start.predicted, 3);
-  // Its covariance shrank: a DGPS update moved the prediction, not the robot.
-  start.predicted.covariance = diagonalPoseCovariance(0.25, 0.02);
-  expectSearched(handler, seen, start.predicted, 4);
-  EXPECT_EQ(handler.counters().searches, 3u);
+  // The robot stood still; a DGPS update moved its prediction 2 m north and
+  // shrank its covariance (still too wide to track from).
+  PoseWithCovariance corrected = start.predicted;
+  corrected.pose.translation() += Eigen::Vector3d(0.0, 2.0, 0.0);
+  corrected.covariance = diagonalPoseCovariance(0.25, 0.02);
+  expectTrackedAfterSearches(handler, database_.conninfo(), start.truth, corrected);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {

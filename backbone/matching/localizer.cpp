@@ -74,20 +74,32 @@ bool outside(const Alignment& answer, const Alignment& other, const LocalizerOpt
                  other.T_world_camera.pose, options);
 }
 
-// The best covered alignment, its covariance grown by d d^T for every rival
-// covered at least rival_score_fraction as well and outside it (d the rival's
-// offset); kAmbiguous when that leaves a position sigma beyond the
-// alignment's limit.
+bool isOk(const Alignment& alignment) {
+  return alignment.status == AlignmentStatus::kOk;
+}
+
+// An alignment that settled on a pose: OK, or ill-conditioned (it fits the
+// image, but its covariance is too wide to answer with).
+bool settled(const Alignment& alignment) {
+  return isOk(alignment) || alignment.status == AlignmentStatus::kIllConditioned;
+}
+
+// The best covered OK alignment, its covariance grown by d d^T for every
+// settled rival covered at least rival_score_fraction as well and outside it
+// (d the rival's offset); kAmbiguous when that leaves a position sigma beyond
+// the alignment's limit.
 Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<ImageSegment>& image,
                       const std::vector<VisibleSegment>& visible, const PinholeCamera& camera,
                       const LocalizerOptions& options) {
   const CoverageVerifier verifier(image, camera, options.acquisition);
   std::vector<double> scores;
-  for (const Alignment& alignment : aligned) {
-    scores.push_back(verifier.coverage(visible, alignment.T_world_camera.pose).score);
+  size_t best = aligned.size();
+  for (size_t i = 0; i < aligned.size(); ++i) {
+    scores.push_back(verifier.coverage(visible, aligned[i].T_world_camera.pose).score);
+    if (isOk(aligned[i]) && (best == aligned.size() || scores[i] > scores[best])) {
+      best = i;
+    }
   }
-  const size_t best =
-      static_cast<size_t>(std::max_element(scores.begin(), scores.end()) - scores.begin());
   Alignment answer = aligned[best];
   int rivals = 0;
   for (size_t i = 0; i < aligned.size(); ++i) {
@@ -110,46 +122,64 @@ Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<I
   return answer;
 }
 
-// True when a sigma point's alignment lies within distinct_chi2 of the point
-// in the sum of their covariances: a sigma point probes the basins near it;
-// in a view with few model lines its wide gates can take it a metre away.
+// True when an alignment lies within distinct_chi2 of its start in the sum
+// of their covariances.
 bool reaches(const PoseWithCovariance& start, const Alignment& alignment,
              const LocalizerOptions& options) {
   return within(start.pose, start.covariance + alignment.T_world_camera.covariance,
                 alignment.T_world_camera.pose, options);
 }
 
-// The OK alignments from the prior and its sigma points (those within reach
-// of their point): the first of them when the others lie within its
-// covariance, else coverRivals. The centre's failure when none is OK.
+// The alignment from one start, kInconsistent when it is OK but out of the
+// start's reach.
+Alignment alignWithinReach(const std::vector<ImageSegment>& image,
+                           const std::vector<VisibleSegment>& visible,
+                           const PoseWithCovariance& start, const PinholeCamera& camera,
+                           const LocalizerOptions& options) {
+  Alignment alignment = alignFromCentre(image, visible, start, camera, options);
+  if (isOk(alignment) && !reaches(start, alignment, options)) {
+    alignment.status = AlignmentStatus::kInconsistent;
+    alignment.message =
+        fmt::format("aligned {:.2f} m from its start, beyond chi^2_6 = {:.2f} of their covariances",
+                    (alignment.T_world_camera.pose.translation() - start.pose.translation()).norm(),
+                    options.distinct_chi2);
+  }
+  return alignment;
+}
+
+// The settled alignments from the prior and its sigma points, the OK ones
+// within reach of their start: the first OK one when every other lies within
+// its covariance, else coverRivals. The centre's own answer when it is
+// ill-conditioned or none is OK.
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
                 const PoseWithCovariance& prior, const PinholeCamera& camera,
                 const LocalizerOptions& options) {
   std::vector<Alignment> aligned;
-  Alignment answer;
+  Alignment centre;
   int64_t matching_ns = 0;
   int64_t pose_ns = 0;
   const std::vector<PoseWithCovariance> starts =
       trackingStarts(prior, options.start_sigma, options.min_start_step_m);
   for (size_t i = 0; i < starts.size(); ++i) {
-    Alignment alignment = alignFromCentre(image, visible, starts[i], camera, options);
+    Alignment alignment = alignWithinReach(image, visible, starts[i], camera, options);
     matching_ns += alignment.matching_ns;
     pose_ns += alignment.pose_ns;
-    if (alignment.status == AlignmentStatus::kOk &&
-        (i == 0 || reaches(starts[i], alignment, options))) {
+    if (i == 0) {
+      centre = alignment;
+    }
+    if (settled(alignment)) {
       aligned.push_back(std::move(alignment));
-    } else if (i == 0) {
-      answer = std::move(alignment);
     }
   }
-  const auto outsideFirst = [&](const Alignment& other) {
-    return outside(aligned.front(), other, options);
-  };
-  if (!aligned.empty() && std::none_of(aligned.begin(), aligned.end(), outsideFirst)) {
-    answer = aligned.front();
-  } else if (!aligned.empty()) {
+  const auto first_ok = std::find_if(aligned.begin(), aligned.end(), isOk);
+  Alignment answer = centre;
+  if (first_ok != aligned.end() && centre.status != AlignmentStatus::kIllConditioned) {
+    const auto outsideFirst = [&](const Alignment& other) {
+      return outside(*first_ok, other, options);
+    };
+    const bool agree = std::none_of(aligned.begin(), aligned.end(), outsideFirst);
     const int64_t scoring_start_ns = steadyClockNs();
-    answer = coverRivals(aligned, image, visible, camera, options);
+    answer = agree ? *first_ok : coverRivals(aligned, image, visible, camera, options);
     matching_ns += steadyClockNs() - scoring_start_ns;
   }
   answer.matching_ns = matching_ns;

@@ -28,32 +28,43 @@
 // short reporting 5 cm, while from the truth it aligned within 2 cm; every
 // later fix of that standstill kept the offset. Tracking therefore also aligns
 // from sigma points of the prediction, its centre moved by +-start_sigma
-// standard deviations along each principal axis of the position covariance
-// and about the vertical. When an OK alignment lies outside the first one's
-// covariance (beyond chi^2_6(0.9973)), each is scored by coverage against a
-// sharp distance map, as acquisition verifies its hypotheses
-// (pose_acquisition.h); the best one is answered, its covariance grown by
-// d d^T for every rival covered nearly as well (d the rival's offset), so the
-// answer covers the poses the view does not rule out, and the answer is
-// ambiguous when that leaves it too wide to use. Along the horizontal axes
-// the sigma points lie at least min_start_step_m from the centre, with the
-// covariance along the axis widened to reach them: a prediction can be more
-// confident than its error allows (the robot fuses fixes whose errors are
-// correlated), and from 0.15 m short along that view with a 3 cm sigma the
-// alignment settled 0.13 m short, beyond three of its sigmas. 0.15 m is the
-// reach of the search's fine grid, whose neighbouring basins an acquired pose
-// can carry into the fixes after it. The height is not floored: a ground
-// robot's camera rides at a known height, and probing 0.15 m up and down let
-// rivals of a few centimetres widen the answers (seed 3: 48 % of frames
-// within 5 cm and 0.5 degrees, 71 % without). A sigma point's alignment
-// counts only within chi^2_6(0.9973) of its point, in the sum of their
-// covariances: in a view with few model lines a widened point's gates took it
-// a metre along the view. Over 12 simulated drives with predictions drawn from
-// their own covariance (0.15 m and 0.3 degrees horizontally, 3 cm and 0.05
-// degrees in height, roll and pitch), 86 of 617 OK answers were beyond three
-// sigma with the centre alone, 28 of 591 with the sigma points and 27 of 628
-// with the floor; from 5 cm and 0.1 degrees, 36 of 606, 4 of 611 and 5 of
-// 622.
+// standard deviations along each principal axis of the position covariance and
+// about the vertical. When an alignment that settled (OK, or ill-conditioned:
+// it fits the image but leaves the pose too wide to answer with) lies outside
+// the first OK one's covariance (beyond chi^2_6(0.9973)), each is scored by
+// coverage against a sharp distance map, as acquisition verifies its
+// hypotheses (pose_acquisition.h); the best OK one is answered, its covariance
+// grown by d d^T for every rival covered nearly as well (d the rival's
+// offset), so the answer covers the poses the view does not rule out, and the
+// answer is ambiguous when that leaves it too wide to use. Along the
+// horizontal axes the sigma points lie at least min_start_step_m from the
+// centre, with the covariance along the axis widened to reach them: a
+// prediction can be more confident than its error allows (the robot fuses
+// fixes whose errors are correlated), and from 0.15 m short along that view
+// with a 3 cm sigma the alignment settled 0.13 m short, beyond three of its
+// sigmas. 0.15 m is the reach of the search's fine grid, whose neighbouring
+// basins an acquired pose can carry into the fixes after it. The height is not
+// floored: a ground robot's camera rides at a known height, and probing 0.15 m
+// up and down let rivals of a few centimetres widen the answers (seed 3: 48 %
+// of frames within 5 cm and 0.5 degrees, 71 % without).
+//
+// A sigma point probes the basins near the prediction; it cannot make a view
+// determine the pose. When the centre's own alignment is ill-conditioned, that
+// is the answer: from some sigma point a different subset of the same few
+// matches can squeeze under max_position_sigma_m, and on a Delft frame with
+// eleven matches (tests/integration/drive) one did so 1.2 m off reporting
+// 0.4 m. And an OK alignment counts only within chi^2_6(0.9973) of its start
+// in the sum of their covariances, the innovation gate of a Kalman update: in
+// a view with few model lines a widened point's gates took it a metre along
+// the view, and the centre's alignment settled 0.47 m from a prediction 8 cm
+// from the truth, reporting 0.16 m. When the centre's alignment is out of its
+// reach and no sigma point's is within, the answer is kInconsistent.
+//
+// Over 12 simulated drives with predictions drawn from their own covariance
+// (0.15 m and 0.3 degrees horizontally, 3 cm and 0.05 degrees in height, roll
+// and pitch), 86 of 617 OK answers were beyond three sigma with the centre
+// alone, 28 of 591 with the sigma points and 27 of 628 with the floor; from
+// 5 cm and 0.1 degrees, 36 of 606, 4 of 611 and 5 of 622.
 #pragma once
 
 #include <cstdint>

@@ -147,6 +147,8 @@ const char* toString(AlignmentStatus status) {
       return "ambiguous";
     case AlignmentStatus::kFailed:
       return "failed";
+    case AlignmentStatus::kInconsistent:
+      return "inconsistent";
   }
   return "unknown";
 }

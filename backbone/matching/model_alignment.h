@@ -54,6 +54,9 @@ enum class AlignmentStatus {
   kIllConditioned,
   kAmbiguous,
   kFailed,
+  // Aligned, but beyond chi^2_6(0.9973) of the pose it started from
+  // (localizer.h): the image and the prediction disagree.
+  kInconsistent,
 };
 
 const char* toString(AlignmentStatus status);

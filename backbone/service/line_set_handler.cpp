@@ -23,6 +23,7 @@ lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
     case AlignmentStatus::kAmbiguous:
       return lineloc_msg_FIX_AMBIGUOUS;
     case AlignmentStatus::kFailed:
+    case AlignmentStatus::kInconsistent:
       return lineloc_msg_FIX_DIVERGED;
   }
   return lineloc_msg_FIX_INTERNAL_ERROR;

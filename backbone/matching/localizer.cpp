@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -154,23 +155,30 @@ Alignment alignWithinReach(const std::vector<ImageSegment>& image,
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
                 const PoseWithCovariance& prior, const PinholeCamera& camera,
                 const LocalizerOptions& options) {
-  std::vector<Alignment> aligned;
-  Alignment centre;
-  int64_t matching_ns = 0;
-  int64_t pose_ns = 0;
   const std::vector<PoseWithCovariance> starts =
       trackingStarts(prior, options.start_sigma, options.min_start_step_m);
-  for (size_t i = 0; i < starts.size(); ++i) {
-    Alignment alignment = alignWithinReach(image, visible, starts[i], camera, options);
-    matching_ns += alignment.matching_ns;
-    pose_ns += alignment.pose_ns;
-    if (i == 0) {
-      centre = alignment;
-    }
+  std::vector<Alignment> from_starts(starts.size());
+  const int64_t aligning_start_ns = steadyClockNs();
+  parallelFor(static_cast<int>(starts.size()), options.threads, [&](int i) {
+    from_starts[i] = alignWithinReach(image, visible, starts[i], camera, options);
+  });
+  const int64_t aligning_ns = steadyClockNs() - aligning_start_ns;
+  const Alignment& centre = from_starts.front();
+  std::vector<Alignment> aligned;
+  int64_t matching_cpu_ns = 0;
+  int64_t pose_cpu_ns = 0;
+  for (const Alignment& alignment : from_starts) {
+    matching_cpu_ns += alignment.matching_ns;
+    pose_cpu_ns += alignment.pose_ns;
     if (settled(alignment)) {
-      aligned.push_back(std::move(alignment));
+      aligned.push_back(alignment);
     }
   }
+  // The threads' wall time, shared between the stages as their CPU time is.
+  const double matching_share =
+      static_cast<double>(matching_cpu_ns) / std::max<int64_t>(1, matching_cpu_ns + pose_cpu_ns);
+  int64_t matching_ns = std::llround(matching_share * aligning_ns);
+  const int64_t pose_ns = aligning_ns - matching_ns;
   const auto first_ok = std::find_if(aligned.begin(), aligned.end(), isOk);
   Alignment answer = centre;
   if (first_ok != aligned.end() && centre.status != AlignmentStatus::kIllConditioned) {
@@ -209,7 +217,9 @@ Localization localize(const std::vector<ImageSegment>& image,
     return localization;
   }
   const int64_t visibility_start_ns = steadyClockNs();
-  localization.visible = visibleSegments(lines, scene, prior, camera, options.visibility);
+  VisibilityOptions visibility = options.visibility;
+  visibility.threads = options.threads;
+  localization.visible = visibleSegments(lines, scene, prior, camera, visibility);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
   localization.alignment = track(image, localization.visible, prior, camera, options);
   return localization;

@@ -89,9 +89,12 @@ struct LocalizerOptions {
   // alignment widens the answer's covariance to reach it.
   double rival_score_fraction = 0.8;
   // chi^2_6(0.9973): an alignment further from the answer in the answer's
-  // covariance is outside it; a sigma point's alignment further from its
-  // point, in the sum of their covariances, is out of its reach.
+  // covariance is outside it; an alignment further from its start, in the
+  // sum of their covariances, is out of its reach.
   double distinct_chi2 = 20.06;
+  // Threads sharing tracking's alignments from the prior and its sigma points,
+  // and its hidden-line removal's lines (0: one per core).
+  int threads = 0;
   // Tracking's hidden-line removal. Its sunlight, when set, is tracking's
   // alone: the acquisition's search and hypotheses keep the corners between
   // walls lit alike. On the 50 simulated Delft drives, dropping them there
@@ -104,8 +107,9 @@ struct LocalizerOptions {
 };
 
 struct Localization {
-  // Its matching_ns and pose_ns cover every alignment tried; scoring tracked
-  // alignments by coverage counts as matching.
+  // Its matching_ns and pose_ns are the wall time of every alignment tried,
+  // shared between the two as their time summed over the threads is; scoring
+  // tracked alignments by coverage counts as matching.
   Alignment alignment;
   // Set when the pose was acquired by a search rather than tracked.
   std::optional<SearchSummary> search;

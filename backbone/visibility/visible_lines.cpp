@@ -7,12 +7,16 @@
 #include <optional>
 
 #include "common/camera/camera_frustum.h"
+#include "common/parallel/parallel_for.h"
 
 namespace lineloc {
 namespace {
 
 constexpr int kStateDimension = 3;
 constexpr int kViewpoints = 2 * kStateDimension + 1;
+// Runs of lines shared out among the threads: lines near occluders take
+// several times longer to sample, so more runs than threads even the work out.
+constexpr int kVisibilityChunks = 16;
 
 // The camera centre and the sigma points of its position uncertainty; the
 // centre alone for a position known exactly.
@@ -241,13 +245,24 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
   const LineSampler sampler(scene, T_world_camera, camera, options);
   const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
   const HalfSpaces frustum = visibilityFrustum(camera, options);
-  std::vector<VisibleSegment> visible;
-  for (const ModelSegment& line : lines) {
-    Eigen::Vector3d a = T_camera_world * line.start_world;
-    Eigen::Vector3d b = T_camera_world * line.end_world;
-    if (clipTo(frustum, a, b)) {
-      sampler.appendVisiblePieces(line, a, b, visible);
+  // Consecutive runs of lines, one run's pieces per chunk, so the pieces keep
+  // the lines' order whatever thread samples them.
+  const int chunks = options.threads == 1 ? 1 : kVisibilityChunks;
+  const size_t lines_per_chunk = (lines.size() + chunks - 1) / chunks;
+  std::vector<std::vector<VisibleSegment>> pieces(chunks);
+  parallelFor(chunks, options.threads, [&](int chunk) {
+    const size_t end = std::min(lines.size(), (chunk + 1) * lines_per_chunk);
+    for (size_t i = chunk * lines_per_chunk; i < end; ++i) {
+      Eigen::Vector3d a = T_camera_world * lines[i].start_world;
+      Eigen::Vector3d b = T_camera_world * lines[i].end_world;
+      if (clipTo(frustum, a, b)) {
+        sampler.appendVisiblePieces(lines[i], a, b, pieces[chunk]);
+      }
     }
+  });
+  std::vector<VisibleSegment> visible;
+  for (const std::vector<VisibleSegment>& chunk : pieces) {
+    visible.insert(visible.end(), chunk.begin(), chunk.end());
   }
   return visible;
 }

@@ -79,6 +79,9 @@ struct VisibilityOptions {
   // The sun over the scene, when known; then faces lit alike show no edge.
   std::optional<Sunlight> sunlight = std::nullopt;
   double min_irradiance_difference = 0.1;
+  // Threads sharing the lines (0: one per core); 1 where the caller already
+  // runs on every core (the pose search's cells).
+  int threads = 1;
 };
 
 // The visible pieces of `lines` seen from `T_world_camera` (with covariance)

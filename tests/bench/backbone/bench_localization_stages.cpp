@@ -122,16 +122,18 @@ void BM_LineSetEncoding(benchmark::State& state) {
   }
 }
 
+// Its argument: the threads sharing the lines (0: one per core).
 void BM_BackboneVisibility(benchmark::State& state) {
   std::mt19937 random(1);
+  VisibilityOptions options = drive().localizer.visibility;
+  options.threads = static_cast<int>(state.range(0));
   int64_t iteration = 0;
   for (auto _ : state) {
     const Frame& frame = frameAt(iteration++);
     const PoseWithCovariance prior =
         drive().predicted(frame, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, random);
     benchmark::DoNotOptimize(visibleSegments(drive().model.lines, *drive().scene, prior,
-                                             drive().calibration.camera,
-                                             drive().localizer.visibility));
+                                             drive().calibration.camera, options));
   }
 }
 
@@ -168,7 +170,7 @@ void BM_BackboneMatchingAndPose(benchmark::State& state) {
 // sigma points, coverage scoring when their alignments disagree:
 // localizer.h); from a DGPS start the search and its verification.
 void localizeFrames(benchmark::State& state, double position_sigma_m, double rotation_sigma_rad,
-                    unsigned seed) {
+                    unsigned seed, const LocalizerOptions& options) {
   std::mt19937 random(seed);
   int64_t iteration = 0;
   int ok = 0;
@@ -177,9 +179,8 @@ void localizeFrames(benchmark::State& state, double position_sigma_m, double rot
     const Frame& frame = frameAt(iteration++);
     const PoseWithCovariance prior =
         drive().predicted(frame, position_sigma_m, rotation_sigma_rad, random);
-    const Localization localization =
-        localize(frame.segments, drive().model.lines, *drive().scene, prior,
-                 drive().calibration.camera, drive().localizer);
+    const Localization localization = localize(frame.segments, drive().model.lines, *drive().scene,
+                                               prior, drive().calibration.camera, options);
     ok += localization.alignment.status == AlignmentStatus::kOk ? 1 : 0;
     search_ms += localization.search ? localization.search->search_ns * 1e-6 : 0.0;
   }
@@ -187,12 +188,15 @@ void localizeFrames(benchmark::State& state, double position_sigma_m, double rot
   state.counters["grid_search_ms"] = search_ms / iteration;
 }
 
+// Its argument: the threads sharing the tracking step (0: one per core).
 void BM_BackboneTracking(benchmark::State& state) {
-  localizeFrames(state, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, 4);
+  LocalizerOptions options = drive().localizer;
+  options.threads = static_cast<int>(state.range(0));
+  localizeFrames(state, kTrackingPositionSigmaM, kTrackingRotationSigmaRad, 4, options);
 }
 
 void BM_BackboneSearchFromDgps(benchmark::State& state) {
-  localizeFrames(state, kDgpsSigmaM, kCompassSigmaRad, 3);
+  localizeFrames(state, kDgpsSigmaM, kCompassSigmaRad, 3, drive().localizer);
 }
 
 // The sharp oriented distance map that scores rival alignments, against what
@@ -241,9 +245,9 @@ void perFrameStage(benchmark::internal::Benchmark* stage) {
 
 BENCHMARK(BM_RobotFrontEnd)->Apply(perFrameStage);
 BENCHMARK(BM_LineSetEncoding)->Apply(perFrameStage);
-BENCHMARK(BM_BackboneVisibility)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneVisibility)->ArgName("threads")->Arg(1)->Arg(0)->Apply(perFrameStage);
 BENCHMARK(BM_BackboneMatchingAndPose)->Apply(perFrameStage);
-BENCHMARK(BM_BackboneTracking)->Apply(perFrameStage);
+BENCHMARK(BM_BackboneTracking)->ArgName("threads")->Arg(1)->Arg(0)->Apply(perFrameStage);
 BENCHMARK(BM_VerificationMap)->Apply(perFrameStage);
 BENCHMARK(BM_VerificationMapOpenCvDistanceTransform)->Apply(perFrameStage);
 BENCHMARK(BM_BackboneSearchFromDgps)->Unit(benchmark::kMillisecond)->Iterations(8);

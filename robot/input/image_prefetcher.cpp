@@ -1,5 +1,8 @@
 #include "robot/input/image_prefetcher.h"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <utility>
 
@@ -34,6 +37,11 @@ ImagePrefetcher::~ImagePrefetcher() {
 }
 
 void ImagePrefetcher::decodeAhead() {
+  // Idle priority: decoding runs on cores the robot's loop, DDS and a backbone
+  // on the same machine leave free. The call may be refused; decoding then
+  // runs at normal priority.
+  const sched_param idle{};
+  pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     changed_.wait(lock, [this] {

@@ -6,22 +6,35 @@
 #include <opencv2/imgproc.hpp>
 #include <queue>
 #include <random>
+#include <tuple>
 
 namespace lineloc {
 namespace {
 
 constexpr int kGoalAttempts = 200;
+// Legs searched for one that keeps the façades in view, and starts tried.
+constexpr int kLegSearches = 20;
+constexpr int kStartAttempts = 10;
+// Drives planned for one that keeps the façades in view all along.
+constexpr int kRouteAttempts = 8;
 constexpr int kStreetAxes = 8;
 constexpr int kViewRays = 31;
 // The direction of travel is taken over this many cells of the path.
 constexpr size_t kHeadingCells = 10;
 
-// Where the robot drives: every cell with enough clearance, labelled by
-// connected component. Goals are the cells of the largest component that lie
-// on a street, between façades.
+// Where the robot drives: every cell with enough clearance within reach of
+// the façades, labelled by connected component. Goals are the cells of the
+// largest component that lie on a street, between façades.
 struct StreetCells {
   cv::Mat drivable;              // CV_8U 255 where the robot may drive
   std::vector<cv::Point> goals;  // street cells of the largest drivable component
+};
+
+// A leg of the route and the least share of the camera's view it fills with
+// façades along the way.
+struct Leg {
+  std::vector<cv::Point> cells;
+  double facades_in_view = -1.0;
 };
 
 // True when a building cell lies within reach_cells of `cell` along `step`.
@@ -56,7 +69,8 @@ bool betweenFacades(const OccupancyMap& map, const cv::Point& cell, int reach_ce
 
 StreetCells findStreetCells(const OccupancyMap& map, const StreetRouteOptions& options) {
   StreetCells cells;
-  cv::compare(map.clearance(), options.min_clearance_m, cells.drivable, cv::CMP_GE);
+  cv::inRange(map.clearance(), options.min_clearance_m, options.max_facade_distance_m,
+              cells.drivable);
   cv::Mat labels;
   cv::Mat stats;
   cv::Mat centroids;
@@ -75,9 +89,7 @@ StreetCells findStreetCells(const OccupancyMap& map, const StreetRouteOptions& o
   for (int row = 0; row < map.rows(); ++row) {
     for (int col = 0; col < map.cols(); ++col) {
       const cv::Point cell(col, row);
-      // Façades on both sides within the distance imply a clearance below it.
       if (largest > 0 && labels.at<int>(cell) == largest &&
-          map.clearance().at<float>(cell) <= options.max_facade_distance_m &&
           betweenFacades(map, cell, reach_cells)) {
         cells.goals.push_back(cell);
       }
@@ -89,7 +101,7 @@ StreetCells findStreetCells(const OccupancyMap& map, const StreetRouteOptions& o
 // A* over 8-connected drivable cells; the path from start to goal, or empty.
 std::vector<cv::Point> searchPath(const OccupancyMap& map, const cv::Mat& drivable,
                                   const cv::Point& start, const cv::Point& goal,
-                                  double centre_weight_m) {
+                                  const StreetRouteOptions& options) {
   const int cols = map.cols();
   const auto index = [cols](const cv::Point& p) { return p.y * cols + p.x; };
   std::vector<float> cost(static_cast<size_t>(cols) * map.rows(),
@@ -119,9 +131,11 @@ std::vector<cv::Point> searchPath(const OccupancyMap& map, const cv::Mat& drivab
           continue;
         }
         const double step_m = map.cellSize() * std::hypot(dx, dy);
-        const double clearance_m = map.clearance().at<float>(q);
+        const double clearance_m =
+            std::min<double>(map.clearance().at<float>(q), options.max_centre_clearance_m);
         const float next =
-            cost[current] + static_cast<float>(step_m * (1.0 + centre_weight_m / clearance_m));
+            cost[current] +
+            static_cast<float>(step_m * (1.0 + options.centre_weight_m / clearance_m));
         if (next < cost[index(q)]) {
           cost[index(q)] = next;
           parent[index(q)] = current;
@@ -157,55 +171,100 @@ double facadeShareAhead(const OccupancyMap& map, const cv::Point& cell, const cv
   return static_cast<double>(hits) / kViewRays;
 }
 
-// The path from the end of `path` to a random goal at least min_leg_m away,
-// or empty when none is reachable. The first half of the attempts only take
-// goals ahead of the direction of travel, so the robot rarely turns back.
-std::vector<cv::Point> nextLeg(const OccupancyMap& map, const StreetCells& cells,
-                               const std::vector<cv::Point>& path,
-                               const StreetRouteOptions& options, std::mt19937& random) {
+// The least share of the view filled with façades looking along `cells`, the
+// camera at every kHeadingCells / 2-th cell looking kHeadingCells ahead.
+double facadesInViewAlong(const OccupancyMap& map, const std::vector<cv::Point>& cells,
+                          const StreetRouteOptions& options) {
+  double least = 1.0;
+  for (size_t i = 0; i + 1 < cells.size(); i += kHeadingCells / 2) {
+    const cv::Point heading = cells[std::min(cells.size() - 1, i + kHeadingCells)] - cells[i];
+    least = std::min(least, facadeShareAhead(map, cells[i], heading, options));
+  }
+  return least;
+}
+
+// A leg from the end of `path` to a random goal at least min_leg_m away that
+// keeps min_facades_in_view, else the one of kLegSearches with the most
+// façades in view; no cells when no goal ahead is reachable. Goals and the
+// way to them lie ahead of the direction of travel: the robot drives on and
+// never turns back on the spot (its trajectory is a spline, which would cusp).
+Leg nextLeg(const OccupancyMap& map, const StreetCells& cells, const std::vector<cv::Point>& path,
+            const StreetRouteOptions& options, std::mt19937& random) {
   std::uniform_int_distribution<size_t> pick(0, cells.goals.size() - 1);
   const double min_leg_cells = options.min_leg_m / map.cellSize();
   const cv::Point from = path.back();
   const cv::Point heading = from - path[path.size() - std::min(path.size(), kHeadingCells)];
-  for (int attempt = 0; attempt < kGoalAttempts; ++attempt) {
+  Leg best;
+  int searches = 0;
+  for (int attempt = 0; attempt < kGoalAttempts && searches < kLegSearches; ++attempt) {
     const cv::Point goal = cells.goals[pick(random)];
-    const bool ahead = (goal - from).dot(heading) >= 0 || attempt >= kGoalAttempts / 2;
+    const bool ahead = (goal - from).dot(heading) >= 0;
     if (!ahead || std::hypot(goal.x - from.x, goal.y - from.y) < min_leg_cells) {
       continue;
     }
-    std::vector<cv::Point> leg =
-        searchPath(map, cells.drivable, from, goal, options.centre_weight_m);
-    if (!leg.empty()) {
-      return leg;
-    }
-  }
-  return {};
-}
-
-// The start and its first leg: a random goal from which the camera, looking
-// along the first leg, sees façades over min_facades_in_view of its field of
-// view. A start looking at open land sees nothing the model holds.
-std::vector<cv::Point> firstLeg(const OccupancyMap& map, const StreetCells& cells,
-                                const StreetRouteOptions& options, std::mt19937& random) {
-  std::uniform_int_distribution<size_t> pick(0, cells.goals.size() - 1);
-  std::vector<cv::Point> best;
-  double best_share = -1.0;
-  for (int attempt = 0; attempt < kGoalAttempts; ++attempt) {
-    std::vector<cv::Point> leg = nextLeg(map, cells, {cells.goals[pick(random)]}, options, random);
-    if (leg.empty()) {
+    ++searches;
+    Leg leg{searchPath(map, cells.drivable, from, goal, options)};
+    if (leg.cells.empty() ||
+        (leg.cells[std::min(leg.cells.size() - 1, kHeadingCells)] - from).dot(heading) < 0) {
       continue;
     }
-    const cv::Point heading = leg[std::min(leg.size(), kHeadingCells) - 1] - leg.front();
-    const double share = facadeShareAhead(map, leg.front(), heading, options);
-    if (share >= options.min_facades_in_view) {
+    leg.facades_in_view = facadesInViewAlong(map, leg.cells, options);
+    if (leg.facades_in_view >= options.min_facades_in_view) {
       return leg;
     }
-    if (share > best_share) {
-      best_share = share;
+    if (leg.facades_in_view > best.facades_in_view) {
       best = std::move(leg);
     }
   }
   return best;
+}
+
+// The start and its first leg: the first leg from a random goal that keeps
+// min_facades_in_view, else the best found from kStartAttempts goals.
+Leg firstLeg(const OccupancyMap& map, const StreetCells& cells, const StreetRouteOptions& options,
+             std::mt19937& random) {
+  std::uniform_int_distribution<size_t> pick(0, cells.goals.size() - 1);
+  Leg best;
+  for (int attempt = 0; attempt < kStartAttempts; ++attempt) {
+    Leg leg = nextLeg(map, cells, {cells.goals[pick(random)]}, options, random);
+    if (leg.facades_in_view >= options.min_facades_in_view) {
+      return leg;
+    }
+    if (leg.facades_in_view > best.facades_in_view) {
+      best = std::move(leg);
+    }
+  }
+  return best;
+}
+
+// A drive of whole legs from a random start until length_m, and the least
+// share of the view filled with façades along its legs.
+struct CellRoute {
+  std::vector<cv::Point> cells;
+  double length_m = 0.0;
+  double facades_in_view = 1.0;
+};
+
+CellRoute driveLegs(const OccupancyMap& map, const StreetCells& cells,
+                    const StreetRouteOptions& options, std::mt19937& random) {
+  CellRoute drive;
+  Leg leg = firstLeg(map, cells, options, random);
+  if (leg.cells.empty()) {
+    return drive;
+  }
+  drive.cells.push_back(leg.cells.front());
+  for (int count = 0;
+       count < options.max_legs && drive.length_m < options.length_m && !leg.cells.empty();
+       ++count) {
+    drive.facades_in_view = std::min(drive.facades_in_view, leg.facades_in_view);
+    for (size_t i = 1; i < leg.cells.size() && drive.length_m < options.length_m; ++i) {
+      drive.length_m += map.cellSize() * std::hypot(leg.cells[i].x - leg.cells[i - 1].x,
+                                                    leg.cells[i].y - leg.cells[i - 1].y);
+      drive.cells.push_back(leg.cells[i]);
+    }
+    leg = nextLeg(map, cells, drive.cells, options, random);
+  }
+  return drive;
 }
 
 std::vector<Eigen::Vector2d> simplify(const OccupancyMap& map, const std::vector<cv::Point>& cells,
@@ -241,25 +300,27 @@ StreetRoute planStreetRoute(const OccupancyMap& map, const StreetRouteOptions& o
     return route;
   }
   std::mt19937 random(options.seed);
-  std::vector<cv::Point> leg_path = firstLeg(map, cells, options, random);
-  if (leg_path.empty()) {
+  const auto rank = [&](const CellRoute& drive) {
+    return std::make_tuple(drive.length_m >= options.length_m, drive.facades_in_view,
+                           drive.length_m);
+  };
+  CellRoute best;
+  for (int attempt = 0; attempt < kRouteAttempts; ++attempt) {
+    CellRoute drive = driveLegs(map, cells, options, random);
+    if (attempt == 0 || rank(drive) > rank(best)) {
+      best = std::move(drive);
+    }
+    if (std::get<0>(rank(best)) && best.facades_in_view >= options.min_facades_in_view) {
+      break;
+    }
+  }
+  if (best.cells.empty()) {
     return route;
   }
-  std::vector<cv::Point> path{leg_path.front()};
-  double length_m = 0.0;
-  for (int leg = 0; leg < options.max_legs && length_m < options.length_m && !leg_path.empty();
-       ++leg) {
-    for (size_t i = 1; i < leg_path.size() && length_m < options.length_m; ++i) {
-      length_m += map.cellSize() *
-                  std::hypot(leg_path[i].x - leg_path[i - 1].x, leg_path[i].y - leg_path[i - 1].y);
-      path.push_back(leg_path[i]);
-    }
-    leg_path = nextLeg(map, cells, path, options, random);
-  }
-  route.waypoints = simplify(map, path, options.simplify_tolerance_m);
+  route.waypoints = simplify(map, best.cells, options.simplify_tolerance_m);
   route.length_m = polylineLength(route.waypoints);
   // Judged on the searched path: simplification shortens it by cutting corners.
-  route.status = length_m >= options.length_m ? RouteStatus::kOk : RouteStatus::kTooShort;
+  route.status = best.length_m >= options.length_m ? RouteStatus::kOk : RouteStatus::kTooShort;
   return route;
 }
 

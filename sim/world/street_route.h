@@ -1,13 +1,16 @@
-// A drive through the streets: a polyline through the free space between
+// A drive through the streets: a polyline through the free space along
 // building footprints, from a random start along the centre of the streets to
 // random goals until it is long enough. Goals lie on streets: façades on two
-// opposite sides, not the open land around the edge of a city model. The start
-// is a goal from which the camera, looking along the first leg, sees façades:
-// a drive that starts looking out of the modelled area sees nothing the model
-// holds. Each leg is an A* search on the
-// occupancy grid with step cost length (1 + w / clearance), which keeps the
-// route on the street centre line; the cells are then simplified to waypoints
-// (Douglas-Peucker, cv::approxPolyDP).
+// opposite sides, not the open land around the edge of a city model. The robot
+// drives within max_facade_distance_m of the buildings, always onwards (goals
+// ahead), and of the drives planned takes the first whose legs all keep
+// façades in the camera's view as it looks along the way: a drive looking out
+// of the modelled area sees nothing the model holds (a city model is a tile of
+// a city; beyond its edge the simulated world is empty). Each leg is an A*
+// search on the occupancy grid with step cost length (1 + w / min(c, c_max))
+// for clearance c, which keeps the route on the centre line of streets up to
+// 2 c_max wide and c_max from the façades of wider ones; the cells are then
+// simplified to waypoints (Douglas-Peucker, cv::approxPolyDP).
 #pragma once
 
 #include <Eigen/Core>
@@ -28,8 +31,11 @@ struct StreetRouteOptions {
   double max_facade_distance_m = 20.0;
   // Weight w of the clearance term in the step cost (m).
   double centre_weight_m = 6.0;
-  // The start looks along its first leg at façades over at least this share
-  // of a field of view view_half_angle_deg either side, within view_range_m.
+  // Clearance c_max beyond which the step cost is flat (m).
+  double max_centre_clearance_m = 8.0;
+  // Looking along each leg, the camera sees façades over at least this share
+  // of a field of view view_half_angle_deg either side, within view_range_m;
+  // the drive with the most found is taken when none does.
   double min_facades_in_view = 0.5;
   double view_half_angle_deg = 30.0;
   double view_range_m = 50.0;

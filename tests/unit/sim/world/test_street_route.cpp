@@ -120,6 +120,29 @@ TEST(StreetRoute, StartsLookingAlongAStreetNotOutOfIt) {
   }
 }
 
+TEST(StreetRoute, KeepsFacadesInViewAllTheWay) {
+  // 50 m of a 60 m street: a leg over the open land to the other street, or
+  // out of the street's end, would show the camera nothing for metres.
+  const OccupancyMap map(makeTwoStreets(), 0.5, 10.0);
+  const auto in_a_street = [](const Eigen::Vector2d& xy) {
+    return std::abs(xy.y()) < 6.0 &&
+           ((xy.x() > -1.0 && xy.x() < 61.0) || (xy.x() > 159.0 && xy.x() < 221.0));
+  };
+  for (uint32_t seed = 1; seed <= 20; ++seed) {
+    StreetRouteOptions options;
+    options.length_m = 50.0;
+    options.min_leg_m = 20.0;
+    options.seed = seed;
+    const StreetRoute route = planStreetRoute(map, options);
+    ASSERT_FALSE(route.waypoints.empty());
+    for (double along_m = 0.0; along_m <= route.length_m; along_m += 1.0) {
+      EXPECT_TRUE(in_a_street(pointAlong(route.waypoints, along_m)))
+          << "seed " << seed << ": " << along_m << " m along, at "
+          << pointAlong(route.waypoints, along_m).transpose();
+    }
+  }
+}
+
 TEST(StreetRoute, SameSeedSameRouteOtherSeedOtherRoute) {
   const OccupancyMap map(makeBoxCity(3, 14.0), 0.5);
   StreetRouteOptions options;

@@ -2,7 +2,16 @@
 
 #include <utility>
 
+#include "common/parallel/thread_priority.h"
+
 namespace lineloc {
+namespace {
+
+// Searches run below tracking, the DDS threads and, on a shared machine, the
+// robot and its replay's decoding (thread_priority.h).
+constexpr int kSearchNice = 10;
+
+}  // namespace
 
 SearchWorker::SearchWorker() : worker_([this] { work(); }) {}
 
@@ -33,6 +42,7 @@ void SearchWorker::waitUntilIdle() {
 }
 
 void SearchWorker::work() {
+  lowerThreadPriority(kSearchNice);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     job_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });

@@ -1,12 +1,18 @@
 #include "robot/input/image_prefetcher.h"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <algorithm>
 #include <utility>
 
+#include "common/parallel/thread_priority.h"
+
 namespace lineloc {
+namespace {
+
+// Decoding ahead yields to the robot's loop and DDS, not to a search.
+constexpr int kDecodeNice = 5;
+
+}  // namespace
+
 ImagePrefetcher::Decoded ImagePrefetcher::decode(const FrameRef& frame) {
   try {
     return {readGreyImage(frame.path), nullptr};
@@ -37,11 +43,7 @@ ImagePrefetcher::~ImagePrefetcher() {
 }
 
 void ImagePrefetcher::decodeAhead() {
-  // Idle priority: decoding runs on cores the robot's loop, DDS and a backbone
-  // on the same machine leave free. The call may be refused; decoding then
-  // runs at normal priority.
-  const sched_param idle{};
-  pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
+  lowerThreadPriority(kDecodeNice);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     changed_.wait(lock, [this] {

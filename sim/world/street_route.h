@@ -27,7 +27,8 @@ struct StreetRouteOptions {
   // The robot keeps at least this far from façades (m).
   double min_clearance_m = 3.0;
   // A street cell has buildings within this distance on both sides along one
-  // of eight axes, 22.5 degrees apart (m).
+  // of eight axes, 22.5 degrees apart; the robot drives no further than this
+  // from the nearest building (m).
   double max_facade_distance_m = 20.0;
   // Weight w of the clearance term in the step cost (m).
   double centre_weight_m = 6.0;
@@ -35,7 +36,7 @@ struct StreetRouteOptions {
   double max_centre_clearance_m = 8.0;
   // Looking along each leg, the camera sees façades over at least this share
   // of a field of view view_half_angle_deg either side, within view_range_m;
-  // the drive with the most found is taken when none does.
+  // the drive whose least share is largest is taken when none does.
   double min_facades_in_view = 0.5;
   double view_half_angle_deg = 30.0;
   double view_range_m = 50.0;

@@ -54,6 +54,15 @@ void writeFacadeFrames(const fs::path& folder, int count) {
   }
 }
 
+// The robot numbers its frames 0, 1, ... in image order.
+std::set<uint32_t> frameIndices() {
+  std::set<uint32_t> indices;
+  for (uint32_t i = 0; i < static_cast<uint32_t>(kFrames); ++i) {
+    indices.insert(i);
+  }
+  return indices;
+}
+
 void writeCalibration(const fs::path& path) {
   cv::FileStorage storage(path.string(), cv::FileStorage::WRITE);
   storage << "image_width" << 640 << "image_height" << 480;
@@ -241,19 +250,27 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   });
 
   for (const std::string robot_id : {"robot-a", "robot-b"}) {
+    // The observer meets each robot's participant on its own, and under load
+    // after the robot has met the backbone: it may miss the first frames a
+    // robot sends (1 of 10 runs beside a Delft drive), never a later one.
     const auto& stamps = observer.sent_stamps[robot_id];
-    EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames)) << robot_id;
+    ASSERT_FALSE(stamps.empty()) << robot_id;
+    const uint32_t first_seen = stamps.begin()->first;
+    EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - first_seen) << robot_id;
     std::set<uint32_t> answered;
     for (const PoseFixData& fix : observer.fixes) {
       if (fix.robot_id != robot_id)
         continue;
       EXPECT_TRUE(answered.insert(fix.sequence_number).second)
           << robot_id << " frame " << fix.sequence_number << " answered twice";
+      EXPECT_EQ(fix.model_lines, 12u);
+      if (fix.sequence_number < first_seen) {
+        continue;
+      }
       ASSERT_TRUE(stamps.count(fix.sequence_number)) << "fix for a frame never sent";
       EXPECT_EQ(fix.stamp_ns, stamps.at(fix.sequence_number));
-      EXPECT_EQ(fix.model_lines, 12u);
     }
-    EXPECT_EQ(answered.size(), static_cast<size_t>(kFrames)) << robot_id;
+    EXPECT_EQ(answered, frameIndices()) << robot_id;
     // The robot took one answer per frame; none carried a pose (the façades
     // are no building of the model), so its fix trajectory stays empty.
     EXPECT_EQ(fixesReceived(log(robot_id + ".log")), kFrames) << log(robot_id + ".log");
@@ -277,8 +294,11 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_GE(received, 1) << log("robot-c.log");
   EXPECT_LT(received, kFrames);
   observer.poll();
-  EXPECT_EQ(observer.sent_stamps["robot-c"].size(), static_cast<size_t>(kFrames))
+  const auto& stamps = observer.sent_stamps["robot-c"];
+  ASSERT_FALSE(stamps.empty());
+  EXPECT_EQ(stamps.rbegin()->first, static_cast<uint32_t>(kFrames - 1))
       << "the robot must keep sending after the backbone is gone";
+  EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
 }
 
 }  // namespace

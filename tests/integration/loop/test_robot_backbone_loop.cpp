@@ -192,6 +192,8 @@ class RobotBackboneLoop : public ::testing::Test {
                                  std::to_string(rate_hz),
                                  "--trajectory-out",
                                  (work_ / (robot_id + ".tum")).string(),
+                                 "--fused-trajectory-out",
+                                 (work_ / (robot_id + "-fused.tum")).string(),
                                  "--fix-timeout-s",
                                  "3"},
         (work_ / (robot_id + ".log")).string());

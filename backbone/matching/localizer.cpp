@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "common/parallel/parallel_for.h"
-#include "common/pose/confidence_scale.h"
+#include "common/stats/confidence_scale.h"
 #include "common/time/clock.h"
 
 namespace lineloc {

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "robot/inertial/chi_square.h"
+#include "common/stats/chi_square.h"
 #include "robot/inertial/measurement_models.h"
 
 namespace lineloc {

@@ -5,8 +5,8 @@
 #include <functional>
 #include <limits>
 
+#include "common/stats/chi_square.h"
 #include "navigator_scenario.h"
-#include "robot/inertial/chi_square.h"
 #include "robot/inertial/measurement_models.h"
 
 namespace lineloc {

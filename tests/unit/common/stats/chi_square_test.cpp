@@ -1,4 +1,4 @@
-#include "robot/inertial/chi_square.h"
+#include "common/stats/chi_square.h"
 
 #include <gtest/gtest.h>
 

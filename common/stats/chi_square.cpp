@@ -1,8 +1,10 @@
-#include "robot/inertial/chi_square.h"
+#include "common/stats/chi_square.h"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "common/stats/bisection_quantile.h"
 
 namespace lineloc {
 namespace {
@@ -60,16 +62,9 @@ double chiSquareQuantile(double probability, double degrees_of_freedom) {
   if (!(probability > 0.0 && probability < 1.0) || !(degrees_of_freedom > 0.0)) {
     throw std::invalid_argument("chiSquareQuantile: need 0 < probability < 1 and dof > 0");
   }
-  double low = 0.0;
-  double high = degrees_of_freedom + 10.0 * std::sqrt(2.0 * degrees_of_freedom) + 100.0;
-  while (chiSquareCdf(high, degrees_of_freedom) < probability) {
-    high *= 2.0;
-  }
-  while (high - low > 1e-12 * high) {
-    const double mid = 0.5 * (low + high);
-    (chiSquareCdf(mid, degrees_of_freedom) < probability ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return bisectionQuantile(
+      [degrees_of_freedom](double x) { return chiSquareCdf(x, degrees_of_freedom); }, probability,
+      degrees_of_freedom + 10.0 * std::sqrt(2.0 * degrees_of_freedom) + 100.0);
 }
 
 }  // namespace lineloc

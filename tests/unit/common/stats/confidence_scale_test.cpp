@@ -1,4 +1,4 @@
-#include "common/pose/confidence_scale.h"
+#include "common/stats/confidence_scale.h"
 
 #include <gtest/gtest.h>
 
@@ -6,13 +6,6 @@
 
 namespace lineloc {
 namespace {
-
-TEST(ConfidenceScale, ChiSquareQuantilesMatchTheTables) {
-  EXPECT_NEAR(chiSquare6Quantile(0.5), 5.3481, 1e-4);
-  EXPECT_NEAR(chiSquare6Quantile(0.95), 12.5916, 1e-4);
-  EXPECT_NEAR(chiSquare6Quantile(0.99), 16.8119, 1e-4);
-  EXPECT_NEAR(chiSquare6Quantile(0.9973), 20.062, 1e-3);
-}
 
 TEST(ConfidenceScale, FisherQuantilesMatchTheTables) {
   // F_0.95(6, 10) = 3.2172 and F_0.99(6, 20) = 3.8714.
@@ -36,7 +29,6 @@ TEST(ConfidenceScale, RefusesWhatHasNoQuantile) {
   EXPECT_THROW(confidenceScale(0, 0.9973), std::invalid_argument);
   EXPECT_THROW(confidenceScale(10, 0.0), std::invalid_argument);
   EXPECT_THROW(confidenceScale(10, 1.0), std::invalid_argument);
-  EXPECT_THROW(chiSquare6Quantile(-0.5), std::invalid_argument);
 }
 
 }  // namespace

@@ -12,18 +12,14 @@
 // p = 0.9973, 6 F_p(6, 18) = 1.58 chi^2_6(p). Scaling C by
 //   k(r, p) = 6 F_p(6, r) / chi^2_6(p)
 // makes a chi^2_6(p) gate on the scaled covariance hold at p. With six
-// numerator degrees of freedom both distributions have closed forms:
-//   P(chi^2_6 <= y) = 1 - e^(-y/2) (1 + y/2 + y^2/8),
+// numerator degrees of freedom the Fisher CDF has a closed form,
 //   P(F(6, r) <= x) = 1 - (1 - w)^b (1 + b w + b (b + 1) w^2 / 2),
 // with w = 6x / (6x + r) and b = r / 2 (the Beta(3, b) distribution of w with
-// an integer first parameter); the quantiles are found by bisection.
+// an integer first parameter), inverted by bisection (bisection_quantile.h);
+// chi^2_6(p) is chi_square.h's.
 #pragma once
 
 namespace lineloc {
-
-// chi^2_6(p): the p-quantile of the chi-square distribution with 6 degrees
-// of freedom, p in (0, 1).
-double chiSquare6Quantile(double probability);
 
 // 6 F_p(6, r) / chi^2_6(p) for redundancy r >= 1 and p in (0, 1); throws
 // std::invalid_argument otherwise. Tends to 1 as r grows.

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "common/parallel/parallel_for.h"
-#include "common/stats/confidence_scale.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -196,14 +195,6 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
   return answer;
 }
 
-// An OK answer's covariance widened for the redundancy it was estimated with.
-void widenForConfidence(Alignment& alignment, double confidence) {
-  if (alignment.status == AlignmentStatus::kOk) {
-    alignment.T_world_camera.covariance *=
-        confidenceScale(std::max(1, 2 * alignment.inliers - 6), confidence);
-  }
-}
-
 }  // namespace
 
 bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& options) {
@@ -223,7 +214,6 @@ Localization localize(const std::vector<ImageSegment>& image,
     localization.alignment = std::move(acquisition.alignment);
     localization.visible = std::move(acquisition.visible);
     localization.visibility_ns = acquisition.summary.search_ns;
-    widenForConfidence(localization.alignment, options.confidence);
     return localization;
   }
   const int64_t visibility_start_ns = steadyClockNs();
@@ -232,7 +222,7 @@ Localization localize(const std::vector<ImageSegment>& image,
   localization.visible = visibleSegments(lines, scene, prior, camera, visibility);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
   localization.alignment = track(image, localization.visible, prior, camera, options);
-  widenForConfidence(localization.alignment, options.confidence);
+  widenForConfidence(localization.alignment, options.alignment.confidence);
   return localization;
 }
 

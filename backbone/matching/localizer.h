@@ -61,9 +61,9 @@
 // reach and no sigma point's is within, the answer is kInconsistent.
 //
 // Every decision above uses the alignments' own covariances. The answer is
-// then widened for how few matches estimated it: an OK answer's covariance is
-// scaled by confidenceScale(2 n - 6, confidence) for its n inliers
-// (common/stats/confidence_scale.h; 1.45 for 14 inliers, 1.8 for 10). On the
+// then widened for how few matches estimated it (widenForConfidence,
+// model_alignment.h: scaled by confidenceScale(2 n - 6, confidence) for its n
+// inliers; 1.45 for 14 inliers, 1.8 for 10). On the
 // 50 simulated Delft drives, 12 of the 14 OK answers (of 18463) beyond
 // chi^2_6(0.9973) of their covariance had fewer than 16 inliers; scaled, 10 of
 // 18187 were, on two drives whose first fixes tracked a search's pose 0.26 m
@@ -101,11 +101,6 @@ struct LocalizerOptions {
   // covariance is outside it; an alignment further from its start, in the
   // sum of their covariances, is out of its reach.
   double distinct_chi2 = 20.06;
-  // The probability at which an OK answer's chi^2_6 region holds: its
-  // covariance, estimated from its own n inliers, is scaled by
-  // confidenceScale(2 n - 6, confidence) (common/stats/confidence_scale.h)
-  // once every decision above has been taken with the unscaled one.
-  double confidence = 0.9973;
   // Threads sharing tracking's alignments from the prior and its sigma points,
   // and its hidden-line removal's lines (0: one per core).
   int threads = 0;

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "common/pose/pose_estimator.h"
+#include "common/stats/confidence_scale.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -236,6 +237,13 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   }
   alignment.status = AlignmentStatus::kOk;
   return alignment;
+}
+
+void widenForConfidence(Alignment& alignment, double confidence) {
+  if (alignment.status == AlignmentStatus::kOk) {
+    alignment.T_world_camera.covariance *=
+        confidenceScale(std::max(1, 2 * alignment.inliers - 6), confidence);
+  }
 }
 
 }  // namespace lineloc

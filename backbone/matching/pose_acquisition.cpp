@@ -124,6 +124,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   const int64_t pose_ns = acquisition.alignment.pose_ns;
   acquisition.alignment = best->alignment;
   acquisition.visible = best->visible;
+  widenForConfidence(acquisition.alignment, options.alignment.confidence);
   acquisition.alignment.T_world_camera.covariance += diagonalPoseCovariance(
       options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
   acquisition.alignment.matching_ns = matching_ns;

@@ -14,9 +14,13 @@
 //
 // An acquired pose may still have settled on a neighbour of the right one a
 // window's width away (a near-parallel line taken for the right one): its
-// covariance is widened by the search's own resolution, acquired_*_sigma,
-// so the robot takes it as a start, and tracking (tight gates, many frames)
-// brings it to centimetres.
+// covariance, once widened for its inliers' redundancy (widenForConfidence,
+// model_alignment.h), gets the search's own resolution, acquired_*_sigma,
+// added, so the robot takes it as a start, and tracking (tight gates, many
+// frames) brings it to centimetres. That term is not scaled with the rest:
+// scaled, it left acquired poses wider than tracking takes (seed 14 of the 50
+// simulated Delft drives: ten searches confirmed each other and not one frame
+// was tracked from them).
 #pragma once
 
 #include <vector>
@@ -42,10 +46,14 @@ struct AcquisitionOptions {
   // The best aligned hypothesis needs this many inliers: a wrong pose near a
   // façade finds a handful of window lines to agree with, the right one most
   // of the building outlines in view. Hypotheses with fewer still compete (a
-  // weak but better-scoring one is never passed over for a worse one). Over
-  // 50 simulated Delft drives, 14 of the 19 acquisitions with 12-15 inliers
-  // were 0.25-1.4 m off; all 33 with 16 or more were within 0.25 m.
-  int min_inliers = 16;
+  // weak but better-scoring one is never passed over for a worse one). Of
+  // the searches of 50 simulated Delft drives whose best hypothesis aligned
+  // and was not ambiguous, 21 of 64 with 11-12 inliers were more than 0.3 m
+  // off; with 13, 3 of 37; with 14, 4 of 77; with 15, 2 of 64; with 16 or
+  // more, 13 of 134. From 13 on, inliers no longer tell the right pose from
+  // one a basin away; the confirming search and the fixes' widening until
+  // the robot has moved do (line_set_handler.h).
+  int min_inliers = 13;
   // A second aligned hypothesis scoring at least this fraction of the best
   // one, farther than distinct_position_m or distinct_yaw_rad from it, makes
   // the answer ambiguous.

@@ -103,9 +103,10 @@ LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) c
 }
 
 void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& map,
-                               const PoseWithCovariance& prior, PoseFixData& fix) {
-  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, localizerOptions(line_set));
+                               const PoseWithCovariance& prior, const LocalizerOptions& options,
+                               PoseFixData& fix) {
+  const Localization localization =
+      localize(line_set.segments, map.segments, map.scene, prior, line_set.camera, options);
   const Alignment& alignment = localization.alignment;
   fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
@@ -212,6 +213,26 @@ std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetDat
   return movedByOdometry(search, odometry);
 }
 
+void LineSetHandler::widenUntilMoved(const LineSetData& line_set, const OdometryPose& odometry,
+                                     PoseFixData& fix) {
+  if (fix.status != lineloc_msg_FIX_OK) {
+    return;
+  }
+  const std::lock_guard<std::mutex> lock(searches_mutex_);
+  const auto confirmed = confirmed_search_.find(line_set.robot_id);
+  if (confirmed == confirmed_search_.end() || confirmed->second.odometry.epoch != odometry.epoch) {
+    return;
+  }
+  const double moved_m = (odometry.T_odom_camera.translation() -
+                          confirmed->second.odometry.T_odom_camera.translation())
+                             .norm();
+  if (moved_m < options_.acquisition_proven_after_m) {
+    const AcquisitionOptions& acquisition = options_.localizer.acquisition;
+    fix.T_world_camera.covariance += diagonalPoseCovariance(
+        acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad);
+  }
+}
+
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   fix.timings.total = steadyClockNs() - start_ns;
   const std::lock_guard<std::mutex> lock(counters_mutex_);
@@ -263,12 +284,16 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     fix.timings.visibility = steadyClockNs() - prepare_start_ns;
     const PoseWithCovariance prior = groundedPrior(line_set, *map);
     if (!needsAcquisition(prior, options_.localizer)) {
-      trackInto(line_set, *map, prior, fix);
+      trackInto(line_set, *map, prior, localizerOptions(line_set), fix);
+      widenUntilMoved(line_set, odometry, fix);
       return finish(fix, start_ns);
     }
     const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
     if (carried && !needsAcquisition(*carried, options_.localizer)) {
-      trackInto(line_set, *map, *carried, fix);
+      LocalizerOptions from_search = localizerOptions(line_set);
+      from_search.min_start_step_m = options_.carried_start_step_m;
+      trackInto(line_set, *map, *carried, from_search, fix);
+      widenUntilMoved(line_set, odometry, fix);
       return finish(fix, start_ns);
     }
     search_worker_.submit(line_set.robot_id, [this, line_set, odometry, map, prior] {

@@ -41,7 +41,7 @@ namespace {
 constexpr int kSeeds = 50;
 constexpr double kDgpsSigmaM = 4.0;
 constexpr double kYawSigmaRad = 0.5 * M_PI / 180.0;
-constexpr int kMinFixedSeeds = 10;
+constexpr int kMinFixedSeeds = 16;
 
 constexpr uint32_t kFrames = 3;
 

@@ -61,5 +61,21 @@ TEST(ModelAlignment, NothingToMatchIsTooFewMatches) {
   EXPECT_EQ(alignment.status, AlignmentStatus::kTooFewMatches);
 }
 
+TEST(ModelAlignment, AnOkAnswerIsWidenedForTheRedundancyOfItsInliers) {
+  Alignment alignment;
+  alignment.status = AlignmentStatus::kOk;
+  alignment.inliers = 14;
+  alignment.T_world_camera.covariance = diagonalPoseCovariance(0.1, 0.01);
+  Alignment ambiguous = alignment;
+  ambiguous.status = AlignmentStatus::kAmbiguous;
+
+  widenForConfidence(alignment, 0.9973);
+  widenForConfidence(ambiguous, 0.9973);
+  // 6 F_{6,22}(0.9973) / chi^2_6(0.9973) for 2 * 14 - 6 = 22 residual degrees.
+  EXPECT_NEAR(alignment.T_world_camera.covariance(0, 0) / 0.01, 1.45, 0.01);
+  EXPECT_NEAR(alignment.T_world_camera.covariance(5, 5) / 1e-4, 1.45, 0.01);
+  EXPECT_EQ(ambiguous.T_world_camera.covariance, diagonalPoseCovariance(0.1, 0.01));
+}
+
 }  // namespace
 }  // namespace lineloc

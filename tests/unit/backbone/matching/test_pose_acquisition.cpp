@@ -1,9 +1,11 @@
 // Acquisition from a DGPS-quality prior on the synthetic street: the search
 // finds the camera metres away and the aligned pose is consistent with its
-// covariance; clutter does not change that; a view that cannot tell poses
-// apart is never answered with a precise pose.
+// covariance, narrow enough for tracking to start from; clutter does not
+// change that; a view that cannot tell poses apart is never answered with a
+// precise pose.
 #include <gtest/gtest.h>
 
+#include "backbone/matching/localizer.h"
 #include "backbone/matching/pose_acquisition.h"
 #include "synthetic_street.h"
 
@@ -55,6 +57,8 @@ void expectConsistentOrAmbiguous(int clutter_percent, uint32_t seed) {
     ++ok;
     EXPECT_LT(normalizedErrorSquared(acquisition.alignment.T_world_camera, truePose().pose),
               kChi2Six999);
+    // Its covariance is a start that tracking takes.
+    EXPECT_FALSE(needsAcquisition(acquisition.alignment.T_world_camera, LocalizerOptions{}));
   }
   // The street has distinct building heights: most views are unambiguous.
   EXPECT_GE(ok, kTrials / 2);

@@ -207,6 +207,42 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
   expectTrackedAfterSearches(handler, database_.conninfo(), start.truth, corrected);
 }
 
+// A robot that stands still searches the same view twice, and both searches
+// can settle in the same wrong basin: its fixes keep the acquired pose's
+// resolution term until it has moved acquisition_proven_after_m since.
+TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilTheRobotHasMoved) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  const PipelineOptions options;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  const PoorStart start;
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
+  expectSearched(handler, seen, start.predicted, 2);
+  expectSearched(handler, seen, start.predicted, 3);
+  const double acquired_variance =
+      std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2);
+
+  const auto standing = handler.handle(lineSetMessage(seen, start.predicted, 4)->message());
+  ASSERT_TRUE(standing.has_value());
+  ASSERT_EQ(standing->status, lineloc_msg_FIX_OK) << toString(standing->status);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_GE(standing->T_world_camera.covariance(axis, axis), acquired_variance) << axis;
+  }
+
+  // 1.5 m further north, its prediction moved alike.
+  PoseWithCovariance truth = start.truth;
+  PoseWithCovariance predicted = start.predicted;
+  truth.pose.translation().y() += 1.5;
+  predicted.pose.translation().y() += 1.5;
+  const auto moved = handler.handle(
+      lineSetMessage(observedEdges(database_.conninfo(), truth), predicted, 5)->message());
+  ASSERT_TRUE(moved.has_value());
+  ASSERT_EQ(moved->status, lineloc_msg_FIX_OK) << toString(moved->status);
+  expectWithinThreeSigma(moved->T_world_camera, truth);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_LT(moved->T_world_camera.covariance(axis, axis), acquired_variance) << axis;
+  }
+}
+
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});

@@ -63,11 +63,12 @@
 // Every decision above uses the alignments' own covariances. The answer is
 // then widened for how few matches estimated it (widenForConfidence,
 // model_alignment.h: scaled by confidenceScale(2 n - 6, confidence) for its n
-// inliers; 1.45 for 14 inliers, 1.8 for 10). On the
-// 50 simulated Delft drives, 12 of the 14 OK answers (of 18463) beyond
-// chi^2_6(0.9973) of their covariance had fewer than 16 inliers; scaled, 10 of
-// 18187 were, on two drives whose first fixes tracked a search's pose 0.26 m
-// and 0.3 m off.
+// inliers; 1.45 for 14 inliers, 1.8 for 10). On the 50 simulated Delft
+// drives, 12 of the 14 OK answers (of 18463) beyond chi^2_6(0.9973) of their
+// covariance had fewer than 16 inliers; scaled, 10 of 18187 were, on two
+// drives whose first fixes tracked a search's pose 0.26 m and 0.3 m off (the
+// backbone's service now keeps a search's resolution in such fixes until the
+// robot has moved, line_set_handler.h).
 //
 // Over 12 simulated drives with predictions drawn from their own covariance
 // (0.15 m and 0.3 degrees horizontally, 3 cm and 0.05 degrees in height, roll

@@ -106,6 +106,49 @@ bool OcclusionScene::blocked(const Eigen::Vector3d& from, const Eigen::Vector3d&
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+int OcclusionScene::countClearPaths(std::span<const Eigen::Vector3d> origins,
+                                    const Eigen::Vector3d& to, double end_clearance_m) const {
+  if (origins.size() > kMaxPacketOrigins) {
+    throw std::invalid_argument("OcclusionScene: " + std::to_string(origins.size()) +
+                                " origins in one packet, at most " +
+                                std::to_string(kMaxPacketOrigins));
+  }
+  if (origins.empty()) {
+    return 0;
+  }
+  alignas(32) int valid[kMaxPacketOrigins] = {};
+  alignas(32) RTCRay8 rays{};
+  int clear = 0;
+  for (size_t lane = 0; lane < origins.size(); ++lane) {
+    const Eigen::Vector3d path = to - origins[lane];
+    const double length = path.norm();
+    if (length <= end_clearance_m) {
+      ++clear;
+      continue;
+    }
+    const RTCRay ray =
+        rayAlong(origins[lane], path / length, static_cast<float>(length - end_clearance_m));
+    valid[lane] = -1;
+    rays.org_x[lane] = ray.org_x;
+    rays.org_y[lane] = ray.org_y;
+    rays.org_z[lane] = ray.org_z;
+    rays.dir_x[lane] = ray.dir_x;
+    rays.dir_y[lane] = ray.dir_y;
+    rays.dir_z[lane] = ray.dir_z;
+    rays.tnear[lane] = ray.tnear;
+    rays.tfar[lane] = ray.tfar;
+    rays.mask[lane] = ray.mask;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcOccluded8(valid, scene_, &context, &rays);
+  for (size_t lane = 0; lane < origins.size(); ++lane) {
+    clear += valid[lane] != 0 && rays.tfar[lane] >= 0.0f ? 1 : 0;
+  }
+  return clear;
+}
+
 std::optional<SurfaceHit> OcclusionScene::firstSurface(const Eigen::Vector3d& origin,
                                                        const Eigen::Vector3d& direction) const {
   RTCIntersectContext context;

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace lineloc {
@@ -40,6 +41,14 @@ class OcclusionScene {
   // the last `end_clearance_m` before `to` (the point itself lies on faces).
   bool blocked(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                double end_clearance_m) const;
+
+  // How many of the paths from `origins` to `to` no face crosses: blocked()
+  // for up to kMaxPacketOrigins origins at once, traced as one ray packet.
+  // Rays converging on one point from nearby origins share most of their way
+  // through the BVH, so the packet costs little more than one ray.
+  static constexpr size_t kMaxPacketOrigins = 8;
+  int countClearPaths(std::span<const Eigen::Vector3d> origins, const Eigen::Vector3d& to,
+                      double end_clearance_m) const;
 
   // The first face on the ray from `origin` along `direction`, or nothing (the
   // ray leaves the model: sky or ground).

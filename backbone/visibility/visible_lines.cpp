@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include "common/camera/camera_frustum.h"
 #include "common/parallel/parallel_for.h"
@@ -47,10 +48,9 @@ Viewpoints viewpoints(const PoseWithCovariance& T_world_camera) {
 // Fraction of the viewpoints that see `point`, which the centre sees.
 double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
                        const Eigen::Vector3d& point, double clearance_m) {
-  int seen = 1;
-  for (int i = 1; i < from.count; ++i) {
-    seen += scene.blocked(from.points[i], point, clearance_m) ? 0 : 1;
-  }
+  const std::span<const Eigen::Vector3d> sigma_points(from.points.data() + 1,
+                                                      static_cast<size_t>(from.count - 1));
+  const int seen = 1 + scene.countClearPaths(sigma_points, point, clearance_m);
   return static_cast<double>(seen) / from.count;
 }
 

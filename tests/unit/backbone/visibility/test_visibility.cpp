@@ -266,6 +266,27 @@ TEST(OcclusionScene, FirstSurfaceGivesThePlaneAndBuildingOfTheNearestFace) {
   EXPECT_FALSE(scene.firstSurface({5, -10, 5}, Eigen::Vector3d::UnitZ()).has_value());
 }
 
+// A box [0, 10] x [0, 10] x [0, 10] between the origins and the point
+// (5, 20, 5): the paths from y < 0 cross it, those from beside it or from
+// behind it do not, and an origin within the clearance of the point is clear.
+TEST(OcclusionScene, PacketOfPathsCountsAsManyClearAsBlockedDoes) {
+  const Box box = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene scene = sceneOf({&box});
+  const Eigen::Vector3d point(5, 20, 5);
+  const std::vector<Eigen::Vector3d> origins = {
+      {5, -10, 5}, {2, -5, 3}, {-30, 20, 5}, {5, 30, 5}, {8, -1, 9}, {5, 20.01, 5}, {40, 5, 5}};
+  int clear_one_by_one = 0;
+  for (const Eigen::Vector3d& origin : origins) {
+    clear_one_by_one += scene.blocked(origin, point, 0.05) ? 0 : 1;
+  }
+  EXPECT_EQ(clear_one_by_one, 4);
+  EXPECT_EQ(scene.countClearPaths(origins, point, 0.05), clear_one_by_one);
+  EXPECT_EQ(scene.countClearPaths(std::span(origins).first(2), point, 0.05), 0);
+  EXPECT_EQ(scene.countClearPaths({}, point, 0.05), 0);
+  const std::vector<Eigen::Vector3d> too_many(OcclusionScene::kMaxPacketOrigins + 1, origins[2]);
+  EXPECT_THROW(scene.countClearPaths(too_many, point, 0.05), std::invalid_argument);
+}
+
 TEST(OcclusionScene, RejectsBuildingIdsThatAreNotOnePerFace) {
   const Jog jog = makeJog(1.0);
   EXPECT_THROW(OcclusionScene(jog.faces, {1, 2}), std::invalid_argument);

@@ -29,6 +29,10 @@ namespace {
 
 constexpr int kHistoryDepth = 32;
 constexpr int64_t kPollNs = 2'000'000;
+// The replay decodes its next frame once the frame in flight is answered, or
+// this long after its exposure when no answer comes (ImagePrefetcher): by
+// then the answer is late beyond the latency it is measured against.
+constexpr int64_t kDecodeUnansweredAfterNs = 15'000'000;
 
 PoseWithCovariance configuredPose(const RobotConfig& config) {
   const std::vector<double>& p = config.predicted_pose;
@@ -66,6 +70,9 @@ class FixReceiver {
     exposure_wall_ns_[sequence_number] = exposure_wall_ns;
   }
   size_t outstanding() const { return exposure_wall_ns_.size(); }
+  bool answered(uint32_t sequence_number) const {
+    return exposure_wall_ns_.count(sequence_number) == 0;
+  }
   const dds::Reader<lineloc_msg_PoseFix>& reader() const { return reader_; }
 
   void poll(int64_t timeout_ns) {
@@ -309,6 +316,12 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       config.state_rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.state_rate_hz) : 0;
   int64_t next_state_ns = 0;
   int frames_done = 0;
+  // The frame whose answer the replay's decoding ahead waits for.
+  struct FrameInFlight {
+    bool waiting = false;
+    uint32_t sequence_number = 0;
+    int64_t decode_anyway_ns = 0;
+  } in_flight;
   for (const SensorEvent& event : streams.timeline) {
     if (stop || (config.max_frames > 0 && frames_done >= config.max_frames)) {
       break;
@@ -316,6 +329,11 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     const int64_t due_ns = playback.dueSteadyNs(event, stamped);
     do {
       receiver.poll(std::clamp<int64_t>(due_ns - steadyClockNs(), 0, kPollNs));
+      if (in_flight.waiting && (receiver.answered(in_flight.sequence_number) ||
+                                steadyClockNs() >= in_flight.decode_anyway_ns)) {
+        images.resume();
+        in_flight.waiting = false;
+      }
     } while (steadyClockNs() < due_ns && !stop);
     switch (event.kind) {
       case SensorKind::kImu:
@@ -356,6 +374,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         const LineSetMessage message(line_set);
         receiver.expect(line_set.sequence_number, exposure_wall_ns);
         writer.write(message.message());
+        in_flight = {true, line_set.sequence_number, due_ns + kDecodeUnansweredAfterNs};
         ++summary.frames_sent;
         summary.line_set_bytes.push_back(dds::serializedSizeBytes(message.message()));
         break;

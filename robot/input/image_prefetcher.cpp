@@ -47,8 +47,8 @@ void ImagePrefetcher::decodeAhead() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     changed_.wait(lock, [this] {
-      return stopping_ ||
-             (next_to_decode_ < frames_.size() && next_to_decode_ < first_wanted_ + depth_);
+      return stopping_ || (!paused_ && next_to_decode_ < frames_.size() &&
+                           next_to_decode_ < first_wanted_ + depth_);
     });
     if (stopping_) {
       return;
@@ -66,6 +66,7 @@ void ImagePrefetcher::decodeAhead() {
 
 cv::Mat ImagePrefetcher::take(size_t index) {
   std::unique_lock<std::mutex> lock(mutex_);
+  paused_ = true;
   ready_.erase(ready_.begin(), ready_.lower_bound(index));
   if (next_to_decode_ <= index) {
     // Not the next one due: move the worker past it and decode it here.
@@ -82,6 +83,14 @@ cv::Mat ImagePrefetcher::take(size_t index) {
   first_wanted_ = index + 1;
   changed_.notify_all();
   return imageOf(std::move(decoded));
+}
+
+void ImagePrefetcher::resume() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    paused_ = false;
+  }
+  changed_.notify_all();
 }
 
 }  // namespace lineloc

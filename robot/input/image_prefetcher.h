@@ -8,6 +8,11 @@
 // take(i) blocks until frame i is decoded (decoding it at once when it is not
 // the next one due, e.g. after a skip) and rethrows its decoding error
 // (readGreyImage's, naming the file).
+//
+// A live camera's driver hands over frames without the CPU decoding them; a
+// replay does not. So decoding ahead pauses at every take() until resume():
+// the caller resumes it once its latency-critical work on the frame is done,
+// and the replay's decoding does not compete with the frame in flight.
 #pragma once
 
 #include <algorithm>
@@ -31,8 +36,12 @@ class ImagePrefetcher {
   ImagePrefetcher(const ImagePrefetcher&) = delete;
   ImagePrefetcher& operator=(const ImagePrefetcher&) = delete;
 
-  // Frame `index` as 8-bit grey; frames before it are dropped.
+  // Frame `index` as 8-bit grey; frames before it are dropped. Decoding
+  // ahead pauses until resume().
   cv::Mat take(size_t index);
+
+  // Lets decoding ahead go on.
+  void resume();
 
  private:
   struct Decoded {
@@ -52,6 +61,7 @@ class ImagePrefetcher {
   size_t next_to_decode_ = 0;
   // Frames before this one are no longer wanted.
   size_t first_wanted_ = 0;
+  bool paused_ = false;
   bool stopping_ = false;
   std::thread worker_;
 };

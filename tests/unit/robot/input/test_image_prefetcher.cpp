@@ -1,11 +1,13 @@
 // ImagePrefetcher: each frame comes back as it is on disk, in order or after
-// skips, a corrupt frame's error comes back for that frame only, and
-// stopping with frames in flight is clean.
+// skips, nothing is decoded ahead between a take and the resume after it, a
+// corrupt frame's error comes back for that frame only, and stopping with
+// frames in flight is clean.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <thread>
 
 #include "robot/input/image_prefetcher.h"
 
@@ -53,6 +55,20 @@ TEST_F(ImagePrefetcherTest, SkipsForwardToAnyFrame) {
   EXPECT_EQ(greyOf(prefetcher.take(9)), 90);
   EXPECT_EQ(greyOf(prefetcher.take(10)), 100);
   EXPECT_THROW(prefetcher.take(kFrames), std::out_of_range);
+}
+
+// Frame 2 is rewritten after frame 1 is taken: it comes back as rewritten
+// only if nothing was decoded before resume(), however long the wait.
+TEST_F(ImagePrefetcherTest, DecodesNothingAheadUntilResumed) {
+  ImagePrefetcher prefetcher(frames_);
+  EXPECT_EQ(greyOf(prefetcher.take(0)), 0);
+  EXPECT_EQ(greyOf(prefetcher.take(1)), 10);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  cv::imwrite(frames_[2].path, cv::Mat(24, 32, CV_8UC1, cv::Scalar(222)));
+  prefetcher.resume();
+  EXPECT_EQ(greyOf(prefetcher.take(2)), 222);
+  prefetcher.resume();
+  EXPECT_EQ(greyOf(prefetcher.take(3)), 30);
 }
 
 TEST_F(ImagePrefetcherTest, ACorruptFrameFailsAloneWithItsName) {

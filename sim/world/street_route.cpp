@@ -21,6 +21,9 @@ constexpr int kStreetAxes = 8;
 constexpr int kViewRays = 31;
 // The direction of travel is taken over this many cells of the path.
 constexpr size_t kHeadingCells = 10;
+// Radii of the half circles the robot turns back on, widest first (m); the
+// route's spline (RouteTrajectory) rounds them tighter still.
+constexpr double kTurnRadii_m[] = {3.0, 2.0};
 
 // Where the robot drives: every cell with enough clearance within reach of
 // the façades, labelled by connected component. Goals are the cells of the
@@ -35,6 +38,9 @@ struct StreetCells {
 struct Leg {
   std::vector<cv::Point> cells;
   double facades_in_view = -1.0;
+  // The leg starts this many cells before the end of the drive so far, whose
+  // last cells it replaces.
+  size_t cut_cells = 0;
 };
 
 // True when a building cell lies within reach_cells of `cell` along `step`.
@@ -183,17 +189,24 @@ double facadesInViewAlong(const OccupancyMap& map, const std::vector<cv::Point>&
   return least;
 }
 
-// A leg from the end of `path` to a random goal at least min_leg_m away that
-// keeps min_facades_in_view, else the one of kLegSearches with the most
-// façades in view; no cells when no goal ahead is reachable. Goals and the
-// way to them lie ahead of the direction of travel: the robot drives on and
-// never turns back on the spot (its trajectory is a spline, which would cusp).
-Leg nextLeg(const OccupancyMap& map, const StreetCells& cells, const std::vector<cv::Point>& path,
-            const StreetRouteOptions& options, std::mt19937& random) {
+// The direction of travel at the cell `end` of `path` (zero at its first).
+cv::Point headingAt(const std::vector<cv::Point>& path, size_t end) {
+  return path[end] - path[end + 1 - std::min(end + 1, kHeadingCells)];
+}
+
+cv::Point headingAtEnd(const std::vector<cv::Point>& path) {
+  return headingAt(path, path.size() - 1);
+}
+
+// A leg from `from` to a random goal at least min_leg_m away that keeps
+// min_facades_in_view, else the one of kLegSearches with the most façades in
+// view; no cells when no goal ahead is reachable. Goals and the way to them
+// lie ahead of `heading`: the robot never turns back on the spot (its
+// trajectory is a spline, which would cusp); turnBack turns it on an arc.
+Leg nextLeg(const OccupancyMap& map, const StreetCells& cells, const cv::Point& from,
+            const cv::Point& heading, const StreetRouteOptions& options, std::mt19937& random) {
   std::uniform_int_distribution<size_t> pick(0, cells.goals.size() - 1);
   const double min_leg_cells = options.min_leg_m / map.cellSize();
-  const cv::Point from = path.back();
-  const cv::Point heading = from - path[path.size() - std::min(path.size(), kHeadingCells)];
   Leg best;
   int searches = 0;
   for (int attempt = 0; attempt < kGoalAttempts && searches < kLegSearches; ++attempt) {
@@ -219,6 +232,100 @@ Leg nextLeg(const OccupancyMap& map, const StreetCells& cells, const std::vector
   return best;
 }
 
+// The cells of a turn back from `from`: a diagonal to the side `side` (+1 or
+// -1) of `heading` onto a half circle of radius_m centred radius_m ahead of
+// `from`, which ends radius_m to the other side of the way it came, back on
+// a street wider than 2 radius_m; empty when a cell of it is off the street
+// (not between façades) or nearer than min_turn_clearance_m to one.
+std::vector<cv::Point> turnCells(const OccupancyMap& map, const cv::Point& from,
+                                 const cv::Point& heading, int side, double radius_m,
+                                 const StreetRouteOptions& options) {
+  const int reach_cells =
+      static_cast<int>(std::ceil(options.max_facade_distance_m / map.cellSize()));
+  const Eigen::Vector2d along = Eigen::Vector2d(heading.x, heading.y).normalized();
+  const Eigen::Vector2d aside = side * Eigen::Vector2d(-along.y(), along.x());
+  const double radius_cells = radius_m / map.cellSize();
+  const Eigen::Vector2d start(from.x, from.y);
+  const Eigen::Vector2d centre = start + radius_cells * along;
+  // Steps of at most half a cell: the diagonal is sqrt(2) r long, the half circle pi r.
+  const int diagonal_steps = static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * radius_cells));
+  const int arc_steps = static_cast<int>(std::ceil(2.0 * M_PI * radius_cells));
+  const auto pointAt = [&](int step) -> Eigen::Vector2d {
+    if (step <= diagonal_steps) {
+      return start + (radius_cells * step / diagonal_steps) * (along + aside);
+    }
+    const double turned = M_PI * (step - diagonal_steps) / arc_steps;
+    return centre + radius_cells * (std::cos(turned) * aside + std::sin(turned) * along);
+  };
+  std::vector<cv::Point> turn{from};
+  for (int step = 1; step <= diagonal_steps + arc_steps; ++step) {
+    const Eigen::Vector2d at = pointAt(step);
+    const cv::Point cell(static_cast<int>(std::lround(at.x())),
+                         static_cast<int>(std::lround(at.y())));
+    if (!map.contains(cell) || map.clearance().at<float>(cell) < options.min_turn_clearance_m ||
+        !betweenFacades(map, cell, reach_cells)) {
+      return {};
+    }
+    if (cell != turn.back()) {
+      turn.push_back(cell);
+    }
+  }
+  return turn;
+}
+
+// Turning back where no leg ahead keeps the façades in view (the end of a
+// street that opens onto land the model does not hold): the turnCells of the
+// widest of kTurnRadii_m that stay on the street, to either side, from the
+// end of `path` or, where the street ends too soon for that, from the
+// turn's width before it; then a leg ahead in the opposite direction. The
+// leg with the most façades in view; no cells when no turn fits.
+Leg turnBack(const OccupancyMap& map, const StreetCells& cells, const std::vector<cv::Point>& path,
+             const StreetRouteOptions& options, std::mt19937& random) {
+  Leg best;
+  for (const double radius_m : kTurnRadii_m) {
+    const size_t turn_width_cells = static_cast<size_t>(std::ceil(2.0 * radius_m / map.cellSize()));
+    for (const size_t cut : {size_t{0}, turn_width_cells}) {
+      if (cut + 1 >= path.size()) {
+        continue;
+      }
+      const size_t end = path.size() - 1 - cut;
+      const cv::Point heading = headingAt(path, end);
+      for (const int side : {1, -1}) {
+        std::vector<cv::Point> turn = turnCells(map, path[end], heading, side, radius_m, options);
+        if (heading == cv::Point(0, 0) || turn.empty()) {
+          continue;
+        }
+        const Leg onwards = nextLeg(map, cells, turn.back(), -heading, options, random);
+        if (onwards.cells.empty()) {
+          continue;
+        }
+        turn.insert(turn.end(), onwards.cells.begin() + 1, onwards.cells.end());
+        Leg leg{std::move(turn), 0.0, cut};
+        leg.facades_in_view = facadesInViewAlong(map, leg.cells, options);
+        if (leg.facades_in_view > best.facades_in_view) {
+          best = std::move(leg);
+        }
+      }
+      if (!best.cells.empty()) {
+        return best;
+      }
+    }
+  }
+  return best;
+}
+
+// The next leg from the end of `path`: onwards, or back where onwards keeps
+// fewer façades in view than min_facades_in_view and turning back more.
+Leg legAfter(const OccupancyMap& map, const StreetCells& cells, const std::vector<cv::Point>& path,
+             const StreetRouteOptions& options, std::mt19937& random) {
+  Leg onwards = nextLeg(map, cells, path.back(), headingAtEnd(path), options, random);
+  if (onwards.facades_in_view >= options.min_facades_in_view) {
+    return onwards;
+  }
+  Leg back = turnBack(map, cells, path, options, random);
+  return back.facades_in_view > onwards.facades_in_view ? std::move(back) : std::move(onwards);
+}
+
 // The start and its first leg: the first leg from a random goal that keeps
 // min_facades_in_view, else the best found from kStartAttempts goals.
 Leg firstLeg(const OccupancyMap& map, const StreetCells& cells, const StreetRouteOptions& options,
@@ -226,7 +333,7 @@ Leg firstLeg(const OccupancyMap& map, const StreetCells& cells, const StreetRout
   std::uniform_int_distribution<size_t> pick(0, cells.goals.size() - 1);
   Leg best;
   for (int attempt = 0; attempt < kStartAttempts; ++attempt) {
-    Leg leg = nextLeg(map, cells, {cells.goals[pick(random)]}, options, random);
+    Leg leg = nextLeg(map, cells, cells.goals[pick(random)], cv::Point(0, 0), options, random);
     if (leg.facades_in_view >= options.min_facades_in_view) {
       return leg;
     }
@@ -245,6 +352,10 @@ struct CellRoute {
   double facades_in_view = 1.0;
 };
 
+double stepLength_m(const OccupancyMap& map, const cv::Point& from, const cv::Point& to) {
+  return map.cellSize() * std::hypot(to.x - from.x, to.y - from.y);
+}
+
 CellRoute driveLegs(const OccupancyMap& map, const StreetCells& cells,
                     const StreetRouteOptions& options, std::mt19937& random) {
   CellRoute drive;
@@ -257,12 +368,15 @@ CellRoute driveLegs(const OccupancyMap& map, const StreetCells& cells,
        count < options.max_legs && drive.length_m < options.length_m && !leg.cells.empty();
        ++count) {
     drive.facades_in_view = std::min(drive.facades_in_view, leg.facades_in_view);
+    for (size_t cut = 0; cut < leg.cut_cells; ++cut) {
+      drive.length_m -= stepLength_m(map, drive.cells[drive.cells.size() - 2], drive.cells.back());
+      drive.cells.pop_back();
+    }
     for (size_t i = 1; i < leg.cells.size() && drive.length_m < options.length_m; ++i) {
-      drive.length_m += map.cellSize() * std::hypot(leg.cells[i].x - leg.cells[i - 1].x,
-                                                    leg.cells[i].y - leg.cells[i - 1].y);
+      drive.length_m += stepLength_m(map, leg.cells[i - 1], leg.cells[i]);
       drive.cells.push_back(leg.cells[i]);
     }
-    leg = nextLeg(map, cells, drive.cells, options, random);
+    leg = legAfter(map, cells, drive.cells, options, random);
   }
   return drive;
 }

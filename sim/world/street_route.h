@@ -2,11 +2,13 @@
 // building footprints, from a random start along the centre of the streets to
 // random goals until it is long enough. Goals lie on streets: façades on two
 // opposite sides, not the open land around the edge of a city model. The robot
-// drives within max_facade_distance_m of the buildings, always onwards (goals
-// ahead), and of the drives planned takes the first whose legs all keep
-// façades in the camera's view as it looks along the way: a drive looking out
-// of the modelled area sees nothing the model holds (a city model is a tile of
-// a city; beyond its edge the simulated world is empty). Each leg is an A*
+// drives within max_facade_distance_m of the buildings, onwards (goals ahead),
+// and of the drives planned takes the first whose legs all keep façades in the
+// camera's view as it looks along the way: a drive looking out of the
+// modelled area sees nothing the model holds (a city model is a tile of a
+// city; beyond its edge the simulated world is empty). Where no leg onwards
+// keeps them in view (a street that ends in open land) it turns back on a
+// half circle and drives the other way. Each leg is an A*
 // search on the occupancy grid with step cost length (1 + w / min(c, c_max))
 // for clearance c, which keeps the route on the centre line of streets up to
 // 2 c_max wide and c_max from the façades of wider ones; the cells are then
@@ -40,6 +42,9 @@ struct StreetRouteOptions {
   double min_facades_in_view = 0.5;
   double view_half_angle_deg = 30.0;
   double view_range_m = 50.0;
+  // Turning back, the robot keeps at least this far from façades (m): a turn
+  // looks across the street, not along it.
+  double min_turn_clearance_m = 1.5;
   // Goals are at least this far apart in a straight line (m).
   double min_leg_m = 30.0;
   // Waypoints deviate at most this far from the searched path (m).

@@ -112,6 +112,39 @@ TEST(RouteTrajectory, StopsAtTheEndOfAShortRoute) {
   EXPECT_LE(end.p_world_body.x(), 40.0 + 1e-6);
 }
 
+// The turn back of street_route.h with a 3 m radius: a diagonal onto a half
+// circle centred 3 m ahead, then back 6 m to the side of the way it came.
+TEST(RouteTrajectory, TurnsBackWithinItsLateralAccelerationLimit) {
+  std::vector<Eigen::Vector2d> route{{0, 0}, {40, 0}, {43, 3}};
+  for (int step = 1; step <= 8; ++step) {
+    const double turned = M_PI * step / 8;
+    route.emplace_back(43.0 + 3.0 * std::sin(turned), 3.0 * std::cos(turned));
+  }
+  route.emplace_back(0, -3);
+  RouteDriveOptions options = testDrive();
+  options.stop_probability = 0.0;
+  options.duration_s = 200.0;  // longer than the route takes: it ends at its end
+  const RouteTrajectory trajectory(route, 0.0, options);
+  double most_lateral = 0.0;
+  for (int64_t t = trajectory.startStamp_ns(); t <= trajectory.endStamp_ns(); t += 20'000'000) {
+    const sim::TruthSample sample = trajectory.at(t);
+    ASSERT_TRUE(sample.q_world_body.coeffs().allFinite());
+    const double speed = sample.v_world_body.norm();
+    if (speed < 1e-6) {
+      continue;
+    }
+    const Eigen::Vector3d along = sample.v_world_body / speed;
+    const Eigen::Vector3d lateral = sample.a_world_body - sample.a_world_body.dot(along) * along;
+    most_lateral = std::max(most_lateral, lateral.norm());
+  }
+  EXPECT_LE(most_lateral, options.max_lateral_acceleration_m_s2 + 1e-6);
+  // It has driven round and back along y = -3, facing -x.
+  const sim::TruthSample end = trajectory.at(trajectory.endStamp_ns());
+  EXPECT_LT(end.p_world_body.x(), 2.0);
+  EXPECT_NEAR(end.p_world_body.y(), -3.0, 0.1);
+  EXPECT_LT((end.q_world_body * Eigen::Vector3d::UnitX()).x(), -0.99);
+}
+
 TEST(RouteTrajectory, RejectsDegenerateRoutes) {
   EXPECT_THROW(RouteTrajectory({{0, 0}}, 0.0, testDrive()), std::invalid_argument);
   EXPECT_THROW(RouteTrajectory({{0, 0}, {1, 0}}, 0.0, testDrive()), std::invalid_argument);

@@ -232,11 +232,12 @@ Leg nextLeg(const OccupancyMap& map, const StreetCells& cells, const cv::Point& 
   return best;
 }
 
-// The cells of a turn back from `from`: a diagonal to the side `side` (+1 or
-// -1) of `heading` onto a half circle of radius_m centred radius_m ahead of
-// `from`, which ends radius_m to the other side of the way it came, back on
-// a street wider than 2 radius_m; empty when a cell of it is off the street
-// (not between façades) or nearer than min_turn_clearance_m to one.
+// The cells of a turn back from `from` along a non-zero `heading`: a
+// diagonal to the side `side` (+1 or -1) onto a half circle of radius_m
+// centred radius_m ahead of `from`, which ends radius_m to the other side of
+// the way it came (the turn spans 2 radius_m across the street); empty when a
+// cell of it is off the street (not between façades) or nearer than
+// min_turn_clearance_m to one.
 std::vector<cv::Point> turnCells(const OccupancyMap& map, const cv::Point& from,
                                  const cv::Point& heading, int side, double radius_m,
                                  const StreetRouteOptions& options) {
@@ -290,9 +291,12 @@ Leg turnBack(const OccupancyMap& map, const StreetCells& cells, const std::vecto
       }
       const size_t end = path.size() - 1 - cut;
       const cv::Point heading = headingAt(path, end);
+      if (heading == cv::Point(0, 0)) {
+        continue;
+      }
       for (const int side : {1, -1}) {
         std::vector<cv::Point> turn = turnCells(map, path[end], heading, side, radius_m, options);
-        if (heading == cv::Point(0, 0) || turn.empty()) {
+        if (turn.empty()) {
           continue;
         }
         const Leg onwards = nextLeg(map, cells, turn.back(), -heading, options, random);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
@@ -20,12 +21,21 @@ bool distinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
 struct Verified {
   Alignment alignment;
   std::vector<VisibleSegment> visible;
-  // Of the aligned pose against the verification distance map.
-  Coverage coverage;
+  // Of the aligned pose: (C - K) / sqrt(L), its coverage C of L against the
+  // verification distance map less the image edges K it puts in open sky.
+  double score = 0.0;
 };
 
+// (C - K) / sqrt(L); 0 where the coverage scores nothing (too little model in view).
+double verifiedScore(const Coverage& coverage, double sky_edge_px) {
+  if (coverage.score <= 0.0) {
+    return 0.0;
+  }
+  return (coverage.covered_px - sky_edge_px) / std::sqrt(coverage.model_px);
+}
+
 bool byScore(const Verified& a, const Verified& b) {
-  return a.coverage.score < b.coverage.score;
+  return a.score < b.score;
 }
 
 // An alignment that settled on a pose: OK, or ill-conditioned (it fits the
@@ -99,8 +109,10 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
     candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
     if (hasPose(candidate.alignment)) {
-      candidate.coverage =
-          verifier.coverage(candidate.visible, candidate.alignment.T_world_camera.pose);
+      const Eigen::Isometry3d& aligned = candidate.alignment.T_world_camera.pose;
+      candidate.score =
+          verifiedScore(verifier.coverage(candidate.visible, aligned),
+                        skyEdgeLength(image, aligned, camera, scene, options.sky_edges));
     }
   });
   std::vector<Verified> aligned;
@@ -129,8 +141,8 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
       options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
-  acquisition.summary.best_score = best->coverage.score;
-  acquisition.summary.rival_score = rival != nullptr ? rival->coverage.score : 0.0;
+  acquisition.summary.best_score = best->score;
+  acquisition.summary.rival_score = rival != nullptr ? rival->score : 0.0;
   if (acquisition.alignment.inliers < options.min_inliers) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message =
@@ -139,10 +151,18 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     return acquisition;
   }
   const SearchSummary& summary = acquisition.summary;
+  if (summary.best_score <= 0.0) {
+    acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
+    acquisition.alignment.message = fmt::format(
+        "the best aligned hypothesis puts more image edges in open sky than it covers (score "
+        "{:.1f})",
+        summary.best_score);
+    return acquisition;
+  }
   if (summary.rival_score >= options.ambiguous_score_fraction * summary.best_score) {
     acquisition.alignment.status = AlignmentStatus::kAmbiguous;
     acquisition.alignment.message =
-        fmt::format("two distinct poses align: coverage scores {:.1f} and {:.1f}",
+        fmt::format("two distinct poses align: verification scores {:.1f} and {:.1f}",
                     summary.best_score, summary.rival_score);
   }
   return acquisition;

@@ -125,26 +125,63 @@ void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odo
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
                                              line_set.camera, localizerOptions(line_set));
   const int64_t search_ns = steadyClockNs() - start_ns;
+  countSearch();
   const Alignment& alignment = localization.alignment;
-  {
-    const std::lock_guard<std::mutex> lock(counters_mutex_);
-    ++counters_.searches;
-  }
   const std::string outcome =
       alignment.status == AlignmentStatus::kOk
           ? describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera))
           : alignment.message;
+  logSearch("search", line_set, localization, outcome, search_ns);
+}
+
+void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
+                           const Eigen::Isometry3d& tracked) {
+  const int64_t start_ns = steadyClockNs();
+  PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
+                                                           options_.confirm_rotation_rad)};
+  prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
+  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
+                                             line_set.camera, localizerOptions(line_set));
+  const int64_t search_ns = steadyClockNs() - start_ns;
+  countSearch();
+  const Alignment& alignment = localization.alignment;
+  std::string outcome;
+  {
+    const std::lock_guard<std::mutex> lock(searches_mutex_);
+    const auto confirmed = confirmed_search_.find(line_set.robot_id);
+    if (confirmed == confirmed_search_.end()) {
+      return;
+    }
+    if (alignment.status != AlignmentStatus::kOk) {
+      confirmed->second.proof_due_m += options_.proof_retry_m;
+      outcome = alignment.message + "; tried again later";
+    } else if (agrees(tracked, alignment.T_world_camera.pose)) {
+      confirmed->second.proven = true;
+      outcome = "agrees with tracking";
+    } else {
+      confirmed_search_.erase(confirmed);
+      searching_again_.insert(line_set.robot_id);
+      outcome = "disagrees with tracking, which stops until two searches confirm each other";
+    }
+  }
+  logSearch("proof search", line_set, localization, outcome, search_ns);
+}
+
+void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
+                               const Localization& localization, const std::string& outcome,
+                               int64_t search_ns) {
+  const Alignment& alignment = localization.alignment;
   const SearchSummary summary = localization.search.value_or(SearchSummary{});
   // Where the best aligned hypothesis puts the camera, and its optical axis'
   // azimuth clockwise from grid north: atan2(r_x, r_y) of R's third column.
   const Eigen::Isometry3d& best = alignment.T_world_camera.pose;
   const Eigen::Vector3d axis_world = best.linear().col(2);
   spdlog::info(
-      "search for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
+      "{} for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
       "best / {:.1f} rival, {} inliers, best at ({:.2f}, {:.2f}, {:.2f}) m looking {:.2f} deg, "
       "{:.0f} ms (grid search {:.0f} ms)",
-      line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)), outcome,
-      summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
+      kind, line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)),
+      outcome, summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
       alignment.inliers, best.translation().x(), best.translation().y(), best.translation().z(),
       std::atan2(axis_world.x(), axis_world.y()) * 180.0 / M_PI, search_ns * 1e-6,
       summary.search_ns * 1e-6);
@@ -186,16 +223,20 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   if (!(age_s > 0.0 && age_s <= options_.confirm_within_s) || !moved) {
     return Confirmation::kFirst;
   }
-  const Eigen::Isometry3d& expected = moved->pose;
-  const Eigen::AngleAxisd rotation(expected.linear().transpose() * acquired.pose.linear());
-  const bool agrees = (expected.translation() - acquired.pose.translation()).norm() <=
-                          options_.confirm_position_m &&
-                      std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
-  if (!agrees) {
+  if (!agrees(moved->pose, acquired.pose)) {
     return Confirmation::kDisagrees;
   }
-  confirmed_search_.insert_or_assign(line_set.robot_id, current);
+  confirmed_search_.insert_or_assign(
+      line_set.robot_id, ConfirmedSearch{current, false, options_.acquisition_proven_after_m});
+  searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
+}
+
+bool LineSetHandler::agrees(const Eigen::Isometry3d& expected,
+                            const Eigen::Isometry3d& found) const {
+  const Eigen::AngleAxisd rotation(expected.linear().transpose() * found.linear());
+  return (expected.translation() - found.translation()).norm() <= options_.confirm_position_m &&
+         std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
 }
 
 std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set,
@@ -205,7 +246,7 @@ std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetDat
   if (confirmed == confirmed_search_.end()) {
     return std::nullopt;
   }
-  const SearchResult& search = confirmed->second;
+  const SearchResult& search = confirmed->second.search;
   const double age_s = (line_set.stamp_ns - search.stamp_ns) * 1e-9;
   if (!(age_s > 0.0 && age_s <= options_.carry_search_s)) {
     return std::nullopt;
@@ -213,24 +254,58 @@ std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetDat
   return movedByOdometry(search, odometry);
 }
 
-void LineSetHandler::widenUntilMoved(const LineSetData& line_set, const OdometryPose& odometry,
-                                     PoseFixData& fix) {
+void LineSetHandler::widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
+                                      const std::shared_ptr<const PreparedMap>& map,
+                                      PoseFixData& fix) {
   if (fix.status != lineloc_msg_FIX_OK) {
     return;
   }
+  bool proof_due = false;
+  {
+    const std::lock_guard<std::mutex> lock(searches_mutex_);
+    const auto confirmed = confirmed_search_.find(line_set.robot_id);
+    if (confirmed == confirmed_search_.end() || confirmed->second.proven ||
+        confirmed->second.search.odometry.epoch != odometry.epoch) {
+      return;
+    }
+    const double moved_m = (odometry.T_odom_camera.translation() -
+                            confirmed->second.search.odometry.T_odom_camera.translation())
+                               .norm();
+    proof_due = moved_m >= confirmed->second.proof_due_m;
+  }
+  if (proof_due) {
+    search_worker_.submit(line_set.robot_id,
+                          [this, line_set, map, tracked = fix.T_world_camera.pose] {
+                            try {
+                              prove(line_set, *map, tracked);
+                            } catch (const std::exception& error) {
+                              spdlog::error("proof search for {} #{} failed: {}", line_set.robot_id,
+                                            line_set.sequence_number, error.what());
+                            }
+                          });
+  }
+  const AcquisitionOptions& acquisition = options_.localizer.acquisition;
+  fix.T_world_camera.covariance += diagonalPoseCovariance(acquisition.acquired_position_sigma_m,
+                                                          acquisition.acquired_rotation_sigma_rad);
+}
+
+PoseWithCovariance LineSetHandler::searchPrior(const std::string& robot_id,
+                                               const PoseWithCovariance& prior) {
   const std::lock_guard<std::mutex> lock(searches_mutex_);
-  const auto confirmed = confirmed_search_.find(line_set.robot_id);
-  if (confirmed == confirmed_search_.end() || confirmed->second.odometry.epoch != odometry.epoch) {
-    return;
+  if (!searching_again_.contains(robot_id)) {
+    return prior;
   }
-  const double moved_m = (odometry.T_odom_camera.translation() -
-                          confirmed->second.odometry.T_odom_camera.translation())
-                             .norm();
-  if (moved_m < options_.acquisition_proven_after_m) {
-    const AcquisitionOptions& acquisition = options_.localizer.acquisition;
-    fix.T_world_camera.covariance += diagonalPoseCovariance(
-        acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad);
+  PoseWithCovariance widened = prior;
+  const double floor_variance = options_.proof_position_sigma_m * options_.proof_position_sigma_m;
+  for (int axis = 0; axis < 2; ++axis) {
+    widened.covariance(axis, axis) = std::max(widened.covariance(axis, axis), floor_variance);
   }
+  return widened;
+}
+
+void LineSetHandler::countSearch() {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.searches;
 }
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
@@ -282,10 +357,10 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     const int64_t prepare_start_ns = steadyClockNs();
     const std::shared_ptr<const PreparedMap> map = prepare(view);
     fix.timings.visibility = steadyClockNs() - prepare_start_ns;
-    const PoseWithCovariance prior = groundedPrior(line_set, *map);
+    const PoseWithCovariance prior = searchPrior(line_set.robot_id, groundedPrior(line_set, *map));
     if (!needsAcquisition(prior, options_.localizer)) {
       trackInto(line_set, *map, prior, localizerOptions(line_set), fix);
-      widenUntilMoved(line_set, odometry, fix);
+      widenUntilProven(line_set, odometry, map, fix);
       return finish(fix, start_ns);
     }
     const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
@@ -293,7 +368,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       LocalizerOptions from_search = localizerOptions(line_set);
       from_search.min_start_step_m = options_.carried_start_step_m;
       trackInto(line_set, *map, *carried, from_search, fix);
-      widenUntilMoved(line_set, odometry, fix);
+      widenUntilProven(line_set, odometry, map, fix);
       return finish(fix, start_ns);
     }
     search_worker_.submit(line_set.robot_id, [this, line_set, odometry, map, prior] {

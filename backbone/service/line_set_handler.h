@@ -40,13 +40,18 @@
 // confirmed). Tracking from the carried pose therefore probes
 // carried_start_step_m either way along the horizontal axes, not the
 // tracking floor; and every OK fix keeps the acquired pose's resolution term
-// (acquired_*_sigma, pose_acquisition.h) added to its covariance until the
-// robot has moved acquisition_proven_after_m from where its confirmed search
-// saw it: tracking's covariance comes from the residuals of one view, which
-// cannot tell the two basins apart, and a view that changes can. Without
-// that, seed 48 answered 82 fixes 0.4 m off, beyond chi^2_6(0.9973) of their
-// covariances, while it stood; after half a metre of driving, tracking was
-// back within 9 cm.
+// (acquired_*_sigma, pose_acquisition.h) added to its covariance until a
+// search from another viewpoint agrees with tracking: once the robot has
+// moved acquisition_proven_after_m from where its confirmed search saw it, a
+// proof search runs on the worker over proof_position_sigma_m around the
+// frame's tracked pose. Tracking's covariance comes from the residuals of one
+// view, which cannot tell the two basins apart; a view that changes can, but
+// tracking from the wrong basin follows it there (seed 9: 0.5 m off for
+// three metres of driving). A proof search that agrees ends the widening;
+// one that finds the camera elsewhere ends the tracking: the robot's frames
+// are searched for again, over at least proof_position_sigma_m, until two
+// searches confirm each other; one that finds nothing is tried again after
+// proof_retry_m more.
 //
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
@@ -59,6 +64,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -99,9 +105,14 @@ struct PipelineOptions {
   // Tracking from a carried search probes this far along the horizontal axes
   // (LocalizerOptions::min_start_step_m).
   double carried_start_step_m = 0.5;
-  // Fixes keep the acquired pose's resolution term until the robot has moved
-  // this far from where its confirmed search saw it.
+  // Fixes keep the acquired pose's resolution term until a proof search,
+  // due once the robot has moved this far from where its confirmed search saw
+  // it, agrees with tracking; over this sigma around the tracked pose (three
+  // sigma: a few windows' widths), tried again after proof_retry_m more when
+  // it finds nothing.
   double acquisition_proven_after_m = 1.0;
+  double proof_position_sigma_m = 0.5;
+  double proof_retry_m = 1.0;
   PredictedMotionOptions motion;
   LocalizerOptions localizer;
   // When set, each LineSet is localized under the sun of its stamp instead
@@ -159,9 +170,24 @@ class LineSetHandler {
   std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
-  // pose_acquisition.h) to an OK fix's covariance while the robot is within
-  // acquisition_proven_after_m of where its confirmed search saw it.
-  void widenUntilMoved(const LineSetData& line_set, const OdometryPose& odometry, PoseFixData& fix);
+  // pose_acquisition.h) to an OK fix's covariance until a proof search has
+  // agreed with tracking, and submits that search when it is due.
+  void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
+                        const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
+  // Runs on the search worker: searches around `tracked`, the frame's
+  // tracked pose, and proves or ends the tracking of the robot.
+  void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked);
+  // Logs a search's outcome.
+  static void logSearch(const char* kind, const LineSetData& line_set,
+                        const Localization& localization, const std::string& outcome,
+                        int64_t search_ns);
+  // Whether a pose found where `expected` was predicted lies within
+  // confirm_position_m and confirm_rotation_rad of it.
+  bool agrees(const Eigen::Isometry3d& expected, const Eigen::Isometry3d& found) const;
+  // The robot's prediction, widened to proof_position_sigma_m at least, when a
+  // proof search ended its tracking; else `prior`.
+  PoseWithCovariance searchPrior(const std::string& robot_id, const PoseWithCovariance& prior);
+  void countSearch();
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
 
@@ -187,9 +213,18 @@ class LineSetHandler {
   // nullopt when the two are of different epochs.
   static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
                                                            const OdometryPose& odometry);
+  // A confirmed search result, and when tracking from it is proven.
+  struct ConfirmedSearch {
+    SearchResult search;
+    bool proven = false;
+    // Motion from the search's viewpoint (m) at which a proof search is due.
+    double proof_due_m = 0.0;
+  };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;
-  std::map<std::string, SearchResult> confirmed_search_;
+  std::map<std::string, ConfirmedSearch> confirmed_search_;
+  // Robots whose tracking a proof search ended.
+  std::set<std::string> searching_again_;
   // Last, so that it is destroyed first: its searches use the members above.
   SearchWorker search_worker_;
 };

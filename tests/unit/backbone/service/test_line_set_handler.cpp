@@ -209,8 +209,9 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
 
 // A robot that stands still searches the same view twice, and both searches
 // can settle in the same wrong basin: its fixes keep the acquired pose's
-// resolution term until it has moved acquisition_proven_after_m since.
-TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilTheRobotHasMoved) {
+// resolution term until, once it has moved acquisition_proven_after_m, a
+// proof search from there agrees with tracking.
+TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilASearchFromElsewhereAgrees) {
   MapTileCache cache = makeCache(database_.conninfo());
   const PipelineOptions options;
   LineSetHandler handler(cache, MessageLimits{}, options);
@@ -220,27 +221,71 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilTheRobotHasMoved) {
   expectSearched(handler, seen, start.predicted, 3);
   const double acquired_variance =
       std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2);
+  const auto expectFix = [&](const PoseWithCovariance& truth, const PoseWithCovariance& predicted,
+                             uint32_t sequence, bool widened) {
+    const auto fix = handler.handle(
+        lineSetMessage(observedEdges(database_.conninfo(), truth), predicted, sequence)->message());
+    ASSERT_TRUE(fix.has_value());
+    ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+    expectWithinThreeSigma(fix->T_world_camera, truth);
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_EQ(fix->T_world_camera.covariance(axis, axis) >= acquired_variance, widened)
+          << "frame " << sequence << ", axis " << axis;
+    }
+  };
 
-  const auto standing = handler.handle(lineSetMessage(seen, start.predicted, 4)->message());
-  ASSERT_TRUE(standing.has_value());
-  ASSERT_EQ(standing->status, lineloc_msg_FIX_OK) << toString(standing->status);
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_GE(standing->T_world_camera.covariance(axis, axis), acquired_variance) << axis;
-  }
-
-  // 1.5 m further north, its prediction moved alike.
+  expectFix(start.truth, start.predicted, 4, true);
+  // 1.5 m further north, its prediction moved alike: the proof search is due.
   PoseWithCovariance truth = start.truth;
   PoseWithCovariance predicted = start.predicted;
   truth.pose.translation().y() += 1.5;
   predicted.pose.translation().y() += 1.5;
-  const auto moved = handler.handle(
-      lineSetMessage(observedEdges(database_.conninfo(), truth), predicted, 5)->message());
-  ASSERT_TRUE(moved.has_value());
-  ASSERT_EQ(moved->status, lineloc_msg_FIX_OK) << toString(moved->status);
-  expectWithinThreeSigma(moved->T_world_camera, truth);
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_LT(moved->T_world_camera.covariance(axis, axis), acquired_variance) << axis;
+  expectFix(truth, predicted, 5, true);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 3u);
+  expectFix(truth, predicted, 6, false);
+  EXPECT_EQ(handler.counters().searches, 3u);
+}
+
+// The same start, then the robot drives 1.5 m north, but its odometry says
+// 1.2 m east too, and its image holds the view from the truth and, shorter,
+// the view from where the odometry puts it: tracking from the confirmed
+// search carried there settles on the shorter view, and the proof search over
+// the metres around it finds the truth, which covers the image better. The
+// robot's frames are then searched for again, not tracked, until two
+// searches confirm each other, and tracking resumes from there.
+TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoorStart start;
+  expectSearched(handler, observedEdges(database_.conninfo(), start.truth), start.predicted, 2);
+  expectSearched(handler, observedEdges(database_.conninfo(), start.truth), start.predicted, 3);
+
+  PoseWithCovariance truth = start.truth;
+  truth.pose.translation().y() += 1.5;
+  PoseWithCovariance beside = truth;
+  beside.pose.translation() += Eigen::Vector3d(1.2, 0.0, 0.0);
+  std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
+  for (ImageSegment segment : observedEdges(database_.conninfo(), beside)) {
+    segment.end = segment.start + 0.4f * (segment.end - segment.start);
+    seen.push_back(segment);
   }
+  PoseWithCovariance predicted = start.predicted;
+  predicted.pose.translation() += Eigen::Vector3d(1.2, 1.5, 0.0);
+  const auto tracked = handler.handle(lineSetMessage(seen, predicted, 5)->message());
+  ASSERT_TRUE(tracked.has_value());
+  ASSERT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
+  EXPECT_LT((tracked->T_world_camera.pose.translation() - beside.pose.translation()).norm(), 0.3);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 3u);
+
+  expectSearched(handler, seen, predicted, 6);
+  expectSearched(handler, seen, predicted, 7);
+  const auto fix = handler.handle(lineSetMessage(seen, predicted, 8)->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  EXPECT_LT((fix->T_world_camera.pose.translation() - truth.pose.translation()).norm(), 0.1);
+  EXPECT_EQ(handler.counters().searches, 5u);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {

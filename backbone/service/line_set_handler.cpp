@@ -274,15 +274,10 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     proof_due = moved_m >= confirmed->second.proof_due_m;
   }
   if (proof_due) {
-    search_worker_.submit(line_set.robot_id,
-                          [this, line_set, map, tracked = fix.T_world_camera.pose] {
-                            try {
-                              prove(line_set, *map, tracked);
-                            } catch (const std::exception& error) {
-                              spdlog::error("proof search for {} #{} failed: {}", line_set.robot_id,
-                                            line_set.sequence_number, error.what());
-                            }
-                          });
+    submitSearch("proof search", line_set,
+                 [this, line_set, map, tracked = fix.T_world_camera.pose] {
+                   prove(line_set, *map, tracked);
+                 });
   }
   const AcquisitionOptions& acquisition = options_.localizer.acquisition;
   fix.T_world_camera.covariance += diagonalPoseCovariance(acquisition.acquired_position_sigma_m,
@@ -301,6 +296,19 @@ PoseWithCovariance LineSetHandler::searchPrior(const std::string& robot_id,
     widened.covariance(axis, axis) = std::max(widened.covariance(axis, axis), floor_variance);
   }
   return widened;
+}
+
+void LineSetHandler::submitSearch(const char* kind, const LineSetData& line_set,
+                                  std::function<void()> run) {
+  search_worker_.submit(
+      line_set.robot_id, [kind, robot_id = line_set.robot_id, sequence = line_set.sequence_number,
+                          run = std::move(run)] {
+        try {
+          run();
+        } catch (const std::exception& error) {
+          spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
+        }
+      });
 }
 
 void LineSetHandler::countSearch() {
@@ -371,13 +379,8 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       widenUntilProven(line_set, odometry, map, fix);
       return finish(fix, start_ns);
     }
-    search_worker_.submit(line_set.robot_id, [this, line_set, odometry, map, prior] {
-      try {
-        search(line_set, odometry, *map, prior);
-      } catch (const std::exception& error) {
-        spdlog::error("search for {} #{} failed: {}", line_set.robot_id, line_set.sequence_number,
-                      error.what());
-      }
+    submitSearch("search", line_set, [this, line_set, odometry, map, prior] {
+      search(line_set, odometry, *map, prior);
     });
     fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {

@@ -59,6 +59,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <map>
 #include <memory>
@@ -187,6 +188,9 @@ class LineSetHandler {
   // The robot's prediction, widened to proof_position_sigma_m at least, when a
   // proof search ended its tracking; else `prior`.
   PoseWithCovariance searchPrior(const std::string& robot_id, const PoseWithCovariance& prior);
+  // Queues `run` on the search worker unless the robot's last search still
+  // runs; an exception it throws is logged as `kind`'s failure.
+  void submitSearch(const char* kind, const LineSetData& line_set, std::function<void()> run);
   void countSearch();
   // Stamps the total time and counts the answer.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);

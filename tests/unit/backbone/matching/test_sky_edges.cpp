@@ -87,9 +87,9 @@ TEST_F(SkyEdges, NothingBelowTheHorizonOrLowOverItCounts) {
 
 TEST_F(SkyEdges, ShortSegmentsAreNotSampled) {
   const ImageSegment above = imageOf(roof_start_, roof_end_, {0.0, -30.0});
-  ImageSegment stub = above;
-  stub.end = stub.start + (above.end - above.start).normalized() * 10.0f;
-  EXPECT_EQ(skyPx(stub), 0.0);
+  ImageSegment short_piece = above;
+  short_piece.end = short_piece.start + (above.end - above.start).normalized() * 10.0f;
+  EXPECT_EQ(skyPx(short_piece), 0.0);
 }
 
 }  // namespace

@@ -62,9 +62,10 @@ int main(int argc, char** argv) {
         counters.dropped_invalid, counters.map_errors);
     std::string stages;
     for (const lineloc::StagePercentiles& stage : lineloc::stagePercentiles(counters)) {
-      stages += fmt::format(" {} {:.2f}/{:.2f}", stage.stage, stage.median_ms, stage.p99_ms);
+      stages += fmt::format(" {} {:.2f}/{:.2f}/{:.1f}", stage.stage, stage.median_ms, stage.p99_ms,
+                            stage.max_ms);
     }
-    std::cout << "lineloc-backbone: per LineSet, ms median/p99:" << stages << '\n';
+    std::cout << "lineloc-backbone: per LineSet, ms median/p99/max:" << stages << '\n';
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

@@ -34,6 +34,20 @@ double verifiedScore(const Coverage& coverage, double sky_edge_px) {
   return (coverage.covered_px - sky_edge_px) / std::sqrt(coverage.model_px);
 }
 
+PoseWithCovariance hypothesisStart(const Eigen::Isometry3d& T_world_camera,
+                                   const AcquisitionOptions& options) {
+  return {T_world_camera, diagonalPoseCovariance(options.hypothesis_position_sigma_m,
+                                                 options.hypothesis_rotation_sigma_rad)};
+}
+
+double scorePose(const CoverageVerifier& verifier, const std::vector<ImageSegment>& image,
+                 const std::vector<VisibleSegment>& visible, const OcclusionScene& scene,
+                 const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                 const AcquisitionOptions& options) {
+  return verifiedScore(verifier.coverage(visible, T_world_camera),
+                       skyEdgeLength(image, T_world_camera, camera, scene, options.sky_edges));
+}
+
 bool byScore(const Verified& a, const Verified& b) {
   return a.score < b.score;
 }
@@ -102,17 +116,13 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   const CoverageVerifier verifier(image, camera, options);
   std::vector<Verified> verified(hypotheses.size());
   parallelFor(static_cast<int>(hypotheses.size()), options.search.threads, [&](int i) {
-    const PoseWithCovariance start{hypotheses[i].T_world_camera,
-                                   diagonalPoseCovariance(options.hypothesis_position_sigma_m,
-                                                          options.hypothesis_rotation_sigma_rad)};
+    const PoseWithCovariance start = hypothesisStart(hypotheses[i].T_world_camera, options);
     Verified& candidate = verified[i];
     candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
     candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
     if (hasPose(candidate.alignment)) {
-      const Eigen::Isometry3d& aligned = candidate.alignment.T_world_camera.pose;
-      candidate.score =
-          verifiedScore(verifier.coverage(candidate.visible, aligned),
-                        skyEdgeLength(image, aligned, camera, scene, options.sky_edges));
+      candidate.score = scorePose(verifier, image, candidate.visible, scene,
+                                  candidate.alignment.T_world_camera.pose, camera, options);
     }
   });
   std::vector<Verified> aligned;
@@ -166,6 +176,16 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
                     summary.best_score, summary.rival_score);
   }
   return acquisition;
+}
+
+double verificationScore(const std::vector<ImageSegment>& image,
+                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                         const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                         const AcquisitionOptions& options) {
+  const std::vector<VisibleSegment> visible = visibleSegments(
+      lines, scene, hypothesisStart(T_world_camera, options), camera, options.visibility);
+  return scorePose(CoverageVerifier(image, camera, options), image, visible, scene, T_world_camera,
+                   camera, options);
 }
 
 }  // namespace lineloc

@@ -118,4 +118,12 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
                         const AcquisitionOptions& options);
 
+// The score (C - K) / sqrt(L) acquisition gives its aligned hypotheses, of a
+// pose found otherwise (the tracked pose a proof search is checked against,
+// line_set_handler.h), with the model visible from it as from a hypothesis.
+double verificationScore(const std::vector<ImageSegment>& image,
+                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                         const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                         const AcquisitionOptions& options);
+
 }  // namespace lineloc

@@ -38,11 +38,13 @@ struct BackboneConfig {
 // Serves until `stop` is true; returns the final counters.
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
-// Median and 99th percentile (ms) of each stage over the counters' recent answers.
+// Median, 99th percentile and maximum (ms) of each stage over the counters'
+// recent answers: the maximum shows which stage a single stall was in.
 struct StagePercentiles {
   std::string stage;
   double median_ms = 0.0;
   double p99_ms = 0.0;
+  double max_ms = 0.0;
 };
 std::vector<StagePercentiles> stagePercentiles(const BackboneCounters& counters);
 

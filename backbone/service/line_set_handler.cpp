@@ -1,5 +1,6 @@
 #include "backbone/service/line_set_handler.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -35,6 +36,7 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
 
 void LineSetHandler::waitForSearches() {
   search_worker_.waitUntilIdle();
+  proof_worker_.waitUntilIdle();
 }
 
 BackboneCounters LineSetHandler::counters() const {
@@ -134,6 +136,35 @@ void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odo
   logSearch("search", line_set, localization, outcome, search_ns);
 }
 
+LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_set,
+                                                        const PreparedMap& map,
+                                                        const Eigen::Isometry3d& tracked,
+                                                        const Alignment& found) const {
+  if (found.status != AlignmentStatus::kOk) {
+    return {Proof::kUndecided, found.message + "; tried again later"};
+  }
+  if (agrees(tracked, found.T_world_camera.pose)) {
+    return {Proof::kAgrees, "agrees with tracking"};
+  }
+  const AcquisitionOptions& acquisition = options_.localizer.acquisition;
+  const double found_score =
+      verificationScore(line_set.segments, map.segments, map.scene, found.T_world_camera.pose,
+                        line_set.camera, acquisition);
+  const double tracked_score = verificationScore(line_set.segments, map.segments, map.scene,
+                                                 tracked, line_set.camera, acquisition);
+  const double offset_m = (found.T_world_camera.pose.translation() - tracked.translation()).norm();
+  if (tracked_score >= acquisition.ambiguous_score_fraction * found_score) {
+    return {Proof::kUndecided,
+            fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}; "
+                        "tried again later",
+                        offset_m, tracked_score, found_score)};
+  }
+  return {Proof::kContradicts,
+          fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}: "
+                      "tracking stops until two searches confirm each other",
+                      offset_m, tracked_score, found_score)};
+}
+
 void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
                            const Eigen::Isometry3d& tracked) {
   const int64_t start_ns = steadyClockNs();
@@ -142,29 +173,29 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
   prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
                                              line_set.camera, localizerOptions(line_set));
+  const ProofVerdict verdict = judgeProof(line_set, map, tracked, localization.alignment);
   const int64_t search_ns = steadyClockNs() - start_ns;
   countSearch();
-  const Alignment& alignment = localization.alignment;
-  std::string outcome;
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     const auto confirmed = confirmed_search_.find(line_set.robot_id);
     if (confirmed == confirmed_search_.end()) {
       return;
     }
-    if (alignment.status != AlignmentStatus::kOk) {
-      confirmed->second.proof_due_m += options_.proof_retry_m;
-      outcome = alignment.message + "; tried again later";
-    } else if (agrees(tracked, alignment.T_world_camera.pose)) {
-      confirmed->second.proven = true;
-      outcome = "agrees with tracking";
-    } else {
-      confirmed_search_.erase(confirmed);
-      searching_again_.insert(line_set.robot_id);
-      outcome = "disagrees with tracking, which stops until two searches confirm each other";
+    switch (verdict.proof) {
+      case Proof::kAgrees:
+        confirmed->second.proven = true;
+        break;
+      case Proof::kUndecided:
+        confirmed->second.proof_due_m += options_.proof_retry_m;
+        break;
+      case Proof::kContradicts:
+        confirmed_search_.erase(confirmed);
+        searching_again_.insert(line_set.robot_id);
+        break;
     }
   }
-  logSearch("proof search", line_set, localization, outcome, search_ns);
+  logSearch("proof search", line_set, localization, verdict.outcome, search_ns);
 }
 
 void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
@@ -274,7 +305,7 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     proof_due = moved_m >= confirmed->second.proof_due_m;
   }
   if (proof_due) {
-    submitSearch("proof search", line_set,
+    submitSearch(proof_worker_, "proof search", line_set,
                  [this, line_set, map, tracked = fix.T_world_camera.pose] {
                    prove(line_set, *map, tracked);
                  });
@@ -298,17 +329,16 @@ PoseWithCovariance LineSetHandler::searchPrior(const std::string& robot_id,
   return widened;
 }
 
-void LineSetHandler::submitSearch(const char* kind, const LineSetData& line_set,
-                                  std::function<void()> run) {
-  search_worker_.submit(
-      line_set.robot_id, [kind, robot_id = line_set.robot_id, sequence = line_set.sequence_number,
-                          run = std::move(run)] {
-        try {
-          run();
-        } catch (const std::exception& error) {
-          spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
-        }
-      });
+void LineSetHandler::submitSearch(SearchWorker& worker, const char* kind,
+                                  const LineSetData& line_set, std::function<void()> run) {
+  worker.submit(line_set.robot_id, [kind, robot_id = line_set.robot_id,
+                                    sequence = line_set.sequence_number, run = std::move(run)] {
+    try {
+      run();
+    } catch (const std::exception& error) {
+      spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
+    }
+  });
 }
 
 void LineSetHandler::countSearch() {
@@ -318,6 +348,14 @@ void LineSetHandler::countSearch() {
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   fix.timings.total = steadyClockNs() - start_ns;
+  const StageTimingsNs& timings = fix.timings;
+  if (timings.total > options_.slow_answer_ms * 1e6) {
+    spdlog::warn(
+        "LineSet for {} #{} answered in {:.1f} ms: map {:.1f}, visibility {:.1f}, matching "
+        "{:.1f}, pose {:.1f} ms",
+        fix.robot_id, fix.sequence_number, timings.total * 1e-6, timings.map * 1e-6,
+        timings.visibility * 1e-6, timings.matching * 1e-6, timings.pose * 1e-6);
+  }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.answered;
   counters_.fixes_ok += fix.status == lineloc_msg_FIX_OK ? 1 : 0;
@@ -379,7 +417,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       widenUntilProven(line_set, odometry, map, fix);
       return finish(fix, start_ns);
     }
-    submitSearch("search", line_set, [this, line_set, odometry, map, prior] {
+    submitSearch(search_worker_, "search", line_set, [this, line_set, odometry, map, prior] {
       search(line_set, odometry, *map, prior);
     });
     fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;

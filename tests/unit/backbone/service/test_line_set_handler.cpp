@@ -248,44 +248,80 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilASearchFromElsewher
 }
 
 // The same start, then the robot drives 1.5 m north, but its odometry says
-// 1.2 m east too, and its image holds the view from the truth and, shorter,
-// the view from where the odometry puts it: tracking from the confirmed
-// search carried there settles on the shorter view, and the proof search over
-// the metres around it finds the truth, which covers the image better. The
-// robot's frames are then searched for again, not tracked, until two
-// searches confirm each other, and tracking resumes from there.
-TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
-  MapTileCache cache = makeCache(database_.conninfo());
-  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  const PoorStart start;
-  expectSearched(handler, observedEdges(database_.conninfo(), start.truth), start.predicted, 2);
-  expectSearched(handler, observedEdges(database_.conninfo(), start.truth), start.predicted, 3);
+// 1.2 m east too, and its image holds the view from the truth and, shortened
+// to `beside_length` of its lines, the view from where the odometry puts it:
+// tracking from the confirmed search carried there settles on that view.
+// Returns the frame of the proof search, once it has run.
+struct TrackedBeside {
+  PoseWithCovariance truth;
+  PoseWithCovariance predicted;
+  std::vector<ImageSegment> seen;
+};
 
-  PoseWithCovariance truth = start.truth;
-  truth.pose.translation().y() += 1.5;
-  PoseWithCovariance beside = truth;
+TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& conninfo,
+                                  float beside_length) {
+  const PoorStart start;
+  expectSearched(handler, observedEdges(conninfo, start.truth), start.predicted, 2);
+  expectSearched(handler, observedEdges(conninfo, start.truth), start.predicted, 3);
+  TrackedBeside frame{start.truth, start.predicted, {}};
+  frame.truth.pose.translation().y() += 1.5;
+  PoseWithCovariance beside = frame.truth;
   beside.pose.translation() += Eigen::Vector3d(1.2, 0.0, 0.0);
-  std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
-  for (ImageSegment segment : observedEdges(database_.conninfo(), beside)) {
-    segment.end = segment.start + 0.4f * (segment.end - segment.start);
-    seen.push_back(segment);
+  frame.seen = observedEdges(conninfo, frame.truth);
+  for (ImageSegment segment : observedEdges(conninfo, beside)) {
+    segment.end = segment.start + beside_length * (segment.end - segment.start);
+    frame.seen.push_back(segment);
   }
-  PoseWithCovariance predicted = start.predicted;
-  predicted.pose.translation() += Eigen::Vector3d(1.2, 1.5, 0.0);
-  const auto tracked = handler.handle(lineSetMessage(seen, predicted, 5)->message());
-  ASSERT_TRUE(tracked.has_value());
-  ASSERT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
+  frame.predicted.pose.translation() += Eigen::Vector3d(1.2, 1.5, 0.0);
+  const auto tracked = handler.handle(lineSetMessage(frame.seen, frame.predicted, 5)->message());
+  EXPECT_TRUE(tracked.has_value());
+  EXPECT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
   EXPECT_LT((tracked->T_world_camera.pose.translation() - beside.pose.translation()).norm(), 0.3);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 3u);
+  return frame;
+}
 
-  expectSearched(handler, seen, predicted, 6);
-  expectSearched(handler, seen, predicted, 7);
-  const auto fix = handler.handle(lineSetMessage(seen, predicted, 8)->message());
+// With the view beside shortened to 0.4, the proof search over the metres
+// around the tracked pose finds the truth, which the tracked pose scores far
+// below. The robot's frames are then searched for again, not tracked, until
+// two searches confirm each other, and tracking resumes from there.
+TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.4f);
+
+  expectSearched(handler, frame.seen, frame.predicted, 6);
+  expectSearched(handler, frame.seen, frame.predicted, 7);
+  const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 8)->message());
   ASSERT_TRUE(fix.has_value());
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
-  EXPECT_LT((fix->T_world_camera.pose.translation() - truth.pose.translation()).norm(), 0.1);
+  EXPECT_LT((fix->T_world_camera.pose.translation() - frame.truth.pose.translation()).norm(), 0.1);
   EXPECT_EQ(handler.counters().searches, 5u);
+}
+
+// With the view beside kept at 0.8 of its length, the tracked pose scores
+// nearly as well as the truth the proof search finds: the image does not
+// tell them apart, so tracking goes on, its fixes widened, and the proof is
+// tried again after proof_retry_m more. The proof search aligns its best grid
+// hypothesis only, so that it is the tracked pose's score, not a rival in the
+// search, that leaves the proof undecided; and no edge counts as sky, where
+// each view's roof corners lie seen from the other, so that coverage does.
+TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGoesOn) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.localizer.acquisition.search.max_hypotheses = 1;
+  options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.8f);
+
+  const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 6)->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  EXPECT_GE(fix->T_world_camera.covariance(0, 0),
+            std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2));
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 3u);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {

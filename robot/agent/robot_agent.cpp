@@ -66,13 +66,11 @@ class FixReceiver {
         summary_(summary),
         handler_(std::move(handler)) {}
 
-  void expect(uint32_t sequence_number, int64_t exposure_wall_ns) {
-    exposure_wall_ns_[sequence_number] = exposure_wall_ns;
+  void expect(uint32_t sequence_number, int64_t exposure_wall_ns, int64_t sent_wall_ns) {
+    outstanding_[sequence_number] = {exposure_wall_ns, sent_wall_ns};
   }
-  size_t outstanding() const { return exposure_wall_ns_.size(); }
-  bool answered(uint32_t sequence_number) const {
-    return exposure_wall_ns_.count(sequence_number) == 0;
-  }
+  size_t outstanding() const { return outstanding_.size(); }
+  bool answered(uint32_t sequence_number) const { return outstanding_.count(sequence_number) == 0; }
   const dds::Reader<lineloc_msg_PoseFix>& reader() const { return reader_; }
 
   void poll(int64_t timeout_ns) {
@@ -91,16 +89,20 @@ class FixReceiver {
       spdlog::warn("dropped a malformed PoseFix: {}", *error);
       return;
     }
-    const auto exposure = exposure_wall_ns_.find(message.sequence_number);
-    if (exposure == exposure_wall_ns_.end()) {
+    const auto frame = outstanding_.find(message.sequence_number);
+    if (frame == outstanding_.end()) {
       ++summary_.fixes_dropped;
       spdlog::warn("dropped a PoseFix for unknown or answered frame {}", message.sequence_number);
       return;
     }
-    const int64_t latency_ns = wallClockNs() - exposure->second;
-    summary_.latency_ns.push_back(latency_ns);
-    exposure_wall_ns_.erase(exposure);
     const PoseFixData fix = fromMessage(message);
+    const int64_t latency_ns = wallClockNs() - frame->second.exposure_wall_ns;
+    const int64_t front_end_ns = frame->second.sent_wall_ns - frame->second.exposure_wall_ns;
+    summary_.latency_ns.push_back(latency_ns);
+    summary_.front_end_ns.push_back(front_end_ns);
+    summary_.backbone_ns.push_back(fix.timings.total);
+    summary_.transport_ns.push_back(latency_ns - front_end_ns - fix.timings.total);
+    outstanding_.erase(frame);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
@@ -121,7 +123,11 @@ class FixReceiver {
   std::optional<FixLogWriter> fix_log_;
   RobotRunSummary& summary_;
   Handler handler_;
-  std::unordered_map<uint32_t, int64_t> exposure_wall_ns_;
+  struct Outstanding {
+    int64_t exposure_wall_ns;
+    int64_t sent_wall_ns;
+  };
+  std::unordered_map<uint32_t, Outstanding> outstanding_;
 };
 
 lineloc_msg_Health toHealth(NavigatorMode mode) {
@@ -372,8 +378,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         line_set.segments = features.segments;
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);
-        receiver.expect(line_set.sequence_number, exposure_wall_ns);
         writer.write(message.message());
+        receiver.expect(line_set.sequence_number, exposure_wall_ns, wallClockNs());
         in_flight = {true, line_set.sequence_number, due_ns + kDecodeUnansweredAfterNs};
         ++summary.frames_sent;
         summary.line_set_bytes.push_back(dds::serializedSizeBytes(message.message()));

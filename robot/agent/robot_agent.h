@@ -64,6 +64,13 @@ struct RobotRunSummary {
   // answers that carried a pose (FIX_OK).
   std::vector<int64_t> latency_ns;
   std::vector<int64_t> pose_latency_ns;
+  // latency_ns split, per answered frame: exposure -> LineSet written (the
+  // robot's front end), the backbone's own time (the PoseFix's
+  // timings.total), and the rest (DDS both ways, and the answer waiting to
+  // be read between the robot's other work).
+  std::vector<int64_t> front_end_ns;
+  std::vector<int64_t> backbone_ns;
+  std::vector<int64_t> transport_ns;
   // Each LineSet's bytes on the wire (dds::serializedSizeBytes), per frame sent.
   std::vector<int64_t> line_set_bytes;
   std::string health;

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "common/config/program_options.h"
 #include "common/time/percentile.h"
@@ -14,6 +16,13 @@ namespace {
 std::atomic<bool> g_stop{false};
 void requestStop(int) {
   g_stop = true;
+}
+
+// "median/p99/max" of durations, in ms.
+std::string describeLatency(const std::vector<int64_t>& durations_ns) {
+  return fmt::format("{:.2f}/{:.2f}/{:.1f}", lineloc::percentile(durations_ns, 50) * 1e-6,
+                     lineloc::percentile(durations_ns, 99) * 1e-6,
+                     lineloc::percentile(durations_ns, 100) * 1e-6);
 }
 }  // namespace
 
@@ -81,6 +90,11 @@ int main(int argc, char** argv) {
         lineloc::percentile(summary.line_set_bytes, 50),
         lineloc::percentile(summary.line_set_bytes, 99), summary.states_published,
         summary.sensor_lines_dropped, summary.health);
+    std::cout << fmt::format(
+        "lineloc-robot: exposure -> fix by stage, ms median/p99/max: front end {}, backbone {}, "
+        "DDS and waiting {}\n",
+        describeLatency(summary.front_end_ns), describeLatency(summary.backbone_ns),
+        describeLatency(summary.transport_ns));
     for (const auto& [status, count] : summary.fixes_by_status) {
       std::cout << fmt::format("lineloc-robot:   {:>6} fixes {}\n", count, status);
     }

@@ -18,6 +18,7 @@
 #include <regex>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
@@ -126,6 +127,18 @@ int fixesReceived(const std::string& robot_log) {
     return -1;
   }
   return std::stoi(match[1]);
+}
+
+// The medians (ms) of the robot's exposure -> fix split: front end, backbone,
+// DDS and waiting; empty when its log holds no such line.
+std::vector<double> latencyStageMedians(const std::string& robot_log) {
+  std::smatch match;
+  const std::regex stages(
+      R"(front end ([-0-9.]+)/.*, backbone ([-0-9.]+)/.*, DDS and waiting ([-0-9.]+)/)");
+  if (!std::regex_search(robot_log, match, stages)) {
+    return {};
+  }
+  return {std::stod(match[1]), std::stod(match[2]), std::stod(match[3])};
 }
 
 LineSetData probeLineSet(const std::string& robot_id, uint32_t sequence, int segments) {
@@ -277,6 +290,13 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
     // are no building of the model), so its fix trajectory stays empty.
     EXPECT_EQ(fixesReceived(log(robot_id + ".log")), kFrames) << log(robot_id + ".log");
     EXPECT_TRUE(readTumFile((work_ / (robot_id + ".tum")).string()).empty());
+    // Its latency split: extraction and the backbone's matching take time,
+    // and the rest of each answer's latency is not negative.
+    const std::vector<double> medians_ms = latencyStageMedians(log(robot_id + ".log"));
+    ASSERT_EQ(medians_ms.size(), 3u) << log(robot_id + ".log");
+    EXPECT_GT(medians_ms[0], 0.0);
+    EXPECT_GT(medians_ms[1], 0.0);
+    EXPECT_GE(medians_ms[2], 0.0);
   }
   backbone->signal(SIGTERM);
   EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");

@@ -117,6 +117,28 @@ std::shared_ptr<const MapView> MapTileCache::merged(
   return view;
 }
 
+std::shared_ptr<const MapView> MapTileCache::aroundIfLoaded(const Eigen::Vector3d& position_world,
+                                                            double radius_m) {
+  const std::vector<TileKey> keys = keysAround(position_world, radius_m);
+  std::vector<std::shared_ptr<const MapTile>> found;
+  const std::lock_guard lock(mutex_);
+  for (const TileKey& key : keys) {
+    const auto entry = tiles_.find(key);
+    if (entry == tiles_.end()) {
+      ++stats_.misses;
+      enqueue(key, true);
+      continue;
+    }
+    ++stats_.hits;
+    touch(entry->second, key);
+    found.push_back(entry->second.tile);
+  }
+  if (found.size() < keys.size()) {
+    return nullptr;
+  }
+  return merged(keys, std::move(found));
+}
+
 std::shared_ptr<const MapView> MapTileCache::around(const Eigen::Vector3d& position_world,
                                                     double radius_m) {
   const std::vector<TileKey> keys = keysAround(position_world, radius_m);

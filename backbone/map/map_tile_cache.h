@@ -60,6 +60,12 @@ class MapTileCache {
   // Rethrows the loader's error when a needed tile failed.
   std::shared_ptr<const MapView> around(const Eigen::Vector3d& position_world, double radius_m);
 
+  // The same view when every one of its tiles is in memory; else nullptr,
+  // with the missing tiles queued ahead of prefetches. Never waits for the
+  // database.
+  std::shared_ptr<const MapView> aroundIfLoaded(const Eigen::Vector3d& position_world,
+                                                double radius_m);
+
   // Queues the tiles around a future position for background loading.
   void prefetch(const Eigen::Vector3d& position_world, double radius_m);
 

@@ -7,8 +7,6 @@
 #include <cmath>
 #include <utility>
 
-#include "backbone/map/ground_level.h"
-#include "backbone/service/map_geometry.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -32,9 +30,13 @@ lineloc_msg_FixStatus toFixStatus(AlignmentStatus status) {
 
 LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
                                const PipelineOptions& options)
-    : map_(map), limits_(limits), options_(options) {}
+    : map_(map),
+      limits_(limits),
+      options_(options),
+      maps_(map, options.query_radius_m, options.map_reuse_distance_m) {}
 
 void LineSetHandler::waitForSearches() {
+  maps_.waitUntilIdle();
   search_worker_.waitUntilIdle();
   proof_worker_.waitUntilIdle();
 }
@@ -53,27 +55,6 @@ void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
     map_.prefetch(position + velocity * options_.prefetch_lookahead_s, options_.query_radius_m);
   }
   last_position_[line_set.robot_id] = {line_set.stamp_ns, position};
-}
-
-LineSetHandler::PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view)
-    : view(std::move(map_view)),
-      segments(modelSegments(view->lines)),
-      scene(occlusionScene(view->faces)),
-      ground_level(groundLevel(*view)) {}
-
-std::shared_ptr<const LineSetHandler::PreparedMap> LineSetHandler::prepare(
-    const std::shared_ptr<const MapView>& view) {
-  const auto found = std::find_if(prepared_maps_.begin(), prepared_maps_.end(),
-                                  [&view](const auto& prepared) { return prepared->view == view; });
-  if (found != prepared_maps_.end()) {
-    prepared_maps_.splice(prepared_maps_.begin(), prepared_maps_, found);
-    return prepared_maps_.front();
-  }
-  prepared_maps_.push_front(std::make_shared<const PreparedMap>(view));
-  if (prepared_maps_.size() > kPreparedMaps) {
-    prepared_maps_.pop_back();
-  }
-  return prepared_maps_.front();
 }
 
 PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
@@ -391,18 +372,19 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
   try {
-    const std::shared_ptr<const MapView> view =
-        map_.around(line_set.predicted_T_world_camera.pose.translation(), options_.query_radius_m);
+    const std::shared_ptr<const PreparedMap> map =
+        maps_.around(line_set.predicted_T_world_camera.pose.translation());
     fix.timings.map = steadyClockNs() - start_ns;
-    fix.model_lines = static_cast<uint32_t>(view->lines.size());
     prefetchAlongMotion(line_set);
-    if (view->lines.empty()) {
+    if (!map) {
+      fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
+      return finish(fix, start_ns);
+    }
+    fix.model_lines = static_cast<uint32_t>(map->view->lines.size());
+    if (map->view->lines.empty()) {
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
       return finish(fix, start_ns);
     }
-    const int64_t prepare_start_ns = steadyClockNs();
-    const std::shared_ptr<const PreparedMap> map = prepare(view);
-    fix.timings.visibility = steadyClockNs() - prepare_start_ns;
     const PoseWithCovariance prior = searchPrior(line_set.robot_id, groundedPrior(line_set, *map));
     if (!needsAcquisition(prior, options_.localizer)) {
       trackInto(line_set, *map, prior, localizerOptions(line_set), fix);

@@ -12,9 +12,9 @@
 // off, the street is not.
 //
 // What localization needs of a map view — the model segments, the ray-casting
-// scene of the faces, the ground level — is built once per view and kept for
-// the few most recent views (the tile cache hands out the same view object
-// while its tiles stay the same), so steady frames build nothing.
+// scene of the faces, the ground level — is built once per view, off the
+// frames' path (prepared_maps.h); a frame with no map prepared near it yet
+// is answered with FIX_NO_MATCH_COMPUTED.
 //
 // A frame whose prediction is too poor to track starts a search for the
 // camera on a SearchWorker thread (search_worker.h), unless the robot's last
@@ -67,7 +67,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -79,6 +78,7 @@
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
 #include "backbone/service/predicted_motion.h"
+#include "backbone/service/prepared_maps.h"
 #include "backbone/service/search_worker.h"
 #include "common/geodesy/site_sun.h"
 #include "common/messages/message_validator.h"
@@ -102,6 +102,9 @@ inline constexpr size_t kTimingWindow = 4096;
 
 struct PipelineOptions {
   double query_radius_m = 150.0;
+  // A frame whose own view is still being prepared is localized in a view
+  // asked for this close to it (PreparedMaps).
+  double map_reuse_distance_m = 50.0;
   double prefetch_lookahead_s = 3.0;
   double ground_level_sigma_m = 0.1;
   double confirm_position_m = 0.3;
@@ -149,17 +152,6 @@ class LineSetHandler {
 
  private:
   void prefetchAlongMotion(const LineSetData& line_set);
-  // A map view made ready for localization.
-  struct PreparedMap {
-    explicit PreparedMap(std::shared_ptr<const MapView> map_view);
-    std::shared_ptr<const MapView> view;
-    std::vector<ModelSegment> segments;
-    OcclusionScene scene;
-    std::optional<double> ground_level;
-  };
-  static constexpr size_t kPreparedMaps = 8;
-
-  std::shared_ptr<const PreparedMap> prepare(const std::shared_ptr<const MapView>& view);
   // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
   void trackInto(const LineSetData& line_set, const PreparedMap& map,
@@ -228,7 +220,6 @@ class LineSetHandler {
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
   std::map<std::string, PredictedMotion> motion_;
-  std::list<std::shared_ptr<const PreparedMap>> prepared_maps_;  // most recent first
   struct SearchResult {
     int64_t stamp_ns;
     PoseWithCovariance T_world_camera_found;
@@ -250,6 +241,7 @@ class LineSetHandler {
   std::map<std::string, ConfirmedSearch> confirmed_search_;
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;
+  PreparedMaps maps_;
   // Last, so that they are destroyed first: their searches use the members
   // above. Proof searches, which no frame waits on, run on their own idle one.
   SearchWorker search_worker_{SearchPriority::kBelowTracking};

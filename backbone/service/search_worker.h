@@ -2,7 +2,8 @@
 // + compass start takes a search of about a tenth of a second,
 // pose_acquisition.h) on a thread of their own, so that every LineSet is
 // answered while they run. One search per robot at a time: a robot's next
-// search is accepted once its last one has finished.
+// search is accepted once its last one has finished. The backbone prepares
+// its maps on one too (prepared_maps.h), under a single key.
 //
 // The worker runs below the threads a frame's answer waits on
 // (thread_priority.h): at nice 10 for searches a robot waits on for its

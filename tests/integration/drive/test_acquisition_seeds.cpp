@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
+#include <string>
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "backbone/service/line_set_handler.h"
@@ -55,9 +56,10 @@ test::SimulatedFrames simulateStart(const fs::path& folder, uint64_t seed) {
 }
 
 LineSetData lineSet(const std::vector<ImageSegment>& segments, const PinholeCamera& camera,
-                    uint32_t sequence, const PoseWithCovariance& predicted) {
+                    uint32_t sequence, const PoseWithCovariance& predicted,
+                    const std::string& robot_id = "seeded") {
   LineSetData data;
-  data.robot_id = "seeded";
+  data.robot_id = robot_id;
   data.sequence_number = sequence;
   data.stamp_ns = 1'000'000'000LL + sequence * 500'000'000LL;
   data.camera = camera;
@@ -100,18 +102,28 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
                                      kDgpsSigmaM * n(random));
     const Eigen::Matrix3d yaw_error =
         Eigen::AngleAxisd(kYawSigmaRad * n(random), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    // A fresh handler per seed: no robot state carries over.
+    // A fresh handler per seed: no robot state carries over. Its map, which
+    // a backbone prepares once for the robots around it, is prepared first
+    // (another robot's frame, answered without a pose while it is).
     LineSetHandler handler(map, MessageLimits{}, pipeline);
-    FeatureExtractor extractor(start.calibration);
-    std::optional<PoseFixData> answer;
-    for (uint32_t frame = 0; frame < kFrames; ++frame) {
+    const auto predictedAt = [&](uint32_t frame) {
       PoseWithCovariance predicted;
       predicted.pose.linear() = yaw_error * start.truth[frame].linear();
       predicted.pose.translation() = start.truth[frame].translation() + dgps_error;
       predicted.covariance = diagonalPoseCovariance(kDgpsSigmaM, kYawSigmaRad);
+      return predicted;
+    };
+    handler.handle(
+        LineSetMessage(lineSet({}, start.calibration.camera, 0, predictedAt(0), "map-warm-up"))
+            .message());
+    handler.waitForSearches();
+    FeatureExtractor extractor(start.calibration);
+    std::optional<PoseFixData> answer;
+    for (uint32_t frame = 0; frame < kFrames; ++frame) {
       const std::vector<ImageSegment> segments =
           extractor.extract(cv::imread(start.images[frame], cv::IMREAD_GRAYSCALE)).segments;
-      const LineSetData data = lineSet(segments, start.calibration.camera, frame, predicted);
+      const LineSetData data =
+          lineSet(segments, start.calibration.camera, frame, predictedAt(frame));
       answer = handler.handle(LineSetMessage(data).message());
       ASSERT_TRUE(answer.has_value());
       handler.waitForSearches();

@@ -87,6 +87,17 @@ TEST(MapTileCache, PrefetchedTilesAreHitsLater) {
   EXPECT_EQ(loader.calls, 4);
 }
 
+TEST(MapTileCache, AroundIfLoadedNeverWaitsButQueuesWhatIsMissing) {
+  CountingLoader loader;
+  MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 64);
+  EXPECT_EQ(cache.aroundIfLoaded({50, 50, 0}, 10.0), nullptr);
+  ASSERT_TRUE(eventually([&] { return cache.aroundIfLoaded({50, 50, 0}, 10.0) != nullptr; }));
+  const auto view = cache.aroundIfLoaded({50, 50, 0}, 10.0);
+  EXPECT_EQ(view->lines.size(), 2u);
+  EXPECT_EQ(cache.around({50, 50, 0}, 10.0), view);
+  EXPECT_EQ(loader.calls, 1);
+}
+
 TEST(MapTileCache, AFailedLoadIsReportedThenRetried) {
   CountingLoader loader;
   loader.failures_left = 1;

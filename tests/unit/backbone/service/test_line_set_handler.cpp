@@ -32,9 +32,10 @@ PoseWithCovariance lookingNorth(const Eigen::Vector3d& position, double position
 
 std::unique_ptr<LineSetMessage> lineSetMessage(std::vector<ImageSegment> segments,
                                                const PoseWithCovariance& predicted,
-                                               uint32_t sequence_number = 3) {
+                                               uint32_t sequence_number = 3,
+                                               const std::string& robot_id = "handler-test") {
   LineSetData data;
-  data.robot_id = "handler-test";
+  data.robot_id = robot_id;
   data.sequence_number = sequence_number;
   data.stamp_ns = 1'000'000 + sequence_number * 50'000'000LL;
   data.camera = kCamera;
@@ -50,6 +51,19 @@ std::vector<ImageSegment> fewSegments() {
     segment.end = {100, 10};
   }
   return segments;
+}
+
+// The handler prepares the map around a frame off the frame's path
+// (prepared_maps.h): another robot's frame at `position` is answered without
+// a pose while it does. Returns once the map there is prepared.
+void prepareMapAt(LineSetHandler& handler, const Eigen::Vector3d& position) {
+  const auto first = handler.handle(
+      lineSetMessage(fewSegments(), lookingNorth(position, 0.1, 0.003), 1, "map-warm-up")
+          ->message());
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->status, lineloc_msg_FIX_NO_MATCH_COMPUTED) << toString(first->status);
+  EXPECT_EQ(first->model_lines, 0u);
+  handler.waitForSearches();
 }
 
 class LineSetHandlerTest : public ::testing::Test {
@@ -102,6 +116,7 @@ void expectWithinThreeSigma(const PoseWithCovariance& fix, const PoseWithCovaria
 TEST_F(LineSetHandlerTest, TracksFromAGoodPrediction) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
   PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
   const auto fix = handler.handle(
@@ -116,6 +131,33 @@ TEST_F(LineSetHandlerTest, TracksFromAGoodPrediction) {
   EXPECT_GT(fix->timings.total, 0);
   EXPECT_GE(fix->timings.total, fix->timings.map);
   EXPECT_EQ(handler.counters().fixes_ok, 1u);
+  EXPECT_EQ(handler.counters().searches, 0u);
+}
+
+// No frame waits for the database or for a scene to be built: the first one
+// is answered without a pose while its map is prepared, a frame 40 m on, whose
+// own view is not prepared yet, is localized in the one prepared nearby.
+TEST_F(LineSetHandlerTest, AnswersAtOnceWhileTheMapIsPreparedThenTracks) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  const auto message = lineSetMessage(observedEdges(database_.conninfo(), truth),
+                                      lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003));
+  const auto first = handler.handle(message->message());
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->status, lineloc_msg_FIX_NO_MATCH_COMPUTED) << toString(first->status);
+  handler.waitForSearches();
+  const auto tracked = handler.handle(message->message());
+  ASSERT_TRUE(tracked.has_value());
+  EXPECT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
+  EXPECT_EQ(tracked->model_lines, 24u);
+
+  // 40 m east the query square takes another column of tiles.
+  const auto moved = handler.handle(
+      lineSetMessage(fewSegments(), lookingNorth({53, -30, 1.5}, 0.1, 0.003), 4)->message());
+  ASSERT_TRUE(moved.has_value());
+  EXPECT_EQ(moved->status, lineloc_msg_FIX_TOO_FEW_MATCHES) << toString(moved->status);
+  EXPECT_EQ(moved->model_lines, 24u);
   EXPECT_EQ(handler.counters().searches, 0u);
 }
 
@@ -177,6 +219,7 @@ void expectTrackedAfterSearches(LineSetHandler& handler, const std::string& conn
 TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   const PoorStart start;
   const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
   ASSERT_GE(seen.size(), 6u);
@@ -195,6 +238,7 @@ TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmed
 TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPrediction) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   PoorStart start;
   const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
   expectSearched(handler, seen, start.predicted, 2);
@@ -215,6 +259,7 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilASearchFromElsewher
   MapTileCache cache = makeCache(database_.conninfo());
   const PipelineOptions options;
   LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
   const PoorStart start;
   const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
   expectSearched(handler, seen, start.predicted, 2);
@@ -289,6 +334,7 @@ TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& co
 TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.4f);
 
   expectSearched(handler, frame.seen, frame.predicted, 6);
@@ -313,6 +359,7 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
   options.localizer.acquisition.search.max_hypotheses = 1;
   options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
   LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
   const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.8f);
 
   const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 6)->message());
@@ -327,6 +374,7 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   PoorStart start;
   const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
   expectSearched(handler, seen, start.predicted, 2);
@@ -341,11 +389,16 @@ TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed
 TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
   const auto near = lineSetMessage(fewSegments(), lookingNorth({5, -20, 1.5}, 0.1, 0.003));
   EXPECT_EQ(handler.handle(near->message())->status, lineloc_msg_FIX_TOO_FEW_MATCHES);
+  // Far from any prepared map: answered without a pose until the map there
+  // is prepared, which holds no line.
   const auto far = lineSetMessage(fewSegments(), lookingNorth({5000, 0, 1.5}));
+  EXPECT_EQ(handler.handle(far->message())->status, lineloc_msg_FIX_NO_MATCH_COMPUTED);
+  handler.waitForSearches();
   EXPECT_EQ(handler.handle(far->message())->status, lineloc_msg_FIX_NO_MAP_LINES);
-  EXPECT_EQ(handler.counters().answered, 2u);
+  EXPECT_EQ(handler.counters().answered, 4u);
 }
 
 TEST_F(LineSetHandlerTest, DropsAndCountsMalformedInputThenKeepsServing) {
@@ -371,6 +424,9 @@ TEST_F(LineSetHandlerTest, UnreachableDatabaseIsAnsweredAsInternalErrorAndCounte
   MapTileCache cache = makeCache("host=127.0.0.1 port=1 user=nobody dbname=none connect_timeout=2");
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
   const auto message = lineSetMessage(fewSegments(), lookingNorth({0, 0, 0}));
+  // Answered at once while the map is loaded; the next frame learns it failed.
+  EXPECT_EQ(handler.handle(message->message())->status, lineloc_msg_FIX_NO_MATCH_COMPUTED);
+  handler.waitForSearches();
   const auto fix = handler.handle(message->message());
   ASSERT_TRUE(fix.has_value());
   EXPECT_EQ(fix->status, lineloc_msg_FIX_INTERNAL_ERROR);

@@ -1,0 +1,91 @@
+#include "backbone/service/prepared_maps.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "backbone/map/ground_level.h"
+#include "backbone/service/map_geometry.h"
+
+namespace lineloc {
+namespace {
+
+// The one key the worker runs its preparations under: one at a time.
+constexpr char kPreparation[] = "map";
+
+}  // namespace
+
+PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view, const Eigen::Vector3d& centre)
+    : view(std::move(map_view)),
+      centre_world(centre),
+      segments(modelSegments(view->lines)),
+      scene(occlusionScene(view->faces)),
+      ground_level(groundLevel(*view)) {}
+
+PreparedMaps::PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m)
+    : tiles_(tiles), query_radius_m_(query_radius_m), reuse_distance_m_(reuse_distance_m) {}
+
+std::shared_ptr<const PreparedMap> PreparedMaps::around(const Eigen::Vector3d& position_world) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (failure_) {
+      std::rethrow_exception(std::exchange(failure_, nullptr));
+    }
+  }
+  if (const std::shared_ptr<const MapView> view =
+          tiles_.aroundIfLoaded(position_world, query_radius_m_)) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (std::shared_ptr<const PreparedMap> prepared = findPrepared(view)) {
+      return prepared;
+    }
+  }
+  worker_.submit(kPreparation, [this, position_world] { prepare(position_world); });
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return nearestPrepared(position_world);
+}
+
+void PreparedMaps::waitUntilIdle() {
+  worker_.waitUntilIdle();
+}
+
+void PreparedMaps::prepare(const Eigen::Vector3d& position_world) {
+  try {
+    const std::shared_ptr<const MapView> view = tiles_.around(position_world, query_radius_m_);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (findPrepared(view)) {
+        return;
+      }
+    }
+    auto prepared = std::make_shared<const PreparedMap>(view, position_world);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    prepared_.push_front(std::move(prepared));
+    if (prepared_.size() > kPreparedMaps) {
+      prepared_.pop_back();
+    }
+  } catch (...) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    failure_ = std::current_exception();
+  }
+}
+
+std::shared_ptr<const PreparedMap> PreparedMaps::findPrepared(
+    const std::shared_ptr<const MapView>& view) {
+  const auto found = std::find_if(prepared_.begin(), prepared_.end(),
+                                  [&view](const auto& prepared) { return prepared->view == view; });
+  if (found == prepared_.end()) {
+    return nullptr;
+  }
+  prepared_.splice(prepared_.begin(), prepared_, found);
+  return prepared_.front();
+}
+
+std::shared_ptr<const PreparedMap> PreparedMaps::nearestPrepared(
+    const Eigen::Vector3d& position_world) const {
+  const auto near = std::find_if(
+      prepared_.begin(), prepared_.end(), [&](const std::shared_ptr<const PreparedMap>& prepared) {
+        return (prepared->centre_world - position_world).head<2>().norm() <= reuse_distance_m_;
+      });
+  return near != prepared_.end() ? *near : nullptr;
+}
+
+}  // namespace lineloc

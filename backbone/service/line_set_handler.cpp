@@ -133,17 +133,14 @@ LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_
                         line_set.camera, acquisition);
   const double tracked_score = verificationScore(line_set.segments, map.segments, map.scene,
                                                  tracked, line_set.camera, acquisition);
-  const double offset_m = (found.T_world_camera.pose.translation() - tracked.translation()).norm();
+  const std::string scores =
+      fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}",
+                  (found.T_world_camera.pose.translation() - tracked.translation()).norm(),
+                  tracked_score, found_score);
   if (tracked_score >= acquisition.ambiguous_score_fraction * found_score) {
-    return {Proof::kUndecided,
-            fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}; "
-                        "tried again later",
-                        offset_m, tracked_score, found_score)};
+    return {Proof::kUndecided, scores + "; tried again later"};
   }
-  return {Proof::kContradicts,
-          fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}: "
-                      "tracking stops until two searches confirm each other",
-                      offset_m, tracked_score, found_score)};
+  return {Proof::kContradicts, scores + ": tracking stops until two searches confirm each other"};
 }
 
 void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,

@@ -9,9 +9,11 @@
 // (thread_priority.h): at nice 10 for searches a robot waits on for its
 // fixes, so that they still get a share of a busy machine; at SCHED_IDLE for
 // searches nothing waits on (a proof of tracking, line_set_handler.h), so
-// that they take no time from tracked frames. On 50 simulated Delft drives,
-// frames answered while a nice-10 proof search ran took 14.8 ms from
-// exposure to fix at the 99th percentile, against 10.7 ms for the others.
+// that they get no share of a core another thread wants. That does not make
+// them free: on 50 simulated Delft drives, frames answered while a proof
+// search ran took 14.8 ms from exposure to fix at the 99th percentile at
+// nice 10 and 13.9 ms at SCHED_IDLE, against 10.7 and 10.3 ms for the others
+// (about 530 frames of 21000 each time, so the 99th percentile is a handful).
 #pragma once
 
 #include <condition_variable>

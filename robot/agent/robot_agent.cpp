@@ -378,8 +378,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         line_set.segments = features.segments;
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);
-        writer.write(message.message());
         receiver.expect(line_set.sequence_number, exposure_wall_ns, wallClockNs());
+        writer.write(message.message());
         in_flight = {true, line_set.sequence_number, due_ns + kDecodeUnansweredAfterNs};
         ++summary.frames_sent;
         summary.line_set_bytes.push_back(dds::serializedSizeBytes(message.message()));

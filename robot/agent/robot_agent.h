@@ -64,10 +64,12 @@ struct RobotRunSummary {
   // answers that carried a pose (FIX_OK).
   std::vector<int64_t> latency_ns;
   std::vector<int64_t> pose_latency_ns;
-  // latency_ns split, per answered frame: exposure -> LineSet written (the
-  // robot's front end), the backbone's own time (the PoseFix's
+  // latency_ns split, per answered frame: exposure -> LineSet handed to DDS
+  // (the robot's front end), the backbone's own time (the PoseFix's
   // timings.total), and the rest (DDS both ways, and the answer waiting to
-  // be read between the robot's other work).
+  // be read between the robot's other work). The backbone can start on a
+  // LineSet before the write that sent it has returned, so the front end
+  // ends before the write.
   std::vector<int64_t> front_end_ns;
   std::vector<int64_t> backbone_ns;
   std::vector<int64_t> transport_ns;

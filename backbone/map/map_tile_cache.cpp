@@ -117,24 +117,31 @@ std::shared_ptr<const MapView> MapTileCache::merged(
   return view;
 }
 
+void MapTileCache::request(const std::vector<TileKey>& keys) {
+  for (const TileKey& key : keys) {
+    failed_.erase(key);
+    if (tiles_.count(key) > 0) {
+      ++stats_.hits;
+    } else {
+      ++stats_.misses;
+      enqueue(key, true);
+    }
+  }
+}
+
 std::shared_ptr<const MapView> MapTileCache::aroundIfLoaded(const Eigen::Vector3d& position_world,
                                                             double radius_m) {
   const std::vector<TileKey> keys = keysAround(position_world, radius_m);
   std::vector<std::shared_ptr<const MapTile>> found;
   const std::lock_guard lock(mutex_);
+  request(keys);
   for (const TileKey& key : keys) {
     const auto entry = tiles_.find(key);
     if (entry == tiles_.end()) {
-      ++stats_.misses;
-      enqueue(key, true);
-      continue;
+      return nullptr;
     }
-    ++stats_.hits;
     touch(entry->second, key);
     found.push_back(entry->second.tile);
-  }
-  if (found.size() < keys.size()) {
-    return nullptr;
   }
   return merged(keys, std::move(found));
 }
@@ -143,22 +150,12 @@ std::shared_ptr<const MapView> MapTileCache::around(const Eigen::Vector3d& posit
                                                     double radius_m) {
   const std::vector<TileKey> keys = keysAround(position_world, radius_m);
   std::vector<std::shared_ptr<const MapTile>> found;
-  {
-    std::unique_lock lock(mutex_);
-    for (const TileKey& key : keys) {
-      failed_.erase(key);
-      if (tiles_.count(key) > 0) {
-        ++stats_.hits;
-      } else {
-        ++stats_.misses;
-        enqueue(key, true);
-      }
-    }
-    for (const TileKey& key : keys) {
-      found.push_back(waitForTile(key, lock));
-    }
-    return merged(keys, std::move(found));
+  std::unique_lock lock(mutex_);
+  request(keys);
+  for (const TileKey& key : keys) {
+    found.push_back(waitForTile(key, lock));
   }
+  return merged(keys, std::move(found));
 }
 
 void MapTileCache::prefetch(const Eigen::Vector3d& position_world, double radius_m) {

@@ -91,6 +91,9 @@ class MapTileCache {
   std::shared_ptr<const MapView> merged(const std::vector<TileKey>& keys,
                                         std::vector<std::shared_ptr<const MapTile>> tiles);
 
+  // Under mutex_: counts each key a hit or a miss and queues the missing
+  // ones ahead of prefetches, a failed one again.
+  void request(const std::vector<TileKey>& keys);
   std::vector<TileKey> keysAround(const Eigen::Vector3d& position_world, double radius_m) const;
   Eigen::AlignedBox2d bounds(const TileKey& key) const;
   void enqueue(const TileKey& key, bool urgent);

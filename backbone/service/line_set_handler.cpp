@@ -38,7 +38,6 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
 void LineSetHandler::waitForSearches() {
   maps_.waitUntilIdle();
   search_worker_.waitUntilIdle();
-  proof_worker_.waitUntilIdle();
 }
 
 BackboneCounters LineSetHandler::counters() const {
@@ -283,7 +282,7 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     proof_due = moved_m >= confirmed->second.proof_due_m;
   }
   if (proof_due) {
-    submitSearch(proof_worker_, "proof search", line_set,
+    submitSearch("proof search", line_set,
                  [this, line_set, map, tracked = fix.T_world_camera.pose] {
                    prove(line_set, *map, tracked);
                  });
@@ -307,16 +306,17 @@ PoseWithCovariance LineSetHandler::searchPrior(const std::string& robot_id,
   return widened;
 }
 
-void LineSetHandler::submitSearch(SearchWorker& worker, const char* kind,
-                                  const LineSetData& line_set, std::function<void()> run) {
-  worker.submit(line_set.robot_id, [kind, robot_id = line_set.robot_id,
-                                    sequence = line_set.sequence_number, run = std::move(run)] {
-    try {
-      run();
-    } catch (const std::exception& error) {
-      spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
-    }
-  });
+void LineSetHandler::submitSearch(const char* kind, const LineSetData& line_set,
+                                  std::function<void()> run) {
+  search_worker_.submit(
+      line_set.robot_id, [kind, robot_id = line_set.robot_id, sequence = line_set.sequence_number,
+                          run = std::move(run)] {
+        try {
+          run();
+        } catch (const std::exception& error) {
+          spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
+        }
+      });
 }
 
 void LineSetHandler::countSearch() {
@@ -396,7 +396,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       widenUntilProven(line_set, odometry, map, fix);
       return finish(fix, start_ns);
     }
-    submitSearch(search_worker_, "search", line_set, [this, line_set, odometry, map, prior] {
+    submitSearch("search", line_set, [this, line_set, odometry, map, prior] {
       search(line_set, odometry, *map, prior);
     });
     fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;

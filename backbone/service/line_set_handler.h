@@ -44,8 +44,7 @@
 // search from another viewpoint agrees with tracking: once the robot has
 // moved acquisition_proven_after_m from where its confirmed search saw it, a
 // proof search runs on the worker over proof_position_sigma_m around the
-// frame's tracked pose, on a worker of its own at SCHED_IDLE
-// (search_worker.h). Tracking's covariance comes from the residuals of one
+// frame's tracked pose. Tracking's covariance comes from the residuals of one
 // view, which cannot tell the two basins apart; a view that changes can, but
 // tracking from the wrong basin follows it there (seed 9: 0.5 m off for
 // three metres of driving). A proof search that agrees ends the widening.
@@ -200,10 +199,9 @@ class LineSetHandler {
   // The robot's prediction, widened to proof_position_sigma_m at least, when a
   // proof search ended its tracking; else `prior`.
   PoseWithCovariance searchPrior(const std::string& robot_id, const PoseWithCovariance& prior);
-  // Queues `run` on `worker` unless the robot's last search there still
+  // Queues `run` on the search worker unless the robot's last search still
   // runs; an exception it throws is logged as `kind`'s failure.
-  static void submitSearch(SearchWorker& worker, const char* kind, const LineSetData& line_set,
-                           std::function<void()> run);
+  void submitSearch(const char* kind, const LineSetData& line_set, std::function<void()> run);
   void countSearch();
   // Stamps the total time and counts the answer; logs a slow one.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
@@ -242,10 +240,8 @@ class LineSetHandler {
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;
   PreparedMaps maps_;
-  // Last, so that they are destroyed first: their searches use the members
-  // above. Proof searches, which no frame waits on, run on their own idle one.
-  SearchWorker search_worker_{SearchPriority::kBelowTracking};
-  SearchWorker proof_worker_{SearchPriority::kIdle};
+  // Last, so that it is destroyed first: its searches use the members above.
+  SearchWorker search_worker_;
 };
 
 lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);

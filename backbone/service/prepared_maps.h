@@ -68,7 +68,7 @@ class PreparedMaps {
   std::list<std::shared_ptr<const PreparedMap>> prepared_;  // most recent first
   std::exception_ptr failure_;
   // Last, so that it is destroyed first: its jobs use the members above.
-  SearchWorker worker_{SearchPriority::kBelowTracking};
+  SearchWorker worker_;
 };
 
 }  // namespace lineloc

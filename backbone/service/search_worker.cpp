@@ -7,22 +7,13 @@
 namespace lineloc {
 namespace {
 
-// Below tracking, the DDS threads and, on a shared machine, the robot and
-// its replay's decoding (thread_priority.h).
+// Searches run below tracking, the DDS threads and, on a shared machine, the
+// robot and its replay's decoding (thread_priority.h).
 constexpr int kSearchNice = 10;
-
-void lowerPriority(SearchPriority priority) {
-  if (priority == SearchPriority::kIdle) {
-    idleThreadPriority();
-    return;
-  }
-  lowerThreadPriority(kSearchNice);
-}
 
 }  // namespace
 
-SearchWorker::SearchWorker(SearchPriority priority)
-    : worker_([this, priority] { work(priority); }) {}
+SearchWorker::SearchWorker() : worker_([this] { work(); }) {}
 
 SearchWorker::~SearchWorker() {
   {
@@ -50,8 +41,8 @@ void SearchWorker::waitUntilIdle() {
   idle_.wait(lock, [this] { return busy_robots_.empty(); });
 }
 
-void SearchWorker::work(SearchPriority priority) {
-  lowerPriority(priority);
+void SearchWorker::work() {
+  lowerThreadPriority(kSearchNice);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     job_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });

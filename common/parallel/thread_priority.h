@@ -1,9 +1,7 @@
 // Background work below the threads a frame's answer waits on: the calling
 // thread's Linux nice value (set per thread, and inherited by the threads it
 // starts, parallelFor's among them) is raised to `nice`, so under load the
-// scheduler gives it a share weighted 1024 / 1.25^nice of a nice-0 thread's;
-// or its policy set to SCHED_IDLE (inherited alike), so it runs only on a
-// core no other thread wants, for work nothing waits on.
+// scheduler gives it a share weighted 1024 / 1.25^nice of a nice-0 thread's.
 // The backbone's pose searches take both cores for up to a second and the
 // replay decodes a PNG per frame; at equal priority either holds back the
 // tracked frames' answers, and at SCHED_IDLE the decoding starved during a
@@ -11,7 +9,6 @@
 // always allowed, raising needs privilege) leaves the priority as it was.
 #pragma once
 
-#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -20,12 +17,6 @@ namespace lineloc {
 // Returns whether the calling thread now runs at `nice`.
 inline bool lowerThreadPriority(int nice) {
   return setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), nice) == 0;
-}
-
-// Returns whether the calling thread now runs at SCHED_IDLE.
-inline bool idleThreadPriority() {
-  const sched_param parameters{};
-  return sched_setscheduler(gettid(), SCHED_IDLE, &parameters) == 0;
 }
 
 }  // namespace lineloc

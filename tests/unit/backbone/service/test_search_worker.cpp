@@ -1,8 +1,6 @@
 // The search worker: one search per robot at a time, every accepted search
 // run, queued searches finished before it is destroyed.
 #include <gtest/gtest.h>
-#include <sched.h>
-#include <sys/resource.h>
 
 #include <atomic>
 #include <future>
@@ -25,7 +23,7 @@ TEST(SearchWorker, RefusesASecondSearchForARobotWhileItsFirstRuns) {
     finished.push_back(search);
   };
   {
-    SearchWorker worker(SearchPriority::kBelowTracking);
+    SearchWorker worker;
     ASSERT_TRUE(worker.submit("rover1", [&, released] {
       released.wait();
       finish("rover1 #1");
@@ -39,37 +37,13 @@ TEST(SearchWorker, RefusesASecondSearchForARobotWhileItsFirstRuns) {
 
 TEST(SearchWorker, TakesTheRobotsNextSearchOnceTheLastHasFinished) {
   std::atomic<int> finished{0};
-  SearchWorker worker(SearchPriority::kBelowTracking);
+  SearchWorker worker;
   ASSERT_TRUE(worker.submit("rover1", [&] { ++finished; }));
   worker.waitUntilIdle();
   EXPECT_EQ(finished.load(), 1);
   ASSERT_TRUE(worker.submit("rover1", [&] { ++finished; }));
   worker.waitUntilIdle();
   EXPECT_EQ(finished.load(), 2);
-}
-
-// Where its searches run: nice 10 under the normal policy, or SCHED_IDLE.
-struct SchedulingOfASearch {
-  int policy;
-  int nice;
-};
-
-SchedulingOfASearch schedulingOfASearch(SearchPriority priority) {
-  SchedulingOfASearch seen{};
-  SearchWorker worker(priority);
-  EXPECT_TRUE(worker.submit("rover1", [&seen] {
-    seen.policy = sched_getscheduler(0);
-    seen.nice = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
-  }));
-  worker.waitUntilIdle();
-  return seen;
-}
-
-TEST(SearchWorker, RunsItsSearchesBelowTheThreadsThatAnswerFrames) {
-  const SchedulingOfASearch below = schedulingOfASearch(SearchPriority::kBelowTracking);
-  EXPECT_EQ(below.policy, SCHED_OTHER);
-  EXPECT_GE(below.nice, 10);
-  EXPECT_EQ(schedulingOfASearch(SearchPriority::kIdle).policy, SCHED_IDLE);
 }
 
 }  // namespace

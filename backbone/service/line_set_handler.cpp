@@ -84,11 +84,12 @@ LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) c
   return options;
 }
 
-void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& map,
-                               const PoseWithCovariance& prior, const LocalizerOptions& options,
-                               PoseFixData& fix) {
+void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odometry,
+                           const std::shared_ptr<const PreparedMap>& map,
+                           const PoseWithCovariance& prior, const LocalizerOptions& options,
+                           PoseFixData& fix) {
   const Localization localization =
-      localize(line_set.segments, map.segments, map.scene, prior, line_set.camera, options);
+      localize(line_set.segments, map->segments, map->scene, prior, line_set.camera, options);
   const Alignment& alignment = localization.alignment;
   fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
@@ -96,9 +97,13 @@ void LineSetHandler::trackInto(const LineSetData& line_set, const PreparedMap& m
   fix.status = toFixStatus(alignment.status);
   fix.inliers = static_cast<uint32_t>(alignment.inliers);
   fix.residual_rms_px = static_cast<float>(alignment.rms_residual_px);
-  if (alignment.status == AlignmentStatus::kOk) {
-    fix.T_world_camera = alignment.T_world_camera;
+  if (alignment.status != AlignmentStatus::kOk) {
+    return;
   }
+  fix.T_world_camera =
+      fix_scatter_.try_emplace(line_set.robot_id, options_.fix_scatter)
+          .first->second.floorAndAdd(line_set.stamp_ns, odometry, alignment.T_world_camera);
+  widenUntilProven(line_set, odometry, map, fix);
 }
 
 void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odometry,
@@ -384,16 +389,14 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     }
     const PoseWithCovariance prior = searchPrior(line_set.robot_id, groundedPrior(line_set, *map));
     if (!needsAcquisition(prior, options_.localizer)) {
-      trackInto(line_set, *map, prior, localizerOptions(line_set), fix);
-      widenUntilProven(line_set, odometry, map, fix);
+      track(line_set, odometry, map, prior, localizerOptions(line_set), fix);
       return finish(fix, start_ns);
     }
     const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
     if (carried && !needsAcquisition(*carried, options_.localizer)) {
       LocalizerOptions from_search = localizerOptions(line_set);
       from_search.min_start_step_m = options_.carried_start_step_m;
-      trackInto(line_set, *map, *carried, from_search, fix);
-      widenUntilProven(line_set, odometry, map, fix);
+      track(line_set, odometry, map, *carried, from_search, fix);
       return finish(fix, start_ns);
     }
     submitSearch("search", line_set, [this, line_set, odometry, map, prior] {

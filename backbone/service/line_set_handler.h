@@ -59,6 +59,11 @@
 // (17.1 to 14.1, 8.1 to 8.0). One that finds nothing, an ambiguous view, or a pose the tracked
 // one nearly matches, is tried again after proof_retry_m more.
 //
+// A tracked answer's covariance is raised to half the scatter of the robot's
+// answers of the last second about it, each moved by the robot's motion
+// (fix_scatter.h): a view whose lines fit two alignments flips between them
+// from frame to frame, each reporting its own basin's covariance.
+//
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
 // frames find their map in memory.
@@ -76,6 +81,7 @@
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
+#include "backbone/service/fix_scatter.h"
 #include "backbone/service/predicted_motion.h"
 #include "backbone/service/prepared_maps.h"
 #include "backbone/service/search_worker.h"
@@ -127,6 +133,7 @@ struct PipelineOptions {
   // stage times.
   double slow_answer_ms = 33.0;
   PredictedMotionOptions motion;
+  FixScatterOptions fix_scatter;
   LocalizerOptions localizer;
   // When set, each LineSet is localized under the sun of its stamp instead
   // of localizer.visibility.sunlight (none while the sun is down).
@@ -153,9 +160,11 @@ class LineSetHandler {
   void prefetchAlongMotion(const LineSetData& line_set);
   // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
-  void trackInto(const LineSetData& line_set, const PreparedMap& map,
-                 const PoseWithCovariance& prior, const LocalizerOptions& options,
-                 PoseFixData& fix);
+  // Tracks `line_set` from `prior` into `fix`; an OK answer gets the floor of
+  // the robot's recent answers (fix_scatter.h) and is widened until proven.
+  void track(const LineSetData& line_set, const OdometryPose& odometry,
+             const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior,
+             const LocalizerOptions& options, PoseFixData& fix);
   // Runs on the search worker; `odometry` is the frame's.
   void search(const LineSetData& line_set, const OdometryPose& odometry, const PreparedMap& map,
               const PoseWithCovariance& prior);
@@ -218,6 +227,7 @@ class LineSetHandler {
   BackboneCounters counters_;
   std::map<std::string, StampedPosition> last_position_;
   std::map<std::string, PredictedMotion> motion_;
+  std::map<std::string, FixScatter> fix_scatter_;
   struct SearchResult {
     int64_t stamp_ns;
     PoseWithCovariance T_world_camera_found;

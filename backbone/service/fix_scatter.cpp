@@ -1,0 +1,71 @@
+#include "backbone/service/fix_scatter.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <vector>
+
+namespace lineloc {
+
+Matrix6d raisedToFloor(const Matrix6d& covariance, const Matrix6d& floor) {
+  const Eigen::LLT<Matrix6d> cholesky(covariance);
+  if (cholesky.info() != Eigen::Success) {
+    return covariance;
+  }
+  const Matrix6d L = cholesky.matrixL();
+  const Matrix6d whitened_floor = L.triangularView<Eigen::Lower>().solve(
+      L.triangularView<Eigen::Lower>().solve(floor).transpose());
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(
+      0.5 * (whitened_floor + whitened_floor.transpose()));
+  const Eigen::Matrix<double, 6, 1> raised = eigen.eigenvalues().cwiseMax(1.0);
+  const Matrix6d middle =
+      eigen.eigenvectors() * raised.asDiagonal() * eigen.eigenvectors().transpose();
+  return L * middle * L.transpose();
+}
+
+namespace {
+
+// (1/(n-1)) sum (x_i - mean)(x_i - mean)^T.
+Matrix6d sampleCovariance(const std::vector<Eigen::Matrix<double, 6, 1>>& samples) {
+  Eigen::Matrix<double, 6, 1> mean = Eigen::Matrix<double, 6, 1>::Zero();
+  for (const auto& sample : samples) {
+    mean += sample;
+  }
+  mean /= static_cast<double>(samples.size());
+  Matrix6d covariance = Matrix6d::Zero();
+  for (const auto& sample : samples) {
+    covariance += (sample - mean) * (sample - mean).transpose();
+  }
+  return covariance / static_cast<double>(samples.size() - 1);
+}
+
+}  // namespace
+
+FixScatter::FixScatter(const FixScatterOptions& options) : options_(options) {}
+
+void FixScatter::forgetOlderThan(int64_t stamp_ns, uint64_t epoch) {
+  const auto window_ns = static_cast<int64_t>(options_.window_s * 1e9);
+  while (!recent_.empty() && (recent_.front().odometry.epoch != epoch ||
+                              recent_.front().stamp_ns < stamp_ns - window_ns)) {
+    recent_.pop_front();
+  }
+}
+
+PoseWithCovariance FixScatter::floorAndAdd(int64_t stamp_ns, const OdometryPose& odometry,
+                                           const PoseWithCovariance& answer) {
+  forgetOlderThan(stamp_ns, odometry.epoch);
+  PoseWithCovariance floored = answer;
+  if (static_cast<int>(recent_.size()) >= options_.min_answers) {
+    // Differences from the answer, whose own is zero: d_i = answer^-1 (A_i O_i^-1 O).
+    std::vector<Eigen::Matrix<double, 6, 1>> differences(1, Eigen::Matrix<double, 6, 1>::Zero());
+    for (const RecentAnswer& recent : recent_) {
+      const Eigen::Isometry3d moved =
+          recent.T_world_camera * recent.odometry.T_odom_camera.inverse() * odometry.T_odom_camera;
+      differences.push_back(poseError(answer.pose, moved));
+    }
+    floored.covariance = raisedToFloor(answer.covariance, sampleCovariance(differences));
+  }
+  recent_.push_back({stamp_ns, odometry, answer.pose});
+  return floored;
+}
+
+}  // namespace lineloc

@@ -1,0 +1,75 @@
+// The scatter of a robot's recent answers as a floor under each new answer's
+// covariance: covariance matching (Mehra, "On the identification of variances
+// and adaptive Kalman filtering", IEEE TAC 15(2), 1970; Mohamed & Schwarz,
+// "Adaptive Kalman filtering for INS/GPS", J. Geodesy 73, 1999, eq. 20),
+// with the differences between answers of one pose as the residuals.
+//
+// A view whose lines fit two alignments a few centimetres and a few tenths
+// of a degree apart can flip between them from frame to frame, each answer
+// reporting the covariance of its own basin. On simulated Delft seed 46 (a
+// view down a long street), the fixes of one second alternated between 5 cm
+// and 0.07 deg and 13 cm and 0.27 deg from the truth, against a yaw sigma of
+// 0.08 deg: two of them lay beyond chi^2_6(0.9973) of their covariance.
+//
+// Each recent answer A_i of the robot is moved to the new answer's frame by
+// the robot's own motion (predicted_motion.h), A_i O_i^-1 O, and taken as
+// d_i = poseError(answer, A_i O_i^-1 O); with the new answer's own d = 0,
+// their sample covariance S = (1/(n-1)) sum (d_i - mean)(d_i - mean)^T is
+// Sigma when the answers are as precise as they say. Where S exceeds Sigma,
+// the answer's covariance is raised to it, direction by direction:
+// Sigma' = L max(I, L^-1 S L^-T) L^T, with L the Cholesky factor of Sigma
+// and the eigenvalues of the middle term clamped below at 1. An answer of
+// either basin then covers the other one in proportion to how often the
+// answers fall there. The answers' errors are correlated from frame to frame
+// (one view, one model), so S is a lower bound on their spread, never
+// grounds to shrink Sigma. Offline over the OK fixes of 50 simulated Delft
+// drives (20871), with the true motion: both fixes beyond three sigma came
+// within (NEES 27.4 and 23.4 to 9.4 and 5.9), 1054 grew, 99 % by at most
+// 11 % in position sigma.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+
+#include "backbone/service/predicted_motion.h"
+#include "common/geometry/pose.h"
+
+namespace lineloc {
+
+struct FixScatterOptions {
+  // Answers this recent count (s): dead reckoning over a second errs by
+  // millimetres, a fix by centimetres.
+  double window_s = 1.0;
+  // No floor from fewer answers than this.
+  int min_answers = 5;
+};
+
+// Sigma' = L max(I, L^-1 floor L^-T) L^T for Sigma = L L^T: the covariance
+// raised to `floor` along the directions where it is below it; unchanged when
+// Sigma is not positive definite.
+Matrix6d raisedToFloor(const Matrix6d& covariance, const Matrix6d& floor);
+
+// One robot's recent answers. Not thread-safe: one per robot, used from the
+// thread that answers it.
+class FixScatter {
+ public:
+  explicit FixScatter(const FixScatterOptions& options = {});
+
+  // `answer` at `stamp_ns` and `odometry` with its covariance raised to the
+  // scatter of the recent answers and it; then remembered.
+  PoseWithCovariance floorAndAdd(int64_t stamp_ns, const OdometryPose& odometry,
+                                 const PoseWithCovariance& answer);
+
+ private:
+  struct RecentAnswer {
+    int64_t stamp_ns;
+    OdometryPose odometry;
+    Eigen::Isometry3d T_world_camera;
+  };
+  void forgetOlderThan(int64_t stamp_ns, uint64_t epoch);
+
+  FixScatterOptions options_;
+  std::deque<RecentAnswer> recent_;
+};
+
+}  // namespace lineloc

@@ -79,20 +79,6 @@ double varianceFactor(double chi2, int correspondences) {
   return redundancy > 0 ? std::max(1.0, chi2 / redundancy) : 1.0;
 }
 
-// The smallest covariance at least as large as both a and b in every
-// direction: with a = L L^T and L^-1 b L^-T = V D V^T, L V max(D, 1) V^T L^T.
-Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
-  const Eigen::LLT<Matrix6d> llt(a);
-  const Matrix6d L = llt.matrixL();
-  const Matrix6d whitened =
-      L.triangularView<Eigen::Lower>().solve(L.triangularView<Eigen::Lower>().solve(b).transpose());
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (whitened + whitened.transpose()));
-  const Matrix6d V = eigen.eigenvectors();
-  const Matrix6d covering =
-      L * V * eigen.eigenvalues().cwiseMax(1.0).asDiagonal() * V.transpose() * L.transpose();
-  return 0.5 * (covering + covering.transpose());
-}
-
 // True when two model segments are one physical edge to the camera: the
 // pieces of one model line, or parallel lines within coincident_m of each
 // other (the two creases of a footprint jog a few centimetres deep, of which

@@ -1,26 +1,8 @@
 #include "backbone/service/fix_scatter.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <vector>
 
 namespace lineloc {
-
-Matrix6d raisedToFloor(const Matrix6d& covariance, const Matrix6d& floor) {
-  const Eigen::LLT<Matrix6d> cholesky(covariance);
-  if (cholesky.info() != Eigen::Success) {
-    return covariance;
-  }
-  const Matrix6d L = cholesky.matrixL();
-  const Matrix6d whitened_floor = L.triangularView<Eigen::Lower>().solve(
-      L.triangularView<Eigen::Lower>().solve(floor).transpose());
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(
-      0.5 * (whitened_floor + whitened_floor.transpose()));
-  const Eigen::Matrix<double, 6, 1> raised = eigen.eigenvalues().cwiseMax(1.0);
-  const Matrix6d middle =
-      eigen.eigenvectors() * raised.asDiagonal() * eigen.eigenvectors().transpose();
-  return L * middle * L.transpose();
-}
 
 namespace {
 
@@ -62,7 +44,7 @@ PoseWithCovariance FixScatter::floorAndAdd(int64_t stamp_ns, const OdometryPose&
           recent.T_world_camera * recent.odometry.T_odom_camera.inverse() * odometry.T_odom_camera;
       differences.push_back(poseError(answer.pose, moved));
     }
-    floored.covariance = raisedToFloor(answer.covariance, sampleCovariance(differences));
+    floored.covariance = coveringCovariance(answer.covariance, sampleCovariance(differences));
   }
   recent_.push_back({stamp_ns, odometry, answer.pose});
   return floored;

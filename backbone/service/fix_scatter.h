@@ -16,9 +16,8 @@
 // d_i = poseError(answer, A_i O_i^-1 O); with the new answer's own d = 0,
 // their sample covariance S = (1/(n-1)) sum (d_i - mean)(d_i - mean)^T is
 // Sigma when the answers are as precise as they say. Where S exceeds Sigma,
-// the answer's covariance is raised to it, direction by direction:
-// Sigma' = L max(I, L^-1 S L^-T) L^T, with L the Cholesky factor of Sigma
-// and the eigenvalues of the middle term clamped below at 1. An answer of
+// the answer's covariance is raised to it, direction by direction
+// (coveringCovariance, common/geometry/pose.h). An answer of
 // either basin then covers the other one in proportion to how often the
 // answers fall there. The answers' errors are correlated from frame to frame
 // (one view, one model), so S is a lower bound on their spread, never
@@ -43,11 +42,6 @@ struct FixScatterOptions {
   // No floor from fewer answers than this.
   int min_answers = 5;
 };
-
-// Sigma' = L max(I, L^-1 floor L^-T) L^T for Sigma = L L^T: the covariance
-// raised to `floor` along the directions where it is below it; unchanged when
-// Sigma is not positive definite.
-Matrix6d raisedToFloor(const Matrix6d& covariance, const Matrix6d& floor);
 
 // One robot's recent answers. Not thread-safe: one per robot, used from the
 // thread that answers it.

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lineloc {
 
@@ -57,6 +58,21 @@ PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovarian
   fused.covariance = 0.5 * (fused.covariance + fused.covariance.transpose());
   fused.pose = applyPoseError(a.pose, fused.covariance * information_b * poseError(a.pose, b.pose));
   return fused;
+}
+
+Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
+  const Eigen::LLT<Matrix6d> llt(a);
+  if (llt.info() != Eigen::Success) {
+    return Matrix6d::Constant(std::numeric_limits<double>::infinity());
+  }
+  const Matrix6d L = llt.matrixL();
+  const Matrix6d whitened =
+      L.triangularView<Eigen::Lower>().solve(L.triangularView<Eigen::Lower>().solve(b).transpose());
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (whitened + whitened.transpose()));
+  const Matrix6d V = eigen.eigenvectors();
+  const Matrix6d covering =
+      L * V * eigen.eigenvalues().cwiseMax(1.0).asDiagonal() * V.transpose() * L.transpose();
+  return 0.5 * (covering + covering.transpose());
 }
 
 double largestPositionSigma(const Matrix6d& covariance) {

@@ -49,6 +49,11 @@ PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
 // measurement).
 PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b);
 
+// The smallest covariance at least as large as both a and b in every
+// direction: with a = L L^T and L^-1 b L^-T = V D V^T, L V max(D, 1) V^T L^T.
+// Infinite when a is not positive definite (it bounds nothing).
+Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b);
+
 // Standard deviation along the position covariance's largest principal axis.
 double largestPositionSigma(const Matrix6d& covariance);
 

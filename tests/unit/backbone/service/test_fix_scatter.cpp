@@ -42,35 +42,6 @@ double positionSigmaRatio(const Matrix6d& raised, const Matrix6d& reported) {
   return std::sqrt(raised.topLeftCorner<3, 3>().trace() / reported.topLeftCorner<3, 3>().trace());
 }
 
-TEST(RaisedToFloor, KeepsTheCovarianceWhereTheFloorIsBelowIt) {
-  const Matrix6d covariance = diagonalPoseCovariance(0.1, 0.01);
-  const Matrix6d raised = raisedToFloor(covariance, 0.5 * covariance);
-  EXPECT_LT((raised - covariance).norm(), 1e-12);
-}
-
-TEST(RaisedToFloor, RaisesOnlyTheDirectionsWhereTheFloorIsAbove) {
-  const Matrix6d covariance = diagonalPoseCovariance(0.1, 0.01);
-  Vector6d along_x_and_yaw = Vector6d::Zero();
-  along_x_and_yaw(0) = 0.3;
-  along_x_and_yaw(5) = 0.02;
-  const Matrix6d floor = along_x_and_yaw * along_x_and_yaw.transpose();
-  const Matrix6d raised = raisedToFloor(covariance, floor);
-  // Along the floor's one direction, in the covariance's metric, the floor
-  // takes over: v^T Sigma'^-1 v = 1 for v the floor's direction scaled by its
-  // sigma.
-  EXPECT_NEAR(along_x_and_yaw.dot(raised.ldlt().solve(along_x_and_yaw)), 1.0, 1e-9);
-  // Perpendicular to it, in that metric, nothing changes.
-  EXPECT_NEAR(raised(1, 1), covariance(1, 1), 1e-12);
-  EXPECT_NEAR(raised(2, 2), covariance(2, 2), 1e-12);
-  EXPECT_NEAR(raised(3, 3), covariance(3, 3), 1e-12);
-}
-
-TEST(RaisedToFloor, LeavesACovarianceThatIsNotPositiveDefinite) {
-  Matrix6d singular = diagonalPoseCovariance(0.1, 0.01);
-  singular(2, 2) = 0.0;
-  EXPECT_EQ(raisedToFloor(singular, Matrix6d::Identity()), singular);
-}
-
 // The answers flip between the truth and a neighbouring alignment 0.25 degrees
 // of yaw and 10 cm sideways from it, each reporting its own basin's
 // covariance: the other basin lies beyond three sigma of it.

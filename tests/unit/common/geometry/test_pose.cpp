@@ -108,5 +108,33 @@ TEST(Pose, LargestPositionSigmaIsAlongTheLongestPrincipalAxis) {
   EXPECT_NEAR(largestPositionSigma(covariance), 0.12, 1e-12);
 }
 
+TEST(CoveringCovariance, IsTheFirstWhereItCoversTheSecond) {
+  const Matrix6d covariance = diagonalPoseCovariance(0.1, 0.01);
+  const Matrix6d covering = coveringCovariance(covariance, 0.5 * covariance);
+  EXPECT_LT((covering - covariance).norm(), 1e-12);
+}
+
+TEST(CoveringCovariance, GrowsOnlyTheDirectionsWhereTheSecondIsLarger) {
+  const Matrix6d covariance = diagonalPoseCovariance(0.1, 0.01);
+  Eigen::Matrix<double, 6, 1> along_x_and_yaw = Eigen::Matrix<double, 6, 1>::Zero();
+  along_x_and_yaw(0) = 0.3;
+  along_x_and_yaw(5) = 0.02;
+  const Matrix6d larger_there = along_x_and_yaw * along_x_and_yaw.transpose();
+  const Matrix6d covering = coveringCovariance(covariance, larger_there);
+  // Along the second's one direction it takes over: v^T Sigma'^-1 v = 1
+  // for v that direction scaled by its sigma.
+  EXPECT_NEAR(along_x_and_yaw.dot(covering.ldlt().solve(along_x_and_yaw)), 1.0, 1e-9);
+  // Perpendicular to it, in that metric, nothing changes.
+  EXPECT_NEAR(covering(1, 1), covariance(1, 1), 1e-12);
+  EXPECT_NEAR(covering(2, 2), covariance(2, 2), 1e-12);
+  EXPECT_NEAR(covering(3, 3), covariance(3, 3), 1e-12);
+}
+
+TEST(CoveringCovariance, IsInfiniteForACovarianceThatIsNotPositiveDefinite) {
+  Matrix6d singular = diagonalPoseCovariance(0.1, 0.01);
+  singular(2, 2) = 0.0;
+  EXPECT_FALSE(coveringCovariance(singular, Matrix6d::Identity()).allFinite());
+}
+
 }  // namespace
 }  // namespace lineloc

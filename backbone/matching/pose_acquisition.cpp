@@ -72,6 +72,21 @@ bool byOkThenScore(const Verified& a, const Verified& b) {
   return byScore(a, b);
 }
 
+// Marks an aligned pose kInconsistent when its height lies beyond
+// height_gate_sigmas of the prior's height sigma from the prior's.
+void rejectOffTheHeight(const PoseWithCovariance& prior, const AcquisitionOptions& options,
+                        Alignment& alignment) {
+  const double height_offset_m =
+      alignment.T_world_camera.pose.translation().z() - prior.pose.translation().z();
+  const double gate_m = options.height_gate_sigmas * std::sqrt(prior.covariance(2, 2));
+  if (!hasPose(alignment) || std::abs(height_offset_m) <= gate_m) {
+    return;
+  }
+  alignment.status = AlignmentStatus::kInconsistent;
+  alignment.message = fmt::format("aligned {:.2f} m from the prior's height, beyond {:.2f} m",
+                                  height_offset_m, gate_m);
+}
+
 // The best-scoring aligned alternative that is distinct from `best`.
 const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& best,
                           const PoseSearchOptions& options) {
@@ -120,6 +135,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     Verified& candidate = verified[i];
     candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
     candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
+    rejectOffTheHeight(prior, options, candidate.alignment);
     if (hasPose(candidate.alignment)) {
       candidate.score = scorePose(verifier, image, candidate.visible, scene,
                                   candidate.alignment.T_world_camera.pose, camera, options);

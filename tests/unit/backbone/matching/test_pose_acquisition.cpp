@@ -5,6 +5,8 @@
 // precise pose.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "backbone/matching/localizer.h"
 #include "backbone/matching/pose_acquisition.h"
 #include "synthetic_street.h"
@@ -81,6 +83,31 @@ TEST(PoseAcquisition, AFeaturelessFacadeIsNeverAPrecisePose) {
   const Acquisition acquisition = acquirePose(scene.image, wall.edges, occlusion, dgpsPrior(random),
                                               kCamera, AcquisitionOptions{});
   EXPECT_NE(acquisition.alignment.status, AlignmentStatus::kOk) << acquisition.alignment.message;
+}
+
+// A prior 0.4 m above the camera, sure of its height to 0.1 m: the
+// hypotheses start at that height, and the alignments that reach the truth
+// lie four of its sigmas below it, which the prior rules out.
+TEST(PoseAcquisition, AnAlignmentFarFromThePriorsHeightIsNotTheCamera) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(21);
+  const Scene scene = render(street, occlusion, 0, random);
+  PoseWithCovariance prior = truePose();
+  prior.pose.translation().z() += 0.4;
+  prior.covariance = diagonalPoseCovariance(0.5, kPriorYawSigmaRad);
+  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  AcquisitionOptions ungated;
+  ungated.height_gate_sigmas = std::numeric_limits<double>::infinity();
+  const Acquisition found =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, ungated);
+  ASSERT_EQ(found.alignment.status, AlignmentStatus::kOk) << found.alignment.message;
+  EXPECT_LT(std::abs(found.alignment.T_world_camera.pose.translation().z() -
+                     truePose().pose.translation().z()),
+            0.1);
+  const Acquisition gated =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, AcquisitionOptions{});
+  EXPECT_NE(gated.alignment.status, AlignmentStatus::kOk) << gated.alignment.message;
 }
 
 TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {

@@ -4,24 +4,6 @@
 
 namespace lineloc {
 
-namespace {
-
-// (1/(n-1)) sum (x_i - mean)(x_i - mean)^T.
-Matrix6d sampleCovariance(const std::vector<Eigen::Matrix<double, 6, 1>>& samples) {
-  Eigen::Matrix<double, 6, 1> mean = Eigen::Matrix<double, 6, 1>::Zero();
-  for (const auto& sample : samples) {
-    mean += sample;
-  }
-  mean /= static_cast<double>(samples.size());
-  Matrix6d covariance = Matrix6d::Zero();
-  for (const auto& sample : samples) {
-    covariance += (sample - mean) * (sample - mean).transpose();
-  }
-  return covariance / static_cast<double>(samples.size() - 1);
-}
-
-}  // namespace
-
 FixScatter::FixScatter(const FixScatterOptions& options) : options_(options) {}
 
 void FixScatter::forgetOlderThan(int64_t stamp_ns, uint64_t epoch) {
@@ -37,14 +19,16 @@ PoseWithCovariance FixScatter::floorAndAdd(int64_t stamp_ns, const OdometryPose&
   forgetOlderThan(stamp_ns, odometry.epoch);
   PoseWithCovariance floored = answer;
   if (static_cast<int>(recent_.size()) >= options_.min_answers) {
-    // Differences from the answer, whose own is zero: d_i = answer^-1 (A_i O_i^-1 O).
+    // Differences from the answer, whose own is zero: d_i = answer^-1 (A_i O_i^-1 O);
+    // their sample covariance is their scatter over n - 1 = recent_.size().
     std::vector<Eigen::Matrix<double, 6, 1>> differences(1, Eigen::Matrix<double, 6, 1>::Zero());
     for (const RecentAnswer& recent : recent_) {
       const Eigen::Isometry3d moved =
           recent.T_world_camera * recent.odometry.T_odom_camera.inverse() * odometry.T_odom_camera;
       differences.push_back(poseError(answer.pose, moved));
     }
-    floored.covariance = coveringCovariance(answer.covariance, sampleCovariance(differences));
+    floored.covariance = coveringCovariance(
+        answer.covariance, scatterAboutMean(differences) / static_cast<double>(recent_.size()));
   }
   recent_.push_back({stamp_ns, odometry, answer.pose});
   return floored;

@@ -59,10 +59,10 @@
 // (17.1 to 14.1, 8.1 to 8.0). One that finds nothing, an ambiguous view, or a pose the tracked
 // one nearly matches, is tried again after proof_retry_m more.
 //
-// A tracked answer's covariance is raised to half the scatter of the robot's
-// answers of the last second about it, each moved by the robot's motion
-// (fix_scatter.h): a view whose lines fit two alignments flips between them
-// from frame to frame, each reporting its own basin's covariance.
+// A tracked answer's covariance is raised to the sample covariance of the
+// robot's answers of the last second and it, each moved to its frame by the
+// robot's motion (fix_scatter.h): a view whose lines fit two alignments flips
+// between them from frame to frame, each reporting its own basin's covariance.
 //
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady

@@ -60,6 +60,19 @@ PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovarian
   return fused;
 }
 
+Matrix6d scatterAboutMean(const std::vector<Eigen::Matrix<double, 6, 1>>& samples) {
+  Eigen::Matrix<double, 6, 1> mean = Eigen::Matrix<double, 6, 1>::Zero();
+  for (const auto& sample : samples) {
+    mean += sample;
+  }
+  mean /= static_cast<double>(samples.size());
+  Matrix6d scatter = Matrix6d::Zero();
+  for (const auto& sample : samples) {
+    scatter.noalias() += (sample - mean) * (sample - mean).transpose();
+  }
+  return scatter;
+}
+
 Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
   const Eigen::LLT<Matrix6d> llt(a);
   if (llt.info() != Eigen::Success) {

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace lineloc {
 
@@ -48,6 +49,10 @@ PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
 // by Sigma Sigma_b^-1 e, e = poseError(a, b) (the Kalman update with b as the
 // measurement).
 PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b);
+
+// sum_i (x_i - mean)(x_i - mean)^T over pose error vectors: the sample
+// covariance times n - 1, the jackknife's times (n - 1)^2 / n.
+Matrix6d scatterAboutMean(const std::vector<Eigen::Matrix<double, 6, 1>>& samples);
 
 // The smallest covariance at least as large as both a and b in every
 // direction: with a = L L^T and L^-1 b L^-T = V D V^T, L V max(D, 1) V^T L^T.

@@ -429,17 +429,8 @@ Matrix6d leaveGroupOutCovariance(const PoseProblem& problem,
     }
     shifts.push_back(without.ldlt().solve(group.gradient));
   }
-  Vector6d mean = Vector6d::Zero();
-  for (const Vector6d& shift : shifts) {
-    mean += shift;
-  }
-  mean /= static_cast<double>(shifts.size());
-  Matrix6d spread = Matrix6d::Zero();
-  for (const Vector6d& shift : shifts) {
-    spread.noalias() += (shift - mean) * (shift - mean).transpose();
-  }
   const double count = static_cast<double>(shifts.size());
-  return worldCovariance((count - 1.0) / count * spread, T_world_camera.linear());
+  return worldCovariance((count - 1.0) / count * scatterAboutMean(shifts), T_world_camera.linear());
 }
 
 PoseEstimate refinePose(const PoseProblem& problem, const Eigen::Isometry3d& T_world_camera_start,

@@ -48,6 +48,7 @@ struct GatedLine {
   double length_px = 0.0;
   double start_normal_variance = 0.0;
   double end_normal_variance = 0.0;
+  int polarity = 0;
 };
 
 std::vector<GatedLine> gatedLines(const std::vector<VisibleSegment>& model,
@@ -66,6 +67,7 @@ std::vector<GatedLine> gatedLines(const std::vector<VisibleSegment>& model,
     line.normal = {-line.direction.y(), line.direction.x()};
     line.start_normal_variance = line.normal.dot(p.start_covariance * line.normal) + floor_variance;
     line.end_normal_variance = line.normal.dot(p.end_covariance * line.normal) + floor_variance;
+    line.polarity = segment.polarity;
     lines.push_back(line);
   }
   return lines;
@@ -106,6 +108,17 @@ double overlapPx(const GatedLine& line, const Eigen::Vector2d& q0, const Eigen::
   return std::min(std::max(t0, t1), line.length_px) - std::max(std::min(t0, t1), 0.0);
 }
 
+// False when the model line and the image segment (q0 -> q1) both have a
+// polarity and they differ once read along the line's direction.
+bool polaritiesAgree(const GatedLine& line, const ImageSegment& segment, const Eigen::Vector2d& q0,
+                     const Eigen::Vector2d& q1) {
+  if (line.polarity == 0 || segment.polarity == 0) {
+    return true;
+  }
+  const int along_line = line.direction.dot(q1 - q0) >= 0.0 ? segment.polarity : -segment.polarity;
+  return along_line == line.polarity;
+}
+
 }  // namespace
 
 std::vector<std::vector<LineMatch>> gateCandidates(const std::vector<ImageSegment>& image,
@@ -127,7 +140,8 @@ std::vector<std::vector<LineMatch>> gateCandidates(const std::vector<ImageSegmen
     for (size_t m = 0; m < lines.size(); ++m) {
       if (!(lines[m].length_px >= 1e-9) ||
           startBeyondGate(lines[m], q0, q0_variance_bound, options.gate_chi2) ||
-          overlapPx(lines[m], q0, q1) < options.min_overlap_fraction * image_length) {
+          overlapPx(lines[m], q0, q1) < options.min_overlap_fraction * image_length ||
+          (options.use_polarity && !polaritiesAgree(lines[m], image[i], q0, q1))) {
         continue;
       }
       const double chi2 = gateChi2(lines[m], image[i]);

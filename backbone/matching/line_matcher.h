@@ -10,7 +10,10 @@
 // distances d_i of its endpoints to the projected model line pass the
 // chi-square gate sum_i d_i^2 / (n^T (Sigma_image_i + Sigma_model) n) <= gate
 // (two degrees of freedom), and it overlaps the projected segment along the
-// line by at least a fraction of its own length.
+// line by at least a fraction of its own length. Where the model predicts which
+// side of the line is brighter (VisibleSegment::polarity, visible_lines.h) and
+// the image segment has a polarity, the two must agree, read along the same
+// direction.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,6 +33,7 @@ struct MatchingOptions {
   // Floor on the model line's projected normal sigma (pixels): model lines are
   // not exact (generalised city models), and the floor keeps gates finite.
   double model_sigma_floor_px = 1.0;
+  bool use_polarity = true;
 };
 
 struct LineMatch {

@@ -57,9 +57,18 @@ double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
 // A ray towards the sun this long leaves every building of a map view behind.
 constexpr double kSunRayLength_m = 2000.0;
 
+// What the probes either side of a model line predict: whether it can show as
+// an edge, and which side is brighter where the model tells (see the header).
+struct ProbedEdge {
+  bool differ = false;
+  // +1: the left side (image, y down) is the brighter one; -1: the right; 0: unknown.
+  int polarity = 0;
+};
+
 // Whether the surfaces seen through two pixels may differ (see the header):
 // false when both rays meet faces of one building that share an orientation
-// or, under a known sun, receive the same light.
+// or, under a known sun, receive the same light. Which side is brighter: the
+// sky (a ray upwards that meets no face) against a face.
 class ContrastProbe {
  public:
   ContrastProbe(const OcclusionScene& scene, const Eigen::Isometry3d& T_world_camera,
@@ -72,13 +81,21 @@ class ContrastProbe {
         min_irradiance_difference_(options.min_irradiance_difference),
         surface_clearance_m_(options.surface_clearance_m) {}
 
-  bool differ(const Eigen::Vector2d& pixel_a, const Eigen::Vector2d& pixel_b) const {
-    const std::optional<SeenSurface> a = surfaceAt(pixel_a);
-    const std::optional<SeenSurface> b = surfaceAt(pixel_b);
-    if (!a || !b || a->building_id != b->building_id) {
-      return true;
+  ProbedEdge probe(const Eigen::Vector2d& left_px, const Eigen::Vector2d& right_px) const {
+    const Eigen::Vector3d left_ray = rayThrough(left_px);
+    const Eigen::Vector3d right_ray = rayThrough(right_px);
+    const std::optional<SeenSurface> left = surfaceAlong(left_ray);
+    const std::optional<SeenSurface> right = surfaceAlong(right_ray);
+    if (!left || !right) {
+      return {true, skySide(left_ray, left.has_value(), right_ray, right.has_value())};
     }
-    return std::abs(a->seen_normal.dot(b->seen_normal)) < same_plane_cos_ && !litAlike(*a, *b);
+    if (left->building_id != right->building_id) {
+      return {true, 0};
+    }
+    if (std::abs(left->seen_normal.dot(right->seen_normal)) >= same_plane_cos_) {
+      return {false, 0};
+    }
+    return {!litAlike(*left, *right), 0};
   }
 
  private:
@@ -89,9 +106,11 @@ class ContrastProbe {
     int64_t building_id;
   };
 
-  std::optional<SeenSurface> surfaceAt(const Eigen::Vector2d& pixel) const {
-    const Eigen::Vector3d ray_world =
-        (T_world_camera_.linear() * (K_inverse_ * pixel.homogeneous())).normalized();
+  Eigen::Vector3d rayThrough(const Eigen::Vector2d& pixel) const {
+    return (T_world_camera_.linear() * (K_inverse_ * pixel.homogeneous())).normalized();
+  }
+
+  std::optional<SeenSurface> surfaceAlong(const Eigen::Vector3d& ray_world) const {
     const std::optional<SurfaceHit> hit =
         scene_.firstSurface(T_world_camera_.translation(), ray_world);
     if (!hit) {
@@ -100,6 +119,17 @@ class ContrastProbe {
     const double facing = hit->unit_normal.dot(ray_world) < 0.0 ? 1.0 : -1.0;
     return SeenSurface{T_world_camera_.translation() + hit->distance_m * ray_world,
                        facing * hit->unit_normal, hit->building_id};
+  }
+
+  // +1 when the left side sees the sky (a ray upwards that meets no face) and
+  // the right a face, -1 for the converse; 0 otherwise (the ground, or things
+  // the model lacks, may lie on a side that meets no face).
+  static int skySide(const Eigen::Vector3d& left_ray, bool left_meets_face,
+                     const Eigen::Vector3d& right_ray, bool right_meets_face) {
+    if (!left_meets_face && left_ray.z() > 0.0 && right_meets_face) {
+      return 1;
+    }
+    return !right_meets_face && right_ray.z() > 0.0 && left_meets_face ? -1 : 0;
   }
 
   // E(n) of sunlight.h, in shadow where a face stands between the surface and
@@ -179,20 +209,24 @@ class LineSampler {
     };
     int run_start = -1;
     double run_weight = 0.0;
+    PolarityVotes votes;
     for (int i = 0; i <= samples; ++i) {
-      const double fraction =
-          i < samples ? sampleFraction(probed, at(i), static_cast<double>(i) / (samples - 1)) : 0.0;
-      if (fraction > 0.0) {
+      const SampledPoint sampled =
+          i < samples ? samplePoint(probed, at(i), static_cast<double>(i) / (samples - 1))
+                      : SampledPoint{};
+      if (sampled.fraction > 0.0) {
         run_start = run_start < 0 ? i : run_start;
-        run_weight += fraction;
+        run_weight += sampled.fraction;
+        votes.add(sampled.polarity);
         continue;
       }
       if (run_start >= 0 && (i - 1 - run_start) * step_px >= options_.min_visible_length_px) {
-        visible.push_back(
-            {line.id, line.kind, at(run_start), at(i - 1), run_weight / (i - run_start)});
+        visible.push_back({line.id, line.kind, at(run_start), at(i - 1),
+                           run_weight / (i - run_start), votes.polarity()});
       }
       run_start = -1;
       run_weight = 0.0;
+      votes = {};
     }
   }
 
@@ -207,19 +241,49 @@ class LineSampler {
     double probe_inset;
   };
 
-  // The fraction of viewpoints that see the line's point p_world at t; 0
-  // where the centre does not, or where the line cannot show as an edge.
-  double sampleFraction(const ProbedLine& line, const Eigen::Vector3d& p_world, double t) const {
+  struct SampledPoint {
+    double fraction = 0.0;
+    int polarity = 0;
+  };
+
+  // A piece's polarity: the one every one of its samples predicts. A silhouette
+  // has the sky behind it above the horizon and the ground below, where it
+  // shows the other polarity or none.
+  struct PolarityVotes {
+    int samples = 0;
+    int left_brighter = 0;
+    int right_brighter = 0;
+    void add(int polarity) {
+      ++samples;
+      left_brighter += polarity > 0 ? 1 : 0;
+      right_brighter += polarity < 0 ? 1 : 0;
+    }
+    int polarity() const {
+      if (left_brighter == samples) {
+        return 1;
+      }
+      return right_brighter == samples ? -1 : 0;
+    }
+  };
+
+  // The fraction of viewpoints that see the line's point p_world at t (0
+  // where the centre does not, or where the line cannot show as an edge), and
+  // the polarity the probes predict there. probe_offset_px points to the
+  // right of a -> b (image, y down).
+  SampledPoint samplePoint(const ProbedLine& line, const Eigen::Vector3d& p_world, double t) const {
     if (scene_.blocked(viewpoints_.points[0], p_world, options_.surface_clearance_m)) {
-      return 0.0;
+      return {};
     }
     const double t_probe = std::clamp(t, line.probe_inset, 1.0 - line.probe_inset);
     const Eigen::Vector2d p_px =
         camera_.project(line.a_camera + (line.b_camera - line.a_camera) * t_probe);
-    if (!contrast_.differ(p_px + line.probe_offset_px, p_px - line.probe_offset_px)) {
-      return 0.0;
+    const ProbedEdge edge =
+        contrast_.probe(p_px - line.probe_offset_px, p_px + line.probe_offset_px);
+    if (!edge.differ) {
+      return {};
     }
-    return visibleFraction(scene_, viewpoints_, p_world, options_.surface_clearance_m);
+    return {visibleFraction(scene_, viewpoints_, p_world, options_.surface_clearance_m),
+            options_.predict_polarity ? edge.polarity : 0};
   }
 
   const OcclusionScene& scene_;

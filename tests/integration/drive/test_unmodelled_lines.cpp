@@ -1,22 +1,32 @@
-// How many of the robot's image lines come from things the city model does not
-// hold (paper §3.2: parked cars, trees, façade detail), on the README's main
-// drive: the bundled Delft model, seed 1, 120 s, seen once a second. Each frame
-// is rendered by the simulator and its segments are extracted with the robot's
-// default settings; a segment is explained by the model when the backbone's gate
-// (line_matcher.h) takes it for a model line visible from the true pose under
-// the drive's sun (the demo tells the backbone the sun), with
+// What the robot's image lines on the README's main drive (the bundled Delft
+// model, seed 1, 120 s, seen once a second) say about the city model the
+// backbone matches them with. Each frame is rendered by the simulator and its
+// segments are extracted with the robot's default settings.
+//
+// How many come from things the model does not hold (paper §3.2: parked cars,
+// trees, façade detail). A segment is explained by the model when the
+// backbone's gate (line_matcher.h) takes it for a model line visible from the
+// true pose under the drive's sun (the demo tells the backbone the sun), with
 // no pose uncertainty: within chi^2_2(0.999) of the line given the segment's
 // own endpoint covariance and the 1 px model floor, overlapping it by 30 %.
 // Every other segment comes from something not in the model. So that a
 // mismatch of frames and poses cannot pass for clutter, the true poses must
 // explain at least twice as many segments as poses 1 m to the camera's side,
-// where only chance alignments with the model remain.
+// where only chance alignments with the model remain. The issue asks that the
+// accuracy and availability bounds hold with 30 % of the image lines from
+// things not in the model. The demo's drive and the drive test's
+// (tests/integration/drive/test_delft_drive.cpp) are this drive or its first
+// 30 s; this test fails if the simulated streets ever hold fewer than that, so
+// the bounds those runs report are measured at 30 % or more.
 //
-// The issue asks that the accuracy and availability bounds hold with 30 % of
-// the image lines from things not in the model. The demo's drive and the
-// drive test's (tests/integration/drive/test_delft_drive.cpp) are this drive
-// or its first 30 s; this test fails if the simulated streets ever hold fewer
-// than that, so the bounds those runs report are measured at 30 % or more.
+// Whether the polarity the backbone predicts for a model line (visible_lines.h:
+// the sky brighter than a façade against it) agrees with the one the front end
+// measures on the segment it extracts there. Each image segment is paired with
+// its best candidate from the true pose, polarity not used; where both have a
+// polarity, read along the same direction, they must agree on nearly every
+// pair: else the matcher, which keeps segments of the other polarity off a
+// model line, would throw away true matches. A convention flipped on either
+// side (left of start -> end, image y down) agrees on almost none.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -35,6 +45,44 @@ namespace {
 
 constexpr double kMinUnmodelledFraction = 0.30;
 constexpr double kSideStepM = 1.0;
+constexpr double kMinPolarityAgreement = 0.95;
+constexpr int kMinPolarityPairs = 100;
+
+// The demo's drive seen once a second: each frame's true pose and the
+// segments the robot's front end extracts from it, and the model with its
+// scene; simulated once per test process.
+struct DemoDrive {
+  DemoDrive() {
+    const fs::path work = fs::temp_directory_path() / ("demo_drive_" + std::to_string(getpid()));
+    fs::remove_all(work);
+    DriveSimulationConfig config;
+    config.seed = 1;
+    config.duration_s = 120.0;
+    config.camera_rate_hz = 1.0;
+    const test::SimulatedFrames drive = test::simulateDelftDrive(config, work);
+    camera = drive.calibration.camera;
+    truth = drive.truth;
+    FeatureExtractor extractor(drive.calibration);
+    for (const std::string& image : drive.images) {
+      segments.push_back(extractor.extract(cv::imread(image, cv::IMREAD_GRAYSCALE)).segments);
+    }
+    fs::remove_all(work);
+    visibility.sunlight = drivingSunlight(config);
+  }
+
+  PinholeCamera camera;
+  std::vector<Eigen::Isometry3d> truth;
+  std::vector<std::vector<ImageSegment>> segments;
+  TrackedModel model =
+      readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt).model;
+  OcclusionScene scene{model.faces, model.face_building_ids};
+  VisibilityOptions visibility;
+};
+
+const DemoDrive& demoDrive() {
+  static const DemoDrive drive;
+  return drive;
+}
 
 struct LineCounts {
   int segments = 0;
@@ -69,33 +117,20 @@ LineCounts countUnmodelled(const std::vector<ImageSegment>& segments, const Trac
 }
 
 TEST(UnmodelledLines, AtLeastThirtyPercentOfTheDemoDrivesImageLinesAreNotInTheModel) {
-  const fs::path work = fs::temp_directory_path() / ("unmodelled_" + std::to_string(getpid()));
-  fs::remove_all(work);
-  DriveSimulationConfig config;
-  config.seed = 1;
-  config.duration_s = 120.0;
-  config.camera_rate_hz = 1.0;
-  const test::SimulatedFrames drive = test::simulateDelftDrive(config, work);
-  ASSERT_GE(drive.images.size(), 100u);
-
-  const TrackedModel model =
-      readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt).model;
-  const OcclusionScene scene(model.faces, model.face_building_ids);
-  FeatureExtractor extractor(drive.calibration);
-  const VisibilityOptions visibility{.sunlight = drivingSunlight(config)};
+  const DemoDrive& drive = demoDrive();
+  ASSERT_GE(drive.segments.size(), 100u);
   LineCounts total;
   int explained_beside = 0;
-  for (size_t frame = 0; frame < drive.images.size(); ++frame) {
-    const std::vector<ImageSegment> segments =
-        extractor.extract(cv::imread(drive.images[frame], cv::IMREAD_GRAYSCALE)).segments;
-    const LineCounts counts = countUnmodelled(segments, model, scene, drive.truth[frame],
-                                              drive.calibration.camera, visibility);
+  for (size_t frame = 0; frame < drive.segments.size(); ++frame) {
+    const std::vector<ImageSegment>& segments = drive.segments[frame];
+    const LineCounts counts = countUnmodelled(segments, drive.model, drive.scene,
+                                              drive.truth[frame], drive.camera, drive.visibility);
     fmt::print("frame {:3d}: {:3d} segments, {:3d} not in the model\n", frame, counts.segments,
                counts.unmodelled);
     const Eigen::Isometry3d beside =
         drive.truth[frame] * Eigen::Translation3d(kSideStepM, 0.0, 0.0);
     const LineCounts counts_beside =
-        countUnmodelled(segments, model, scene, beside, drive.calibration.camera, visibility);
+        countUnmodelled(segments, drive.model, drive.scene, beside, drive.camera, drive.visibility);
     explained_beside += counts_beside.segments - counts_beside.unmodelled;
     total.segments += counts.segments;
     total.unmodelled += counts.unmodelled;
@@ -114,7 +149,57 @@ TEST(UnmodelledLines, AtLeastThirtyPercentOfTheDemoDrivesImageLinesAreNotInTheMo
   fmt::print("the model explains {} segments from the true poses, {} from {} m beside them\n",
              explained, explained_beside, kSideStepM);
   EXPECT_GE(explained, 2 * explained_beside);
-  fs::remove_all(work);
+}
+
+struct PolarityPairs {
+  int agree = 0;
+  int disagree = 0;
+};
+
+// The image segments' best candidates from the true pose with both polarities known.
+PolarityPairs comparePolarities(const std::vector<ImageSegment>& segments,
+                                const std::vector<VisibleSegment>& visible,
+                                const PoseWithCovariance& truth, const PinholeCamera& camera) {
+  MatchingOptions without_polarity;
+  without_polarity.use_polarity = false;
+  const std::vector<std::vector<LineMatch>> candidates =
+      gateCandidates(segments, visible, truth, camera, without_polarity);
+  PolarityPairs pairs;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    if (candidates[i].empty()) {
+      continue;
+    }
+    const VisibleSegment& model = visible[candidates[i].front().model_index];
+    if (model.polarity == 0 || segments[i].polarity == 0) {
+      continue;
+    }
+    const ProjectedSegment projected =
+        projectSegment(model.start_world, model.end_world, truth, camera);
+    const Eigen::Vector2d image_direction = (segments[i].end - segments[i].start).cast<double>();
+    const bool same_direction = image_direction.dot(projected.end_px - projected.start_px) >= 0.0;
+    const int along_model = same_direction ? segments[i].polarity : -segments[i].polarity;
+    ++(along_model == model.polarity ? pairs.agree : pairs.disagree);
+  }
+  return pairs;
+}
+
+TEST(LinePolarity, TheModelsPredictionAgreesWithTheImageWhereBothTell) {
+  const DemoDrive& drive = demoDrive();
+  PolarityPairs total;
+  for (size_t frame = 0; frame < drive.segments.size(); ++frame) {
+    const PoseWithCovariance truth{drive.truth[frame], Matrix6d::Zero()};
+    const PolarityPairs pairs = comparePolarities(
+        drive.segments[frame],
+        visibleSegments(drive.model.lines, drive.scene, truth, drive.camera, drive.visibility),
+        truth, drive.camera);
+    total.agree += pairs.agree;
+    total.disagree += pairs.disagree;
+  }
+  const int pairs = total.agree + total.disagree;
+  fmt::print("{} of {} model lines with a predicted polarity agree with their image segment\n",
+             total.agree, pairs);
+  ASSERT_GE(pairs, kMinPolarityPairs);
+  EXPECT_GE(total.agree, kMinPolarityAgreement * pairs);
 }
 
 }  // namespace

@@ -116,5 +116,36 @@ TEST(LineMatcher, GatesExactlyThePairsItsDefinitionAdmits) {
   EXPECT_GT(turned_away, 1000);
 }
 
+// A model line across the image predicted brighter on its left (+1), and an
+// image segment lying on it: a candidate unless both have a polarity and they
+// differ read along the same direction.
+TEST(LineMatcher, KeepsImageSegmentsOfTheOtherPolarityOffAModelLine) {
+  PoseWithCovariance T_world_camera;
+  T_world_camera.covariance = diagonalPoseCovariance(0.05, 0.1 * M_PI / 180.0);
+  VisibleSegment model_line;
+  model_line.start_world = {-3.0, -1.0, 10.0};
+  model_line.end_world = {3.0, -1.0, 10.0};
+  model_line.polarity = 1;
+  const ProjectedSegment p =
+      projectSegment(model_line.start_world, model_line.end_world, T_world_camera, kCamera);
+  const auto candidatesFor = [&](bool same_direction, int polarity, bool use_polarity) {
+    ImageSegment seen;
+    seen.start = (same_direction ? p.start_px : p.end_px).cast<float>();
+    seen.end = (same_direction ? p.end_px : p.start_px).cast<float>();
+    seen.polarity = polarity;
+    MatchingOptions options;
+    options.use_polarity = use_polarity;
+    return gateCandidates({seen}, {model_line}, T_world_camera, kCamera, options).front().size();
+  };
+  EXPECT_EQ(candidatesFor(true, 1, true), 1u);
+  EXPECT_EQ(candidatesFor(true, -1, true), 0u);
+  EXPECT_EQ(candidatesFor(false, -1, true), 1u) << "reversed, the same polarity";
+  EXPECT_EQ(candidatesFor(false, 1, true), 0u);
+  EXPECT_EQ(candidatesFor(true, 0, true), 1u) << "the image segment has none";
+  EXPECT_EQ(candidatesFor(true, -1, false), 1u) << "polarity not used";
+  model_line.polarity = 0;
+  EXPECT_EQ(candidatesFor(true, -1, true), 1u) << "the model cannot tell";
+}
+
 }  // namespace
 }  // namespace lineloc

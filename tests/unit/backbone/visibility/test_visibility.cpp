@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "backbone/visibility/visible_lines.h"
 
@@ -81,6 +82,14 @@ TEST(Visibility, HeadOnCubeShowsOnlyItsFrontWall) {
   }
 }
 
+// The image direction of a piece's projection, start -> end.
+Eigen::Vector2d projectedDirection(const VisibleSegment& segment,
+                                   const PoseWithCovariance& T_world_camera) {
+  const Eigen::Isometry3d T_camera_world = T_world_camera.pose.inverse();
+  return kCamera.project(T_camera_world * segment.end_world) -
+         kCamera.project(T_camera_world * segment.start_world);
+}
+
 // Camera at (-15, -15, 5) looking north-east, level: at the south-west corner
 // of a cube [0, 10]^3.
 PoseWithCovariance diagonalView() {
@@ -116,6 +125,36 @@ TEST(Visibility, CornerBetweenWallsTheSunLightsAlikeShowsNoEdge) {
   EXPECT_EQ(visibleUnder(225), without_corner);
   EXPECT_EQ(visibleUnder(45), without_corner);
   EXPECT_EQ(visibleUnder(180), (std::vector<int64_t>{0, 3, 4, 7, 8, 9, 11}));
+}
+
+// Polarity, read along each piece's projection (+1: its left side, image y
+// down, is the brighter). The top edges (4 south, 7 west) have the sky above
+// them, brighter than a façade: +1 where the projection runs rightwards. The
+// bottom edges have the ground below them, the silhouettes (9, 11) the sky
+// above the horizon and the ground below it, and the south-west vertical (8)
+// two walls, whatever the sun: none.
+TEST(Visibility, PredictsThatTheSkyIsBrighterThanAFacadeAgainstIt) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene scene = sceneOf({&cube});
+  const auto polarities = [&](const VisibilityOptions& options) {
+    std::map<int64_t, int> polarity;
+    for (const VisibleSegment& s :
+         visibleSegments(cube.edges, scene, diagonalView(), kCamera, options)) {
+      const bool rightwards = projectedDirection(s, diagonalView()).x() > 0.0;
+      polarity[s.model_line_id] = rightwards ? s.polarity : -s.polarity;
+    }
+    return polarity;
+  };
+  const std::map<int64_t, int> expected = {{0, 0}, {3, 0}, {4, 1}, {7, 1}, {8, 0}, {9, 0}, {11, 0}};
+  VisibilityOptions options;
+  EXPECT_EQ(polarities(options), expected);
+  options.sunlight = Sunlight::fromAzimuthElevation(180, 40, 0.35);
+  EXPECT_EQ(polarities(options), expected);
+
+  options.predict_polarity = false;
+  for (const auto& [id, polarity] : polarities(options)) {
+    EXPECT_EQ(polarity, 0) << id;
+  }
 }
 
 // A tower [-5, 5] x [-12, -8] x [0, 30] south of the cube, clear of the

@@ -37,6 +37,19 @@
 // max_position_sigma_m (a long façade seen alone constrains nothing along
 // it), or a refinement failure, each has its own status, so the robot never
 // receives a precise but wrong pose.
+//
+// An ill-conditioned alignment is not answered with its pose and wide
+// covariance either, as a partial fix for the robot's filter to take the
+// well-determined directions from (Zhang, Kaess & Singh, "On degeneracy of
+// optimization-based state estimation problems", ICRA 2016). Tried on the
+// README's two-minute demo: 299 of its 367 ill-conditioned frames (6-12
+// inliers, down a street past parked cars) had a finite covariance with a
+// largest position sigma under 5 m, but only 10 left a single direction open
+// (the others also 0.2-1.6 m across the street and 0.5-14 degrees in yaw).
+// Their errors held for seconds (0.23 m across the street, inside a 0.42 m
+// sigma, for two seconds); fused at 30 Hz as the robot fuses fixes, they took
+// it 6-9 cm off where dead reckoning alone stayed within 4 cm, and three were
+// beyond three sigma.
 #pragma once
 
 #include <cstdint>

@@ -33,6 +33,7 @@ struct MatchingOptions {
   // Floor on the model line's projected normal sigma (pixels): model lines are
   // not exact (generalised city models), and the floor keeps gates finite.
   double model_sigma_floor_px = 1.0;
+  // Keep image segments off model lines of the other predicted polarity.
   bool use_polarity = true;
 };
 

@@ -39,9 +39,9 @@
 // predict it. The matcher keeps image segments of the other polarity off it
 // (line_matcher.h). The sun might tell too, the lit face of a corner against
 // its shaded one, but windows and shop fronts darker than the shaded wall sit
-// at many corners: on a simulated Delft drive (tests/integration/drive,
-// test_line_polarity) 16 of 99 such predictions disagreed with the image,
-// against none of 372 from the sky.
+// at many corners: over the first minute of the demo's drive (the LinePolarity
+// test, tests/integration/drive/test_unmodelled_lines.cpp) 16 of 99 such
+// predictions disagreed with the image, against none of 372 from the sky.
 #pragma once
 
 #include <Eigen/Core>

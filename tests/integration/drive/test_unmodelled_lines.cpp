@@ -23,13 +23,13 @@
 // the sky brighter than a façade against it) agrees with the one the front end
 // measures on the segment it extracts there. Each image segment is paired with
 // its best candidate from the true pose, polarity not used; where both have a
-// polarity, read along the same direction, they must agree on nearly every
-// pair: else the matcher, which keeps segments of the other polarity off a
-// model line, would throw away true matches. A convention flipped on either
+// polarity, the gate with polarity must still take that pair nearly always:
+// else it would throw away true matches. A convention flipped on either
 // side (left of start -> end, image y down) agrees on almost none.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
@@ -156,7 +156,8 @@ struct PolarityPairs {
   int disagree = 0;
 };
 
-// The image segments' best candidates from the true pose with both polarities known.
+// Each image segment's best candidate from the true pose without polarity,
+// where both have one: agreeing when the gate with polarity still takes it.
 PolarityPairs comparePolarities(const std::vector<ImageSegment>& segments,
                                 const std::vector<VisibleSegment>& visible,
                                 const PoseWithCovariance& truth, const PinholeCamera& camera) {
@@ -164,21 +165,21 @@ PolarityPairs comparePolarities(const std::vector<ImageSegment>& segments,
   without_polarity.use_polarity = false;
   const std::vector<std::vector<LineMatch>> candidates =
       gateCandidates(segments, visible, truth, camera, without_polarity);
+  const std::vector<std::vector<LineMatch>> with_polarity =
+      gateCandidates(segments, visible, truth, camera, {});
   PolarityPairs pairs;
   for (size_t i = 0; i < segments.size(); ++i) {
     if (candidates[i].empty()) {
       continue;
     }
-    const VisibleSegment& model = visible[candidates[i].front().model_index];
-    if (model.polarity == 0 || segments[i].polarity == 0) {
+    const int best = candidates[i].front().model_index;
+    if (visible[best].polarity == 0 || segments[i].polarity == 0) {
       continue;
     }
-    const ProjectedSegment projected =
-        projectSegment(model.start_world, model.end_world, truth, camera);
-    const Eigen::Vector2d image_direction = (segments[i].end - segments[i].start).cast<double>();
-    const bool same_direction = image_direction.dot(projected.end_px - projected.start_px) >= 0.0;
-    const int along_model = same_direction ? segments[i].polarity : -segments[i].polarity;
-    ++(along_model == model.polarity ? pairs.agree : pairs.disagree);
+    const bool kept =
+        std::any_of(with_polarity[i].begin(), with_polarity[i].end(),
+                    [best](const LineMatch& match) { return match.model_index == best; });
+    ++(kept ? pairs.agree : pairs.disagree);
   }
   return pairs;
 }

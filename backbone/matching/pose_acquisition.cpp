@@ -168,7 +168,10 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
   acquisition.summary.best_score = best->score;
-  acquisition.summary.rival_score = rival != nullptr ? rival->score : 0.0;
+  if (rival != nullptr) {
+    acquisition.summary.rival_score = rival->score;
+    acquisition.summary.T_world_camera_rival = rival->alignment.T_world_camera.pose;
+  }
   if (acquisition.alignment.inliers < options.min_inliers) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message =

@@ -114,6 +114,8 @@ struct SearchSummary {
   // best distinct rival (0: none).
   double best_score = 0.0;
   double rival_score = 0.0;
+  // The rival's aligned pose (identity when there is none).
+  Eigen::Isometry3d T_world_camera_rival = Eigen::Isometry3d::Identity();
   // Time of the grid search alone (pose_search.h).
   int64_t search_ns = 0;
 };

@@ -180,23 +180,33 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
   logSearch("proof search", line_set, localization, verdict.outcome, search_ns);
 }
 
+namespace {
+
+// Where a pose puts the camera, and its optical axis' azimuth clockwise from
+// grid north: atan2(r_x, r_y) of R's third column.
+std::string describePose(const Eigen::Isometry3d& T_world_camera) {
+  const Eigen::Vector3d axis_world = T_world_camera.linear().col(2);
+  return fmt::format("({:.2f}, {:.2f}, {:.2f}) m looking {:.2f} deg",
+                     T_world_camera.translation().x(), T_world_camera.translation().y(),
+                     T_world_camera.translation().z(),
+                     std::atan2(axis_world.x(), axis_world.y()) * 180.0 / M_PI);
+}
+
+}  // namespace
+
 void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
                                const Localization& localization, const std::string& outcome,
                                int64_t search_ns) {
   const Alignment& alignment = localization.alignment;
   const SearchSummary summary = localization.search.value_or(SearchSummary{});
-  // Where the best aligned hypothesis puts the camera, and its optical axis'
-  // azimuth clockwise from grid north: atan2(r_x, r_y) of R's third column.
-  const Eigen::Isometry3d& best = alignment.T_world_camera.pose;
-  const Eigen::Vector3d axis_world = best.linear().col(2);
+  const std::string rival =
+      summary.rival_score > 0.0 ? ", rival at " + describePose(summary.T_world_camera_rival) : "";
   spdlog::info(
       "{} for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
-      "best / {:.1f} rival, {} inliers, best at ({:.2f}, {:.2f}, {:.2f}) m looking {:.2f} deg, "
-      "{:.0f} ms (grid search {:.0f} ms)",
+      "best / {:.1f} rival, {} inliers, best at {}{}, {:.0f} ms (grid search {:.0f} ms)",
       kind, line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)),
       outcome, summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
-      alignment.inliers, best.translation().x(), best.translation().y(), best.translation().z(),
-      std::atan2(axis_world.x(), axis_world.y()) * 180.0 / M_PI, search_ns * 1e-6,
+      alignment.inliers, describePose(alignment.T_world_camera.pose), rival, search_ns * 1e-6,
       summary.search_ns * 1e-6);
 }
 

@@ -35,6 +35,19 @@
 // scaled, it left acquired poses wider than tracking takes (seed 14 of the 50
 // simulated Delft drives: ten searches confirmed each other and not one frame
 // was tracked from them).
+//
+// Where first fixes are lost. Every simulated Delft drive stands still for its
+// first 5.7 s, so a first fix within 5 s comes from a standing view. Of the 606
+// searches from a standstill over 50 drives, each aligned hypothesis logged
+// against the truth (right: within 0.3 m horizontally and 0.5 degrees of yaw),
+// 69 were answered OK and right, 11 OK and wrong (10 never confirmed, one 0.42
+// m off confirmed: seed 9's neighbouring basin); 82 ambiguous and 99 with too
+// few inliers had the right pose as their best; 26 had it among their other
+// aligned hypotheses; 319 had no right one at all. The search's recall, not the
+// choice among its hypotheses, loses most first fixes. The rivals that made a
+// right best ambiguous were mostly neighbours: three in four lay within 1.6 m
+// (median 1.0 m) and 2 degrees (median 1.3) of it, a yaw traded for a sideways
+// shift along a far façade.
 #pragma once
 
 #include <vector>

@@ -50,6 +50,7 @@
 // shift along a far façade.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "backbone/matching/model_alignment.h"
@@ -127,8 +128,8 @@ struct SearchSummary {
   // best distinct rival (0: none).
   double best_score = 0.0;
   double rival_score = 0.0;
-  // The rival's aligned pose (identity when there is none).
-  Eigen::Isometry3d T_world_camera_rival = Eigen::Isometry3d::Identity();
+  // The rival's aligned pose, when there is one.
+  std::optional<Eigen::Isometry3d> T_world_camera_rival;
   // Time of the grid search alone (pose_search.h).
   int64_t search_ns = 0;
 };

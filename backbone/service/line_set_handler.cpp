@@ -199,8 +199,9 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
                                int64_t search_ns) {
   const Alignment& alignment = localization.alignment;
   const SearchSummary summary = localization.search.value_or(SearchSummary{});
-  const std::string rival =
-      summary.rival_score > 0.0 ? ", rival at " + describePose(summary.T_world_camera_rival) : "";
+  const std::string rival = summary.T_world_camera_rival
+                                ? ", rival at " + describePose(*summary.T_world_camera_rival)
+                                : "";
   spdlog::info(
       "{} for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
       "best / {:.1f} rival, {} inliers, best at {}{}, {:.0f} ms (grid search {:.0f} ms)",

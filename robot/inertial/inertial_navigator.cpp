@@ -10,6 +10,7 @@
 
 #include "common/stats/chi_square.h"
 #include "robot/inertial/measurement_models.h"
+#include "robot/inertial/robust_heading.h"
 
 namespace lineloc {
 namespace {
@@ -27,6 +28,9 @@ constexpr double kMaxGroundAcceleration_mps2 = 2.0;
 constexpr size_t kMinGatedFixesForRestart = 3;
 // Compass readings needed for a start-up heading (1 s at 10 Hz).
 constexpr size_t kMinStartupCompassReadings = 10;
+// Start-up compass readings farther than this many compass sigmas from their
+// circular median are disturbed and left out of the heading (robust_heading.h).
+constexpr double kStartupHeadingGateSigmas = 3.0;
 // Bound on a correlated fix's covariance inflation: a fix of an unchanged view
 // still counts, at a ten-thousandth of an independent one.
 constexpr double kMaxCorrelatedFixInflation = 1e4;
@@ -442,17 +446,17 @@ void InertialNavigator::tryInitialiseFromSensors() {
       startup_compass_.size() < kMinStartupCompassReadings) {
     return;
   }
-  // Circular mean of the recent compass readings.
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  std::vector<double> compass_yaws_rad;
   for (const CompassReading& reading : startup_compass_) {
-    const double yaw = yawFromCompass(reading.magnetic_heading_rad);
-    sum += Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+    compass_yaws_rad.push_back(yawFromCompass(reading.magnetic_heading_rad));
   }
+  const double yaw_rad =
+      robustCircularMean(compass_yaws_rad, kStartupHeadingGateSigmas * config_.compass_sigma_rad);
   const ImuSample& latest = imu_.back().sample;
   NavigationState state;
   state.stamp_ns = latest.stamp_ns;
-  state.q_world_body = quaternionFromYawPitchRoll(std::atan2(sum.y(), sum.x()),
-                                                  alignment->pitch_rad, alignment->roll_rad);
+  state.q_world_body =
+      quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
   state.p_world_body =
       startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
   double gyro_bias_sigma = 0.0;

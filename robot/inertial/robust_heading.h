@@ -1,0 +1,20 @@
+// The heading a set of compass readings agree on, robust to a disturbance
+// (steel, a parked car, a power line shifting the field by 10-40 degrees for
+// seconds) that covers fewer than half of them: the circular median
+//   m = argmin_i sum_j |wrap(psi_j - psi_i)|
+// over the readings, then the circular mean atan2(sum sin psi_j, sum cos psi_j)
+// of the readings within `gate_rad` of m. On the simulated Delft drive of seed
+// 30 the compass turned 34 degrees off 1.2 s into the 2 s start-up window: the
+// plain circular mean of the window lay 12 degrees off, and the disturbed
+// readings then pulled the filter to a heading 35 degrees off with a 0.3 degree
+// sigma; no search found the camera in that drive.
+#pragma once
+
+#include <vector>
+
+namespace lineloc {
+
+// Throws std::invalid_argument when `headings_rad` is empty or `gate_rad` not > 0.
+double robustCircularMean(const std::vector<double>& headings_rad, double gate_rad);
+
+}  // namespace lineloc

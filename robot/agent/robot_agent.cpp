@@ -177,10 +177,12 @@ std::string describe(const NavigatorHealth& health) {
   return fmt::format(
       "{}, position sigma {:.3f} m, yaw sigma {:.2f} deg, vision fixes {} accepted / {} "
       "rejected, DGPS {} accepted / {} skipped / {} rejected, compass {} accepted / {} "
-      "rejected, {} restarts from vision, IMU samples dropped {}",
+      "rejected, {} restarts from vision, {} heading restarts from the compass, IMU samples "
+      "dropped {}",
       toString(health.mode), health.position_sigma_m, health.yaw_sigma_rad * 180.0 / M_PI,
       health.vision.accepted, health.vision.rejected(), health.gps.accepted, health.gps.skipped,
       health.gps.rejected(), health.compass.accepted, health.compass.rejected(), health.restarts,
+      health.heading_restarts,
       health.imu.non_finite + health.imu.saturated + health.imu.out_of_order +
           health.imu.duplicate);
 }

@@ -31,6 +31,9 @@ constexpr size_t kMinStartupCompassReadings = 10;
 // Start-up compass readings farther than this many compass sigmas from their
 // circular median are disturbed and left out of the heading (robust_heading.h).
 constexpr double kStartupHeadingGateSigmas = 3.0;
+// Fraction of a run of gated compass readings that must agree on their offset
+// from the filter's heading to restart it.
+constexpr double kMinAgreeingCompassFraction = 0.9;
 // Bound on a correlated fix's covariance inflation: a fix of an unchanged view
 // still counts, at a ten-thousandth of an independent one.
 constexpr double kMaxCorrelatedFixInflation = 1e4;
@@ -180,6 +183,7 @@ void InertialNavigator::addImu(const ImuSample& sample_imu) {
     restartIfVisionKeepsBeingGated();
   }
   prune();
+  restartHeadingIfCompassKeepsBeingGated();
 }
 
 void InertialNavigator::addGps(const GpsFix& fix) {
@@ -192,7 +196,8 @@ void InertialNavigator::addGps(const GpsFix& fix) {
     tryInitialiseFromSensors();
     return;
   }
-  addMeasurement(fix.stamp_ns, {GpsPayload{fix.p_world_antenna}, std::nullopt, std::nullopt});
+  addMeasurement(fix.stamp_ns,
+                 {GpsPayload{fix.p_world_antenna}, std::nullopt, std::nullopt, std::nullopt});
 }
 
 void InertialNavigator::addCompass(const CompassReading& reading) {
@@ -206,7 +211,7 @@ void InertialNavigator::addCompass(const CompassReading& reading) {
     return;
   }
   addMeasurement(reading.stamp_ns, {YawPayload{yawFromCompass(reading.magnetic_heading_rad)},
-                                    std::nullopt, std::nullopt});
+                                    std::nullopt, std::nullopt, std::nullopt});
 }
 
 MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
@@ -227,7 +232,8 @@ MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
     ++counterOf(counters_.vision, outcome);
     return outcome;
   }
-  const MeasurementOutcome outcome = addMeasurement(stamp_ns, {vision, std::nullopt, std::nullopt});
+  const MeasurementOutcome outcome =
+      addMeasurement(stamp_ns, {vision, std::nullopt, std::nullopt, std::nullopt});
   restartIfVisionKeepsBeingGated();
   return outcome;
 }
@@ -323,6 +329,7 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
   if (!z) {
     return MeasurementOutcome::kDegenerate;
   }
+  measurement.yaw_residual_rad = z->residual(0);
   return fromUpdate(applyUpdate(*z, gate_by_dimension_[1], state, covariance).status);
 }
 
@@ -368,7 +375,11 @@ void InertialNavigator::prune() {
   while (imu_.size() > 1 && imu_[1].sample.stamp_ns <= first_ns) {
     imu_.pop_front();
   }
-  measurements_.erase(measurements_.begin(), measurements_.upper_bound(first_ns));
+  const auto kept = measurements_.upper_bound(first_ns);
+  for (auto it = measurements_.begin(); it != kept; ++it) {
+    trackGatedCompass(it->first, it->second);
+  }
+  measurements_.erase(measurements_.begin(), kept);
   // Start-up heading: the compass readings of the last still window.
   const int64_t compass_from_ns = imu_.back().sample.stamp_ns - config_.alignment.window_ns;
   while (!startup_compass_.empty() && startup_compass_.front().stamp_ns < compass_from_ns) {
@@ -417,6 +428,7 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshots_.push_back(snapshot);
   startup_gps_.reset();
   startup_compass_.clear();
+  gated_compass_.clear();
   startup_vision_.reset();
   replayFrom(0);
 }
@@ -451,7 +463,8 @@ void InertialNavigator::tryInitialiseFromSensors() {
     compass_yaws_rad.push_back(yawFromCompass(reading.magnetic_heading_rad));
   }
   const double yaw_rad =
-      robustCircularMean(compass_yaws_rad, kStartupHeadingGateSigmas * config_.compass_sigma_rad);
+      robustCircularMean(compass_yaws_rad, kStartupHeadingGateSigmas * config_.compass_sigma_rad)
+          .heading_rad;
   const ImuSample& latest = imu_.back().sample;
   NavigationState state;
   state.stamp_ns = latest.stamp_ns;
@@ -623,6 +636,54 @@ void InertialNavigator::restartIfVisionKeepsBeingGated() {
       MeasurementOutcome::kAccepted) {
     ++counters_.restarts;
   }
+}
+
+void InertialNavigator::trackGatedCompass(int64_t stamp_ns, const Measurement& measurement) {
+  if (measurement.outcome != MeasurementOutcome::kAccepted &&
+      measurement.outcome != MeasurementOutcome::kGated) {
+    return;
+  }
+  const bool compass = std::holds_alternative<YawPayload>(measurement.payload);
+  if (measurement.outcome == MeasurementOutcome::kGated && compass &&
+      measurement.yaw_residual_rad) {
+    gated_compass_.push_back({stamp_ns, *measurement.yaw_residual_rad});
+    return;
+  }
+  if (measurement.outcome == MeasurementOutcome::kAccepted &&
+      (compass || std::holds_alternative<VisionPayload>(measurement.payload))) {
+    gated_compass_.clear();
+  }
+}
+
+void InertialNavigator::restartHeadingIfCompassKeepsBeingGated() {
+  if (snapshots_.empty() || config_.compass_gated_restart_after_ns <= 0 || gated_compass_.empty() ||
+      gated_compass_.back().stamp_ns - gated_compass_.front().stamp_ns <
+          config_.compass_gated_restart_after_ns) {
+    return;
+  }
+  std::vector<double> residuals_rad;
+  for (const GatedYaw& gated : gated_compass_) {
+    residuals_rad.push_back(gated.residual_rad);
+  }
+  const RobustHeading offset =
+      robustCircularMean(residuals_rad, kStartupHeadingGateSigmas * config_.compass_sigma_rad);
+  if (offset.inliers < kMinAgreeingCompassFraction * static_cast<double>(residuals_rad.size())) {
+    // A compass that wanders: the run slides on.
+    gated_compass_.erase(gated_compass_.begin());
+    return;
+  }
+  const Snapshot latest = snapshots_.back();
+  NavigationState state = latest.state;
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(offset.heading_rad, Eigen::Vector3d::UnitZ()));
+  state.q_world_body = turn * state.q_world_body;
+  state.v_world_body = turn * state.v_world_body;
+  ErrorCovariance covariance = latest.covariance;
+  covariance.row(kAttitude + 2).setZero();
+  covariance.col(kAttitude + 2).setZero();
+  covariance(kAttitude + 2, kAttitude + 2) =
+      config_.initial_yaw_sigma_rad * config_.initial_yaw_sigma_rad;
+  startAt(state, covariance, latest.imu, false);
+  ++counters_.heading_restarts;
 }
 
 PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {

@@ -32,6 +32,17 @@
 // two wrong solutions breaks the common offset: restarting from either, with
 // the velocity of two fixes a frame apart, threw away a good filter.
 //
+// Heading restart. A heading started from a compass that was disturbed over
+// the whole start-up window (a robot parked beside a car) is precise and
+// wrong: the undisturbed readings that follow are gated, and the backbone's
+// search, which trusts the heading, finds no fix to correct it. Compass
+// readings gated without a break for `compass_gated_restart_after_ns`, with
+// no vision fix applied meanwhile, whose residuals agree on one offset (their
+// robust mean, robust_heading.h, holding kMinAgreeingCompassFraction of
+// them), turn the filter's heading and velocity by that offset and give the
+// yaw its start-up sigma again. Only readings that left the history count:
+// their outcomes are final.
+//
 // Fixes of an unchanged view. A vision fix shares its error with the fixes
 // of a similar view: the same edges, matched the same way. At a standstill it
 // is the same error, and 30 fixes a second fused as independent shrink the
@@ -125,6 +136,12 @@ struct InertialNavigatorConfig {
   double gyro_turn_on_bias_sigma_radps = 0.0035;
   double accel_turn_on_bias_sigma_mps2 = 0.05;
 
+  // Compass readings gated without a break for this long, agreeing on one
+  // offset from the filter's heading, with no vision fix applied, restart the
+  // heading from them (0: never). Longer than a disturbance lasts (steel, a
+  // passing car: seconds); the simulator's last 2-6 s.
+  int64_t compass_gated_restart_after_ns = 8'000'000'000;
+
   // Vision fixes gated without a break for this long, moving together, restart
   // the filter from the newest (0: never).
   int64_t vision_gated_restart_after_ns = 1'000'000'000;
@@ -194,7 +211,8 @@ struct NavigatorHealth {
   MeasurementCounters gps;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
-  int64_t restarts = 0;  // from vision, after vision_gated_restart_after_ns of gated fixes
+  int64_t restarts = 0;          // from vision, after vision_gated_restart_after_ns of gated fixes
+  int64_t heading_restarts = 0;  // from the compass, after compass_gated_restart_after_ns
   ImuCounters imu;
 };
 
@@ -254,6 +272,8 @@ class InertialNavigator {
     std::optional<MeasurementOutcome> outcome;
     // A vision fix's residual z - h(x) against the filter when last applied.
     std::optional<Eigen::Matrix<double, 6, 1>> vision_residual;
+    // A compass reading's yaw residual, likewise.
+    std::optional<double> yaw_residual_rad;
   };
   struct Snapshot {
     NavigationState state;
@@ -284,6 +304,11 @@ class InertialNavigator {
     Eigen::Vector3d velocity_mps;
     double velocity_variance = 0.0;
     Eigen::Vector3d attitude_offset_rad;
+  };
+  // A gated compass reading whose outcome is final (it left the history).
+  struct GatedYaw {
+    int64_t stamp_ns = 0;
+    double residual_rad = 0.0;
   };
   struct StartVelocity {
     Eigen::Vector3d v_world_mps;
@@ -319,6 +344,11 @@ class InertialNavigator {
   std::vector<GatedFix> gatedVisionRun() const;
   std::optional<ResidualDrift> commonResidualDrift(const std::vector<GatedFix>& run) const;
   void restartIfVisionKeepsBeingGated();
+  // Extends or ends the run of gated compass readings with a measurement
+  // leaving the history: a gated reading extends it, an accepted reading or
+  // vision fix ends it.
+  void trackGatedCompass(int64_t stamp_ns, const Measurement& measurement);
+  void restartHeadingIfCompassKeepsBeingGated();
   Eigen::Vector3d initialGyroBias(double& sigma_radps) const;
   double yawFromCompass(double magnetic_heading_rad) const;
 
@@ -327,6 +357,8 @@ class InertialNavigator {
   std::array<double, 7> gate_by_dimension_{};
   StillnessDetector alignment_detector_;
   StillnessDetector zero_velocity_detector_;
+  // Gated compass readings since the last accepted one or vision fix, oldest first.
+  std::vector<GatedYaw> gated_compass_;
   std::optional<StaticAlignment> alignment_;
 
   std::deque<BufferedImu> imu_;

@@ -33,7 +33,7 @@ double circularMedian(const std::vector<double>& headings_rad) {
 
 }  // namespace
 
-double robustCircularMean(const std::vector<double>& headings_rad, double gate_rad) {
+RobustHeading robustCircularMean(const std::vector<double>& headings_rad, double gate_rad) {
   if (headings_rad.empty()) {
     throw std::invalid_argument("robustCircularMean: no headings");
   }
@@ -43,13 +43,15 @@ double robustCircularMean(const std::vector<double>& headings_rad, double gate_r
   const double median = circularMedian(headings_rad);
   double sum_sin = 0.0;
   double sum_cos = 0.0;
+  int inliers = 0;
   for (const double heading : headings_rad) {
     if (std::abs(wrapAngle(heading - median)) <= gate_rad) {
       sum_sin += std::sin(heading);
       sum_cos += std::cos(heading);
+      ++inliers;
     }
   }
-  return std::atan2(sum_sin, sum_cos);
+  return {std::atan2(sum_sin, sum_cos), inliers};
 }
 
 }  // namespace lineloc

@@ -14,7 +14,13 @@
 
 namespace lineloc {
 
+struct RobustHeading {
+  double heading_rad = 0.0;
+  // Readings within the gate of the median, which the mean is of.
+  int inliers = 0;
+};
+
 // Throws std::invalid_argument when `headings_rad` is empty or `gate_rad` not > 0.
-double robustCircularMean(const std::vector<double>& headings_rad, double gate_rad);
+RobustHeading robustCircularMean(const std::vector<double>& headings_rad, double gate_rad);
 
 }  // namespace lineloc

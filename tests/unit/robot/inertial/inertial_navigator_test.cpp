@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "common/stats/chi_square.h"
 #include "navigator_scenario.h"
@@ -356,15 +357,22 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   EXPECT_GT(health.compass.gated, 0);  // disturbances
 }
 
-// A compass disturbance (34 degrees, as on the simulated Delft drive of seed
-// 30) that starts 1.2 s into the 2 s start-up window leaves the start-up
-// heading alone: within 4 sigma of the mean of the undisturbed readings,
-// 4 * 2 / sqrt(10) = 2.5 degrees. Their plain mean lies 12 degrees off.
-TEST(InertialNavigator, AStartUpHeadingIgnoresADisturbanceOverPartOfTheWindow) {
+struct CompassDrive {
+  std::optional<double> yaw_error_at_start_rad;
+  double yaw_error_at_end_rad = 0.0;
+  double yaw_sigma_at_end_rad = 0.0;
+  NavigatorHealth health;
+};
+
+// A robot standing for `duration_s` (it pulls away in its last half second)
+// with DGPS and a compass (no vision), the compass `offset_rad` off from
+// `from_s` to `until_s` (a parked car, steel).
+CompassDrive standWithCompassDisturbance(double duration_s, double from_s, double until_s,
+                                         double offset_rad) {
   sim::TrajectoryConfig trajectory_config;
   trajectory_config.seed = 30;
-  trajectory_config.duration_s = 6.0;
-  trajectory_config.initial_still_s = 5.0;
+  trajectory_config.duration_s = duration_s;
+  trajectory_config.initial_still_s = duration_s - 0.5;
   trajectory_config.start_yaw_rad = 0.6;
   const sim::GroundTruthTrajectory trajectory(trajectory_config);
   const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 30);
@@ -375,14 +383,15 @@ TEST(InertialNavigator, AStartUpHeadingIgnoresADisturbanceOverPartOfTheWindow) {
   compass_model.disturbance_rate_hz = 0.0;
   auto compass = sim::synthesiseCompass(trajectory, compass_model, 0.0, 30);
   const int64_t t0 = imu.front().stamp_ns;
-  constexpr double kDisturbanceRad = 34.0 * M_PI / 180.0;
   for (sim::SimCompassReading& reading : compass) {
-    if (reading.stamp_ns - t0 >= 1'200'000'000) {
-      reading.magnetic_heading_rad += kDisturbanceRad;
+    const double t_s = static_cast<double>(reading.stamp_ns - t0) * 1e-9;
+    if (t_s >= from_s && t_s < until_s) {
+      reading.magnetic_heading_rad += offset_rad;
     }
   }
 
   InertialNavigator navigator{InertialNavigatorConfig{}};
+  CompassDrive drive;
   size_t next_gps = 0;
   size_t next_compass = 0;
   for (const sim::SimImuSample& sample : imu) {
@@ -395,14 +404,53 @@ TEST(InertialNavigator, AStartUpHeadingIgnoresADisturbanceOverPartOfTheWindow) {
           {compass[next_compass].stamp_ns, compass[next_compass].magnetic_heading_rad});
     }
     navigator.addImu(toImuSample(sample));
-    if (const auto estimate = navigator.state()) {
-      const ErrorVector error =
-          errorBetween(truthState(trajectory, sample.stamp_ns, &sample), estimate->state);
-      EXPECT_LT(std::abs(error(kAttitude + 2)), 2.5 * M_PI / 180.0);
-      return;
+    const auto estimate = navigator.state();
+    if (!estimate) {
+      continue;
     }
+    const ErrorVector error =
+        errorBetween(truthState(trajectory, sample.stamp_ns, &sample), estimate->state);
+    if (!drive.yaw_error_at_start_rad) {
+      drive.yaw_error_at_start_rad = error(kAttitude + 2);
+    }
+    drive.yaw_error_at_end_rad = error(kAttitude + 2);
+    drive.yaw_sigma_at_end_rad = std::sqrt(estimate->covariance(kAttitude + 2, kAttitude + 2));
   }
-  FAIL() << "the navigator never started";
+  drive.health = navigator.health();
+  return drive;
+}
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+// A compass disturbance (34 degrees, as on the simulated Delft drive of seed
+// 30) that starts 1.2 s into the 2 s start-up window leaves the start-up
+// heading alone: within 4 sigma of the mean of the undisturbed readings,
+// 4 * 2 / sqrt(10) = 2.5 degrees. Their plain mean lies 12 degrees off.
+TEST(InertialNavigator, AStartUpHeadingIgnoresADisturbanceOverPartOfTheWindow) {
+  const CompassDrive drive = standWithCompassDisturbance(3.0, 1.2, 3.0, 34.0 * kDegToRad);
+  ASSERT_TRUE(drive.yaw_error_at_start_rad);
+  EXPECT_LT(std::abs(*drive.yaw_error_at_start_rad), 2.5 * kDegToRad);
+}
+
+// A compass disturbed by 25 degrees over the whole start-up window and until
+// 5 s starts the heading 25 degrees off; the undisturbed readings after it are
+// gated, until, compass_gated_restart_after_ns of them later, they restart the
+// heading; it ends within three of its own sigmas.
+TEST(InertialNavigator, ACompassDisturbedOverTheWholeStartRestartsTheHeading) {
+  const CompassDrive drive = standWithCompassDisturbance(20.0, 0.0, 5.0, 25.0 * kDegToRad);
+  ASSERT_TRUE(drive.yaw_error_at_start_rad);
+  EXPECT_GT(std::abs(*drive.yaw_error_at_start_rad), 20.0 * kDegToRad);
+  EXPECT_EQ(drive.health.heading_restarts, 1);
+  EXPECT_LT(std::abs(drive.yaw_error_at_end_rad), 3.0 * drive.yaw_sigma_at_end_rad);
+}
+
+// A disturbance of the longest kind (6 s, 25 degrees) after a good start is
+// gated and restarts nothing.
+TEST(InertialNavigator, ADisturbanceAfterAGoodStartRestartsNothing) {
+  const CompassDrive drive = standWithCompassDisturbance(20.0, 8.0, 14.0, 25.0 * kDegToRad);
+  EXPECT_EQ(drive.health.heading_restarts, 0);
+  EXPECT_GT(drive.health.compass.gated, 50);
+  EXPECT_LT(std::abs(drive.yaw_error_at_end_rad), 3.0 * drive.yaw_sigma_at_end_rad);
 }
 
 // A filter confidently wrong (3 m off, 1 cm sigma, after 10 s on the IMU alone

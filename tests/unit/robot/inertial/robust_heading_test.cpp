@@ -36,7 +36,10 @@ double meanTolerance(int count) {
 TEST(RobustCircularMean, IsTheMeanOfAgreeingReadings) {
   std::mt19937 random(1);
   const std::vector<double> readings = noisyReadings(0.9, 20, random);
-  EXPECT_NEAR(robustCircularMean(readings, kGateRad), 0.9, meanTolerance(20));
+  const RobustHeading mean = robustCircularMean(readings, kGateRad);
+  EXPECT_NEAR(mean.heading_rad, 0.9, meanTolerance(20));
+  // Each reading lies within the 3 sigma gate with probability 0.997.
+  EXPECT_GE(mean.inliers, 19);
 }
 
 TEST(RobustCircularMean, IgnoresADisturbanceOverFewerThanHalfTheReadings) {
@@ -45,14 +48,17 @@ TEST(RobustCircularMean, IgnoresADisturbanceOverFewerThanHalfTheReadings) {
   std::vector<double> readings = noisyReadings(0.9, 14, random);
   const std::vector<double> disturbed = noisyReadings(0.9 - 34.0 * kDeg, 6, random);
   readings.insert(readings.end(), disturbed.begin(), disturbed.end());
-  EXPECT_NEAR(robustCircularMean(readings, kGateRad), 0.9, meanTolerance(14));
+  const RobustHeading mean = robustCircularMean(readings, kGateRad);
+  EXPECT_NEAR(mean.heading_rad, 0.9, meanTolerance(14));
+  EXPECT_GE(mean.inliers, 12);  // none of the 6 disturbed ones
+  EXPECT_LE(mean.inliers, 14);
 }
 
 TEST(RobustCircularMean, AveragesAcrossTheWrap) {
   std::mt19937 random(3);
   const std::vector<double> readings = noisyReadings(M_PI - 1.0 * kDeg, 30, random);
-  const double mean = robustCircularMean(readings, kGateRad);
-  EXPECT_NEAR(std::abs(wrapAngle(mean - (M_PI - 1.0 * kDeg))), 0.0, meanTolerance(30));
+  const RobustHeading mean = robustCircularMean(readings, kGateRad);
+  EXPECT_NEAR(std::abs(wrapAngle(mean.heading_rad - (M_PI - 1.0 * kDeg))), 0.0, meanTolerance(30));
 }
 
 TEST(RobustCircularMean, RejectsNoReadingsAndABadGate) {

@@ -81,9 +81,9 @@ struct AcquisitionOptions {
   VisibilityOptions visibility;
   DistanceMapOptions verification_distances{15.0, 3.0, 1};
   // Added to an acquired pose's covariance (standard deviations); below the
-  // localizer's tracking limits, so the next frame is tracked (with the
-  // alignment's own covariance the sum may pass them: a confirmed search is
-  // tracked from within wider ones, line_set_handler.h).
+  // localizer's tracking limits, so the next frame is tracked, unless the
+  // alignment's own covariance takes the sum past them (a poor match; see
+  // carried_start_step_m, line_set_handler.h).
   double acquired_position_sigma_m = 0.15;
   double acquired_rotation_sigma_rad = 0.3 * M_PI / 180.0;
   // The best aligned hypothesis needs this many inliers: a wrong pose near a

@@ -84,14 +84,6 @@ LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) c
   return options;
 }
 
-LocalizerOptions LineSetHandler::carriedSearchOptions(const LineSetData& line_set) const {
-  LocalizerOptions options = localizerOptions(line_set);
-  options.min_start_step_m = options_.carried_start_step_m;
-  options.max_tracking_position_sigma_m = std::max(
-      options.max_tracking_position_sigma_m, options_.carried_start_step_m / options.start_sigma);
-  return options;
-}
-
 void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odometry,
                            const std::shared_ptr<const PreparedMap>& map,
                            const PoseWithCovariance& prior, const LocalizerOptions& options,
@@ -412,8 +404,9 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       return finish(fix, start_ns);
     }
     const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
-    const LocalizerOptions from_search = carriedSearchOptions(line_set);
-    if (carried && !needsAcquisition(*carried, from_search)) {
+    if (carried && !needsAcquisition(*carried, options_.localizer)) {
+      LocalizerOptions from_search = localizerOptions(line_set);
+      from_search.min_start_step_m = options_.carried_start_step_m;
       track(line_set, odometry, map, *carried, from_search, fix);
       return finish(fix, start_ns);
     }

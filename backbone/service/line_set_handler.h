@@ -119,14 +119,13 @@ struct PipelineOptions {
   // A confirmed search result starts tracking for this long after its frame.
   double carry_search_s = 1.0;
   // Tracking from a carried search probes this far along the horizontal axes
-  // (LocalizerOptions::min_start_step_m), start_sigma of a position sigma
-  // carried_start_step_m / start_sigma: it tracks a carried pose that wide,
-  // though the robot's own predictions must be as narrow as
-  // max_tracking_position_sigma_m. An acquired pose's covariance is its
-  // alignment's widened for confidence plus the search's resolution; on the
-  // simulated Delft drive of seed 7, standing still, two searches confirmed
-  // each other 0.29 m from the truth with a 0.207 m sigma, above the 0.2 m
-  // floor, and no frame was tracked from them.
+  // (LocalizerOptions::min_start_step_m). It starts only from a carried pose
+  // within the tracking limits a robot's prediction must meet, although the
+  // probes would reach a sigma of carried_start_step_m / start_sigma (0.33 m):
+  // taking such wider poses too gave earlier first fixes on 29 simulated Delft
+  // drives (seed 13 at 3.4 s instead of 11.9), but seed 20 then tracked two
+  // searches that confirmed each other 9 m along its façade with 13 inliers,
+  // 28 fixes beyond three sigma. A wide acquired covariance marks a poor match.
   double carried_start_step_m = 0.5;
   // Fixes keep the acquired pose's resolution term until a proof search,
   // due once the robot has moved this far from where its confirmed search saw
@@ -167,8 +166,6 @@ class LineSetHandler {
   void prefetchAlongMotion(const LineSetData& line_set);
   // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
-  // Tracking from a carried search: its wider probes and the wider prior they take.
-  LocalizerOptions carriedSearchOptions(const LineSetData& line_set) const;
   // Tracks `line_set` from `prior` into `fix`; an OK answer gets the floor of
   // the robot's recent answers (fix_scatter.h) and is widened until proven.
   void track(const LineSetData& line_set, const OdometryPose& odometry,

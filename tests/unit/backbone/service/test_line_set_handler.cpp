@@ -251,23 +251,6 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
   expectTrackedAfterSearches(handler, database_.conninfo(), start.truth, corrected);
 }
 
-// A confirmed search too wide to track from were it a robot's prediction (its
-// resolution term here 0.25 m) is tracked from all the same: the carried
-// start's probes reach that far.
-TEST_F(LineSetHandlerTest, AConfirmedSearchWiderThanTheTrackingFloorIsTrackedFrom) {
-  MapTileCache cache = makeCache(database_.conninfo());
-  PipelineOptions options;
-  options.localizer.acquisition.acquired_position_sigma_m = 0.25;
-  LineSetHandler handler(cache, MessageLimits{}, options);
-  prepareMapAt(handler, {13, -30, 1.5});
-  const PoorStart start;
-  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
-  expectSearched(handler, seen, start.predicted, 2);
-  expectSearched(handler, seen, start.predicted, 3);
-  expectTrackedAfterSearches(handler, database_.conninfo(), start.truth_moved,
-                             start.predicted_moved);
-}
-
 // A robot that stands still searches the same view twice, and both searches
 // can settle in the same wrong basin: its fixes keep the acquired pose's
 // resolution term until, once it has moved acquisition_proven_after_m, a

@@ -276,6 +276,32 @@ TEST(InertialNavigator, BadFixesAreRejectedAndCounted) {
   EXPECT_EQ(health.mode, NavigatorMode::kTracking);
 }
 
+// DGPS fixes and compass readings, handed to a navigator in time order up to
+// each IMU sample's time.
+class DgpsAndCompassFeed {
+ public:
+  DgpsAndCompassFeed(const std::vector<sim::SimGpsFix>& gps,
+                     const std::vector<sim::SimCompassReading>& compass)
+      : gps_(gps), compass_(compass) {}
+
+  void deliverUntil(InertialNavigator& navigator, int64_t stamp_ns) {
+    for (; next_gps_ < gps_.size() && gps_[next_gps_].stamp_ns <= stamp_ns; ++next_gps_) {
+      navigator.addGps({gps_[next_gps_].stamp_ns, gps_[next_gps_].p_world_antenna});
+    }
+    for (; next_compass_ < compass_.size() && compass_[next_compass_].stamp_ns <= stamp_ns;
+         ++next_compass_) {
+      navigator.addCompass(
+          {compass_[next_compass_].stamp_ns, compass_[next_compass_].magnetic_heading_rad});
+    }
+  }
+
+ private:
+  const std::vector<sim::SimGpsFix>& gps_;
+  const std::vector<sim::SimCompassReading>& compass_;
+  size_t next_gps_ = 0;
+  size_t next_compass_ = 0;
+};
+
 // Start-up without a known pose: standing still for the alignment window,
 // compass (with declination and convergence) and DGPS start the filter with
 // metre-level covariance; then vision fixes pull it in to centimetres, DGPS is
@@ -303,21 +329,13 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   config.grid_bearing_of_true_north_rad = kGridBearingOfTrueNorth;
   InertialNavigator navigator(config);
   std::mt19937_64 random(5);
-  size_t next_gps = 0;
-  size_t next_compass = 0;
+  DgpsAndCompassFeed feed(gps, compass);
   const int64_t t0 = imu.front().stamp_ns;
   const int64_t vision_from = t0 + 20'000'000'000;
   int64_t next_fix = vision_from;
   std::optional<double> yaw_error_at_start;
   for (const sim::SimImuSample& sample : imu) {
-    for (; next_gps < gps.size() && gps[next_gps].stamp_ns <= sample.stamp_ns; ++next_gps) {
-      navigator.addGps({gps[next_gps].stamp_ns, gps[next_gps].p_world_antenna});
-    }
-    for (; next_compass < compass.size() && compass[next_compass].stamp_ns <= sample.stamp_ns;
-         ++next_compass) {
-      navigator.addCompass(
-          {compass[next_compass].stamp_ns, compass[next_compass].magnetic_heading_rad});
-    }
+    feed.deliverUntil(navigator, sample.stamp_ns);
     if (sample.stamp_ns >= next_fix + 100'000'000) {
       navigator.applyVisionFix(
           next_fix,
@@ -392,17 +410,9 @@ CompassDrive standWithCompassDisturbance(double duration_s, double from_s, doubl
 
   InertialNavigator navigator{InertialNavigatorConfig{}};
   CompassDrive drive;
-  size_t next_gps = 0;
-  size_t next_compass = 0;
+  DgpsAndCompassFeed feed(gps, compass);
   for (const sim::SimImuSample& sample : imu) {
-    for (; next_gps < gps.size() && gps[next_gps].stamp_ns <= sample.stamp_ns; ++next_gps) {
-      navigator.addGps({gps[next_gps].stamp_ns, gps[next_gps].p_world_antenna});
-    }
-    for (; next_compass < compass.size() && compass[next_compass].stamp_ns <= sample.stamp_ns;
-         ++next_compass) {
-      navigator.addCompass(
-          {compass[next_compass].stamp_ns, compass[next_compass].magnetic_heading_rad});
-    }
+    feed.deliverUntil(navigator, sample.stamp_ns);
     navigator.addImu(toImuSample(sample));
     const auto estimate = navigator.state();
     if (!estimate) {

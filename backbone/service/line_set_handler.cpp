@@ -166,7 +166,9 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
     }
     switch (verdict.proof) {
       case Proof::kAgrees:
-        confirmed->second.proven = true;
+        confirmed->second.proven =
+            ++confirmed->second.agreeing_proofs >= options_.agreeing_proofs_needed;
+        confirmed->second.proof_due_m += options_.proof_retry_m;
         break;
       case Proof::kUndecided:
         confirmed->second.proof_due_m += options_.proof_retry_m;
@@ -251,7 +253,7 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
     return Confirmation::kDisagrees;
   }
   confirmed_search_.insert_or_assign(
-      line_set.robot_id, ConfirmedSearch{current, false, options_.acquisition_proven_after_m});
+      line_set.robot_id, ConfirmedSearch{current, 0, false, options_.acquisition_proven_after_m});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }

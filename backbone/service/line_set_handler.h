@@ -40,14 +40,18 @@
 // confirmed). Tracking from the carried pose therefore probes
 // carried_start_step_m either way along the horizontal axes, not the
 // tracking floor; and every OK fix keeps the acquired pose's resolution term
-// (acquired_*_sigma, pose_acquisition.h) added to its covariance until a
-// search from another viewpoint agrees with tracking: once the robot has
+// (acquired_*_sigma, pose_acquisition.h) added to its covariance until
+// searches from other viewpoints agree with tracking: once the robot has
 // moved acquisition_proven_after_m from where its confirmed search saw it, a
 // proof search runs on the worker over proof_position_sigma_m around the
 // frame's tracked pose. Tracking's covariance comes from the residuals of one
 // view, which cannot tell the two basins apart; a view that changes can, but
 // tracking from the wrong basin follows it there (seed 9: 0.5 m off for
-// three metres of driving). A proof search that agrees ends the widening.
+// three metres of driving). Proof searches that agree, agreeing_proofs_needed
+// of them from viewpoints at least proof_retry_m apart, end the widening: one
+// can agree with tracking in the wrong basin itself (seed 9 again, with the
+// frames' timing changed: a proof 0.6 m off agreed, and unwidened, 107 fixes
+// lay beyond three sigma), and a basin that a changing view keeps is rarer.
 // One that finds the camera elsewhere ends the tracking only when the tracked
 // pose, scored as the search scores its hypotheses (verificationScore,
 // pose_acquisition.h), falls below ambiguous_score_fraction of the found one:
@@ -127,14 +131,17 @@ struct PipelineOptions {
   // searches that confirmed each other 9 m along its façade with 13 inliers,
   // 28 fixes beyond three sigma. A wide acquired covariance marks a poor match.
   double carried_start_step_m = 0.5;
-  // Fixes keep the acquired pose's resolution term until a proof search,
-  // due once the robot has moved this far from where its confirmed search saw
-  // it, agrees with tracking; over this sigma around the tracked pose (three
-  // sigma: a few windows' widths), tried again after proof_retry_m more when
-  // it finds nothing.
+  // Fixes keep the acquired pose's resolution term until proof searches,
+  // the first due once the robot has moved this far from where its confirmed
+  // search saw it, agree with tracking; over this sigma around the tracked
+  // pose (three sigma: a few windows' widths), each next one due
+  // proof_retry_m further on.
   double acquisition_proven_after_m = 1.0;
   double proof_position_sigma_m = 0.5;
   double proof_retry_m = 1.0;
+  // Agreeing proof searches, each proof_retry_m on from the one before, that
+  // prove tracking.
+  int agreeing_proofs_needed = 2;
   // An answer slower than this (a frame period at 30 Hz) is logged with its
   // stage times.
   double slow_answer_ms = 33.0;
@@ -187,8 +194,8 @@ class LineSetHandler {
   std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
-  // pose_acquisition.h) to an OK fix's covariance until a proof search has
-  // agreed with tracking, and submits that search when it is due.
+  // pose_acquisition.h) to an OK fix's covariance until proof searches have
+  // agreed with tracking, and submits the next one when it is due.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };
@@ -246,6 +253,7 @@ class LineSetHandler {
   // A confirmed search result, and when tracking from it is proven.
   struct ConfirmedSearch {
     SearchResult search;
+    int agreeing_proofs = 0;
     bool proven = false;
     // Motion from the search's viewpoint (m) at which a proof search is due.
     double proof_due_m = 0.0;

@@ -254,8 +254,9 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
 // A robot that stands still searches the same view twice, and both searches
 // can settle in the same wrong basin: its fixes keep the acquired pose's
 // resolution term until, once it has moved acquisition_proven_after_m, a
-// proof search from there agrees with tracking.
-TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilASearchFromElsewhereAgrees) {
+// proof search from there agrees with tracking, and a second one
+// proof_retry_m further on does too.
+TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhereAgree) {
   MapTileCache cache = makeCache(database_.conninfo());
   const PipelineOptions options;
   LineSetHandler handler(cache, MessageLimits{}, options);
@@ -280,16 +281,27 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilASearchFromElsewher
   };
 
   expectFix(start.truth, start.predicted, 4, true);
-  // 1.5 m further north, its prediction moved alike: the proof search is due.
+  // 1.5 m further north, its prediction moved alike: the first proof search
+  // is due; agreeing, it leaves the fixes widened.
   PoseWithCovariance truth = start.truth;
   PoseWithCovariance predicted = start.predicted;
-  truth.pose.translation().y() += 1.5;
-  predicted.pose.translation().y() += 1.5;
+  const auto driveNorth = [&](double distance_m) {
+    truth.pose.translation().y() += distance_m;
+    predicted.pose.translation().y() += distance_m;
+  };
+  driveNorth(1.5);
   expectFix(truth, predicted, 5, true);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 3u);
-  expectFix(truth, predicted, 6, false);
+  expectFix(truth, predicted, 6, true);
   EXPECT_EQ(handler.counters().searches, 3u);
+  // A metre further on, the second one is due; agreeing too, it proves tracking.
+  driveNorth(options.proof_retry_m);
+  expectFix(truth, predicted, 7, true);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 4u);
+  expectFix(truth, predicted, 8, false);
+  EXPECT_EQ(handler.counters().searches, 4u);
 }
 
 // The same start, then the robot drives 1.5 m north, but its odometry says

@@ -166,10 +166,8 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
     }
     switch (verdict.proof) {
       case Proof::kAgrees:
-        confirmed->second.proven =
-            ++confirmed->second.agreeing_proofs >= options_.agreeing_proofs_needed;
-        confirmed->second.proof_due_m += options_.proof_retry_m;
-        break;
+        ++confirmed->second.agreeing_proofs;
+        [[fallthrough]];
       case Proof::kUndecided:
         confirmed->second.proof_due_m += options_.proof_retry_m;
         break;
@@ -253,7 +251,7 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
     return Confirmation::kDisagrees;
   }
   confirmed_search_.insert_or_assign(
-      line_set.robot_id, ConfirmedSearch{current, 0, false, options_.acquisition_proven_after_m});
+      line_set.robot_id, ConfirmedSearch{current, 0, options_.acquisition_proven_after_m});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }
@@ -290,7 +288,8 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     const auto confirmed = confirmed_search_.find(line_set.robot_id);
-    if (confirmed == confirmed_search_.end() || confirmed->second.proven ||
+    if (confirmed == confirmed_search_.end() ||
+        confirmed->second.agreeing_proofs >= options_.agreeing_proofs_needed ||
         confirmed->second.search.odometry.epoch != odometry.epoch) {
       return;
     }

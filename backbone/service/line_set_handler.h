@@ -250,11 +250,11 @@ class LineSetHandler {
   // nullopt when the two are of different epochs.
   static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
                                                            const OdometryPose& odometry);
-  // A confirmed search result, and when tracking from it is proven.
+  // A confirmed search result, and the proof searches that agreed with
+  // tracking from it (proven at agreeing_proofs_needed).
   struct ConfirmedSearch {
     SearchResult search;
     int agreeing_proofs = 0;
-    bool proven = false;
     // Motion from the search's viewpoint (m) at which a proof search is due.
     double proof_due_m = 0.0;
   };

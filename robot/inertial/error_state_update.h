@@ -11,6 +11,8 @@
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <optional>
 
 #include "robot/inertial/navigation_state.h"
 
@@ -59,6 +61,49 @@ UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, Naviga
   covariance = 0.5 * (covariance + covariance.transpose()).eval();
   injectError(K * z.residual, state);
   return {UpdateStatus::kAccepted, nis};
+}
+
+// A measurement whose error persists over the filter's whole span (a DGPS
+// fix: its error is correlated over minutes) bounds the estimate at its own
+// covariance R instead of adding to it: repeated, it carries no new
+// information. With S_p = H P H^T, it updates with the information
+//   W = R^-1 - S_p^-1, its negative eigenvalues clipped to zero,
+// so that S_p becomes R along the directions where it was wider than R and
+// stays where it was not, and with the gain K = P H^T W (I + S_p W)^-1, the
+// Kalman gain P H^T (S_p + W^-1)^-1 for a W that may be singular; then
+// P = (I - K H) P. It is gated with R as any other. Returns nullopt when S_p
+// is within R along every direction: the measurement adds nothing.
+template <int M>
+std::optional<UpdateOutcome> applyBoundingUpdate(const LinearisedMeasurement<M>& z, double gate,
+                                                 NavigationState& state,
+                                                 ErrorCovariance& covariance) {
+  using MatrixMM = Eigen::Matrix<double, M, M>;
+  const Eigen::Matrix<double, kErrorStateSize, M> PHt = covariance * z.jacobian.transpose();
+  const MatrixMM S_p = z.jacobian * PHt;
+  const Eigen::LLT<MatrixMM> llt(S_p + z.noise);
+  const Eigen::LLT<MatrixMM> predicted_llt(S_p);
+  if (llt.info() != Eigen::Success || predicted_llt.info() != Eigen::Success ||
+      !z.residual.allFinite()) {
+    return UpdateOutcome{UpdateStatus::kDegenerate, 0.0};
+  }
+  const Eigen::SelfAdjointEigenSolver<MatrixMM> information(
+      z.noise.inverse() - predicted_llt.solve(MatrixMM::Identity()));
+  const auto clipped = information.eigenvalues().cwiseMax(0.0);
+  if (clipped.maxCoeff() <= 0.0) {
+    return std::nullopt;
+  }
+  const double nis = z.residual.dot(llt.solve(z.residual));
+  if (!(nis <= gate)) {
+    return UpdateOutcome{UpdateStatus::kGated, nis};
+  }
+  const MatrixMM W =
+      information.eigenvectors() * clipped.asDiagonal() * information.eigenvectors().transpose();
+  const Eigen::Matrix<double, kErrorStateSize, M> K =
+      PHt * W * (MatrixMM::Identity() + S_p * W).inverse();
+  covariance = (ErrorCovariance::Identity() - K * z.jacobian) * covariance;
+  covariance = 0.5 * (covariance + covariance.transpose()).eval();
+  injectError(K * z.residual, state);
+  return UpdateOutcome{UpdateStatus::kAccepted, nis};
 }
 
 }  // namespace lineloc

@@ -309,20 +309,15 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     return fromUpdate(outcome.status);
   }
   if (const auto* gps = std::get_if<GpsPayload>(&measurement.payload)) {
-    const double horizontal_variance =
-        covariance.block<2, 2>(kPosition, kPosition).eigenvalues().real().maxCoeff();
     const double gps_variance = config_.gps_horizontal_sigma_m * config_.gps_horizontal_sigma_m;
-    if (horizontal_variance <= gps_variance) {
-      return MeasurementOutcome::kSkipped;
-    }
     const Eigen::Matrix3d noise =
         Eigen::Vector3d(gps_variance, gps_variance,
                         config_.gps_vertical_sigma_m * config_.gps_vertical_sigma_m)
             .asDiagonal();
-    return fromUpdate(applyUpdate(lineariseAntennaPosition(state, gps->p_world_antenna, noise,
-                                                           config_.p_body_gps_antenna),
-                                  gate_by_dimension_[3], state, covariance)
-                          .status);
+    const std::optional<UpdateOutcome> outcome = applyBoundingUpdate(
+        lineariseAntennaPosition(state, gps->p_world_antenna, noise, config_.p_body_gps_antenna),
+        gate_by_dimension_[3], state, covariance);
+    return outcome ? fromUpdate(outcome->status) : MeasurementOutcome::kSkipped;
   }
   const auto& yaw = std::get<YawPayload>(measurement.payload);
   const auto z = lineariseYaw(state, yaw.yaw_rad, config_.compass_sigma_rad);

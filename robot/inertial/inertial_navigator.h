@@ -64,9 +64,12 @@
 // drifting 0.25 m off on that drive (81 OK fixes beyond three sigma).
 //
 // Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
-// only while the filter's horizontal position sigma exceeds the DGPS sigma (its
-// errors are correlated over minutes: repeated fixes add no information, and a
-// vision-tracked pose must not be pulled by them); compass yaw; zero velocity
+// as a bound (applyBoundingUpdate, error_state_update.h): its errors are
+// correlated over minutes, so repeated fixes add no information, and a
+// vision-tracked pose must not be pulled by them; fused as independent, a
+// standing robot's second fix took the sigma from 5 m to 3.5 m, and the truth
+// lay beyond three of those sigmas in 46 of 831 searches at the start of 50
+// simulated Delft drives (a Gaussian gives 9); compass yaw; zero velocity
 // when the IMU is still and the estimated speed small. Each is gated by its
 // normalised innovation squared at `gate_probability` of the chi-square
 // distribution; rejections are counted in health().

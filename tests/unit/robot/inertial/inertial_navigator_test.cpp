@@ -302,6 +302,37 @@ class DgpsAndCompassFeed {
   size_t next_compass_ = 0;
 };
 
+// DGPS errors are correlated over minutes: a robot standing still for a
+// minute of 1 Hz fixes knows its position no better than one fix tells it.
+TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
+  sim::TrajectoryConfig trajectory_config;
+  trajectory_config.seed = 4;
+  trajectory_config.duration_s = 62.0;
+  trajectory_config.initial_still_s = 60.0;
+  const sim::GroundTruthTrajectory trajectory(trajectory_config);
+  const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 3);
+  sim::GpsModel gps_model;
+  gps_model.outage_probability = 0.0;
+  const auto gps = sim::synthesiseGps(trajectory, gps_model, 3);
+  const auto compass = sim::synthesiseCompass(trajectory, sim::CompassModel{}, 0.0, 3);
+  const InertialNavigatorConfig config;
+  InertialNavigator navigator(config);
+  DgpsAndCompassFeed feed(gps, compass);
+  double smallest_sigma_m = std::numeric_limits<double>::infinity();
+  for (const sim::SimImuSample& sample : imu) {
+    feed.deliverUntil(navigator, sample.stamp_ns);
+    navigator.addImu(toImuSample(sample));
+    if (const auto estimate = navigator.state()) {
+      const Eigen::Matrix2d horizontal = estimate->covariance.block<2, 2>(kPosition, kPosition);
+      smallest_sigma_m =
+          std::min(smallest_sigma_m,
+                   std::sqrt(horizontal.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff()));
+    }
+  }
+  EXPECT_GE(smallest_sigma_m, 0.99 * config.gps_horizontal_sigma_m);
+  EXPECT_GT(navigator.health().gps.accepted, 10);
+}
+
 // Start-up without a known pose: standing still for the alignment window,
 // compass (with declination and convergence) and DGPS start the filter with
 // metre-level covariance; then vision fixes pull it in to centimetres, DGPS is

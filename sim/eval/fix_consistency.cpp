@@ -15,14 +15,18 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
   const auto max_gap_ns = static_cast<int64_t>(options.max_ground_truth_gap_s * 1e9);
   FixConsistency consistency;
   consistency.answers = static_cast<int>(fixes.size());
+  std::optional<int64_t> first_ok_stamp_ns;
   for (const LoggedFix& fix : fixes) {
+    if (!first_ok_stamp_ns && fix.status == "ok") {
+      first_ok_stamp_ns = fix.stamp_ns;
+      consistency.first_ok_received_ns = fix.stamp_ns + std::llround(fix.latency_ms * 1e6);
+    }
+    consistency.answers_from_first_ok +=
+        first_ok_stamp_ns && fix.stamp_ns >= *first_ok_stamp_ns ? 1 : 0;
     if (fix.status != "ok") {
       continue;
     }
     ++consistency.ok;
-    if (!consistency.first_ok_received_ns) {
-      consistency.first_ok_received_ns = fix.stamp_ns + std::llround(fix.latency_ms * 1e6);
-    }
     const auto truth = interpolateGroundTruth(ground_truth, fix.stamp_ns, max_gap_ns);
     if (!truth) {
       continue;
@@ -34,16 +38,31 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
   return consistency;
 }
 
+namespace {
+
+// "N answers, M ok", and when there was an OK fix, "(x % of the K answers from the first on)".
+std::string formatAnswers(const FixConsistency& consistency) {
+  std::string answers = fmt::format("{} answers, {} ok", consistency.answers, consistency.ok);
+  if (consistency.answers_from_first_ok > 0) {
+    answers +=
+        fmt::format(" ({:.1f} % of the {} from the first on)",
+                    100.0 * consistency.ok / static_cast<double>(consistency.answers_from_first_ok),
+                    consistency.answers_from_first_ok);
+  }
+  return answers;
+}
+
+}  // namespace
+
 std::string formatFixConsistency(const FixConsistency& consistency,
                                  const FixConsistencyOptions& options) {
   if (consistency.nees.empty()) {
-    return fmt::format("fixes: {} answers, {} ok, none with ground truth\n", consistency.answers,
-                       consistency.ok);
+    return fmt::format("fixes: {}, none with ground truth\n", formatAnswers(consistency));
   }
   return fmt::format(
-      "fixes: {} answers, {} ok; NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = "
+      "fixes: {}; NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = "
       "{:.2f} (precise wrong poses, {:.2f} % of {} with ground truth)\n",
-      consistency.answers, consistency.ok, percentile(consistency.nees, 50),
+      formatAnswers(consistency), percentile(consistency.nees, 50),
       percentile(consistency.nees, 99), consistency.beyond_bound, options.nees_bound,
       100.0 * consistency.beyond_bound / static_cast<double>(consistency.nees.size()),
       consistency.nees.size());

@@ -25,6 +25,9 @@ struct FixConsistencyOptions {
 struct FixConsistency {
   int answers = 0;
   int ok = 0;
+  // Answers to the frames from the first OK fix's on, that one included: the
+  // share of them OK is the availability once the robot has been found.
+  int answers_from_first_ok = 0;
   // When the robot received the first OK fix (its stamp plus its latency),
   // whether or not ground truth covers it: its estimate includes a fix from
   // the next frame stamped at or after this on.
@@ -38,7 +41,8 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
                                       const std::vector<LoggedFix>& fixes,
                                       const FixConsistencyOptions& options);
 
-// One line: answers, OK fixes, NEES median and p99, fixes beyond the bound.
+// One line: answers, OK fixes (and their share of the answers from the first
+// OK fix on), NEES median and p99, fixes beyond the bound.
 std::string formatFixConsistency(const FixConsistency& consistency,
                                  const FixConsistencyOptions& options);
 

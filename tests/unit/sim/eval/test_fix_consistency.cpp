@@ -47,7 +47,12 @@ TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
   EXPECT_NEAR(consistency.nees[1], 25.0, 1e-6);
   EXPECT_EQ(consistency.beyond_bound, 1);
   EXPECT_EQ(consistency.first_ok_received_ns, 2'050'000'000 + 4'500'000);
+  // The frames from the first OK one on: 3 of 4 OK.
+  EXPECT_EQ(consistency.answers_from_first_ok, 4);
   const std::string line = formatFixConsistency(consistency, options);
+  EXPECT_NE(line.find("fixes: 5 answers, 3 ok (75.0 % of the 4 from the first on); "),
+            std::string::npos)
+      << line;
   EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;
 }
 
@@ -56,8 +61,18 @@ TEST(FixConsistency, SaysSoWhenNoFixHasGroundTruth) {
       evaluateFixConsistency(straightDrive(), {fixOff(20'000'000'000, 0.0)}, {});
   EXPECT_TRUE(consistency.nees.empty());
   EXPECT_EQ(formatFixConsistency(consistency, {}),
-            "fixes: 1 answers, 1 ok, none with ground truth\n");
+            "fixes: 1 answers, 1 ok (100.0 % of the 1 from the first on), none with ground "
+            "truth\n");
   EXPECT_EQ(consistency.first_ok_received_ns, 20'004'500'000);
+}
+
+TEST(FixConsistency, WithoutAnOkFixNoAnswerCountsFromTheFirst) {
+  const FixConsistency consistency =
+      evaluateFixConsistency(straightDrive(), {fixOff(1'050'000'000, 0.0, "ambiguous")}, {});
+  EXPECT_EQ(consistency.answers_from_first_ok, 0);
+  EXPECT_FALSE(consistency.first_ok_received_ns);
+  EXPECT_EQ(formatFixConsistency(consistency, {}),
+            "fixes: 1 answers, 0 ok, none with ground truth\n");
 }
 
 }  // namespace

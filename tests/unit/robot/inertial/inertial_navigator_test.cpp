@@ -276,6 +276,29 @@ TEST(InertialNavigator, BadFixesAreRejectedAndCounted) {
   EXPECT_EQ(health.mode, NavigatorMode::kTracking);
 }
 
+// A drive's IMU, DGPS (never out) and compass readings, drawn with `sensor_seed`.
+struct SensedDrive {
+  SensedDrive(const sim::TrajectoryConfig& config, uint64_t sensor_seed,
+              const sim::CompassModel& compass_model = {},
+              double grid_bearing_of_true_north_rad = 0.0)
+      : trajectory(config),
+        imu(sim::synthesiseImu(trajectory, sim::ImuModel{}, sensor_seed)),
+        gps(sim::synthesiseGps(trajectory, dgpsWithoutOutages(), sensor_seed)),
+        compass(sim::synthesiseCompass(trajectory, compass_model, grid_bearing_of_true_north_rad,
+                                       sensor_seed)) {}
+
+  static sim::GpsModel dgpsWithoutOutages() {
+    sim::GpsModel model;
+    model.outage_probability = 0.0;
+    return model;
+  }
+
+  sim::GroundTruthTrajectory trajectory;
+  std::vector<sim::SimImuSample> imu;
+  std::vector<sim::SimGpsFix> gps;
+  std::vector<sim::SimCompassReading> compass;
+};
+
 // DGPS fixes and compass readings, handed to a navigator in time order up to
 // each IMU sample's time.
 class DgpsAndCompassFeed {
@@ -309,17 +332,12 @@ TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
   trajectory_config.seed = 4;
   trajectory_config.duration_s = 62.0;
   trajectory_config.initial_still_s = 60.0;
-  const sim::GroundTruthTrajectory trajectory(trajectory_config);
-  const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 3);
-  sim::GpsModel gps_model;
-  gps_model.outage_probability = 0.0;
-  const auto gps = sim::synthesiseGps(trajectory, gps_model, 3);
-  const auto compass = sim::synthesiseCompass(trajectory, sim::CompassModel{}, 0.0, 3);
+  const SensedDrive drive(trajectory_config, 3);
   const InertialNavigatorConfig config;
   InertialNavigator navigator(config);
-  DgpsAndCompassFeed feed(gps, compass);
+  DgpsAndCompassFeed feed(drive.gps, drive.compass);
   double smallest_sigma_m = std::numeric_limits<double>::infinity();
-  for (const sim::SimImuSample& sample : imu) {
+  for (const sim::SimImuSample& sample : drive.imu) {
     feed.deliverUntil(navigator, sample.stamp_ns);
     navigator.addImu(toImuSample(sample));
     if (const auto estimate = navigator.state()) {
@@ -343,24 +361,20 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   trajectory_config.duration_s = 120.0;
   trajectory_config.initial_still_s = 5.0;
   trajectory_config.start_yaw_rad = 0.7;
-  const sim::GroundTruthTrajectory trajectory(trajectory_config);
-  const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 3);
-  sim::GpsModel gps_model;
-  gps_model.outage_probability = 0.0;
-  const auto gps = sim::synthesiseGps(trajectory, gps_model, 3);
   sim::CompassModel compass_model;
   compass_model.magnetic_declination_rad = 0.03;
   compass_model.disturbance_rate_hz = 1.0 / 20.0;
   constexpr double kGridBearingOfTrueNorth = -0.0186;
-  const auto compass =
-      sim::synthesiseCompass(trajectory, compass_model, kGridBearingOfTrueNorth, 3);
+  const SensedDrive drive(trajectory_config, 3, compass_model, kGridBearingOfTrueNorth);
+  const sim::GroundTruthTrajectory& trajectory = drive.trajectory;
+  const std::vector<sim::SimImuSample>& imu = drive.imu;
 
   InertialNavigatorConfig config;
   config.magnetic_declination_rad = compass_model.magnetic_declination_rad;
   config.grid_bearing_of_true_north_rad = kGridBearingOfTrueNorth;
   InertialNavigator navigator(config);
   std::mt19937_64 random(5);
-  DgpsAndCompassFeed feed(gps, compass);
+  DgpsAndCompassFeed feed(drive.gps, drive.compass);
   const int64_t t0 = imu.front().stamp_ns;
   const int64_t vision_from = t0 + 20'000'000'000;
   int64_t next_fix = vision_from;
@@ -423,16 +437,11 @@ CompassDrive standWithCompassDisturbance(double duration_s, double from_s, doubl
   trajectory_config.duration_s = duration_s;
   trajectory_config.initial_still_s = duration_s - 0.5;
   trajectory_config.start_yaw_rad = 0.6;
-  const sim::GroundTruthTrajectory trajectory(trajectory_config);
-  const auto imu = sim::synthesiseImu(trajectory, sim::ImuModel{}, 30);
-  sim::GpsModel gps_model;
-  gps_model.outage_probability = 0.0;
-  const auto gps = sim::synthesiseGps(trajectory, gps_model, 30);
   sim::CompassModel compass_model;
   compass_model.disturbance_rate_hz = 0.0;
-  auto compass = sim::synthesiseCompass(trajectory, compass_model, 0.0, 30);
-  const int64_t t0 = imu.front().stamp_ns;
-  for (sim::SimCompassReading& reading : compass) {
+  SensedDrive sensed(trajectory_config, 30, compass_model);
+  const int64_t t0 = sensed.imu.front().stamp_ns;
+  for (sim::SimCompassReading& reading : sensed.compass) {
     const double t_s = static_cast<double>(reading.stamp_ns - t0) * 1e-9;
     if (t_s >= from_s && t_s < until_s) {
       reading.magnetic_heading_rad += offset_rad;
@@ -441,8 +450,8 @@ CompassDrive standWithCompassDisturbance(double duration_s, double from_s, doubl
 
   InertialNavigator navigator{InertialNavigatorConfig{}};
   CompassDrive drive;
-  DgpsAndCompassFeed feed(gps, compass);
-  for (const sim::SimImuSample& sample : imu) {
+  DgpsAndCompassFeed feed(sensed.gps, sensed.compass);
+  for (const sim::SimImuSample& sample : sensed.imu) {
     feed.deliverUntil(navigator, sample.stamp_ns);
     navigator.addImu(toImuSample(sample));
     const auto estimate = navigator.state();
@@ -450,7 +459,7 @@ CompassDrive standWithCompassDisturbance(double duration_s, double from_s, doubl
       continue;
     }
     const ErrorVector error =
-        errorBetween(truthState(trajectory, sample.stamp_ns, &sample), estimate->state);
+        errorBetween(truthState(sensed.trajectory, sample.stamp_ns, &sample), estimate->state);
     if (!drive.yaw_error_at_start_rad) {
       drive.yaw_error_at_start_rad = error(kAttitude + 2);
     }

@@ -33,7 +33,11 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
     : map_(map),
       limits_(limits),
       options_(options),
-      maps_(map, options.query_radius_m, options.map_reuse_distance_m) {}
+      foreground_(static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
+      cadence_(static_cast<int64_t>(options.quiet_before_frame_ms * 1e6),
+               static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
+      maps_(map, options.query_radius_m, options.map_reuse_distance_m, &foreground_),
+      search_worker_(&foreground_) {}
 
 void LineSetHandler::waitForSearches() {
   maps_.waitUntilIdle();
@@ -341,7 +345,16 @@ void LineSetHandler::countSearch() {
   ++counters_.searches;
 }
 
+void LineSetHandler::announceNextFrame(const PoseFixData& fix, int64_t arrival_ns) {
+  const bool tracked = fix.status != lineloc_msg_FIX_NO_MATCH_COMPUTED &&
+                       fix.status != lineloc_msg_FIX_NO_MAP_LINES &&
+                       fix.status != lineloc_msg_FIX_INTERNAL_ERROR;
+  cadence_.add(fix.robot_id, fix.stamp_ns, arrival_ns, tracked);
+  foreground_.expectForegroundFrom(cadence_.quietFrom_ns(steadyClockNs()));
+}
+
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
+  announceNextFrame(fix, start_ns);
   fix.timings.total = steadyClockNs() - start_ns;
   const StageTimingsNs& timings = fix.timings;
   if (timings.total > options_.slow_answer_ms * 1e6) {
@@ -364,6 +377,7 @@ PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
 }
 
 std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& message) {
+  const ForegroundGate::Scope foreground(foreground_);
   const int64_t start_ns = steadyClockNs();
   {
     const std::lock_guard<std::mutex> lock(counters_mutex_);

@@ -71,6 +71,11 @@
 // Each robot's predicted positions give its velocity; the tiles around where
 // it will be `prefetch_lookahead_s` later are queued for loading, so steady
 // frames find their map in memory.
+//
+// The searches and the map preparation are background work: they pause
+// between pieces while a LineSet is being handled and from
+// quiet_before_frame_ms before a tracked robot's next one is due
+// (foreground_gate.h, frame_cadence.h).
 #pragma once
 
 #include <cstdint>
@@ -86,12 +91,14 @@
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
 #include "backbone/service/fix_scatter.h"
+#include "backbone/service/frame_cadence.h"
 #include "backbone/service/predicted_motion.h"
 #include "backbone/service/prepared_maps.h"
 #include "backbone/service/search_worker.h"
 #include "common/geodesy/site_sun.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
+#include "common/parallel/foreground_gate.h"
 
 namespace lineloc {
 
@@ -145,6 +152,11 @@ struct PipelineOptions {
   // An answer slower than this (a frame period at 30 Hz) is logged with its
   // stage times.
   double slow_answer_ms = 33.0;
+  // Searches and map preparation step aside while a frame is being answered
+  // and from this long before a tracked robot's next frame is due to arrive
+  // (foreground_gate.h), each time for at most max_background_yield_ms.
+  double quiet_before_frame_ms = 8.0;
+  double max_background_yield_ms = 33.0;
   PredictedMotionOptions motion;
   FixScatterOptions fix_scatter;
   LocalizerOptions localizer;
@@ -227,6 +239,8 @@ class LineSetHandler {
   void countSearch();
   // Stamps the total time and counts the answer; logs a slow one.
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
+  // Announces the robots' next tracked frames to the gate (frame_cadence.h).
+  void announceNextFrame(const PoseFixData& fix, int64_t arrival_ns);
 
   struct StampedPosition {
     int64_t stamp_ns;
@@ -263,6 +277,9 @@ class LineSetHandler {
   std::map<std::string, ConfirmedSearch> confirmed_search_;
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;
+  // Open while a LineSet is handled; the workers below are its background.
+  ForegroundGate foreground_;
+  FrameCadence cadence_;
   PreparedMaps maps_;
   // Last, so that it is destroyed first: its searches use the members above.
   SearchWorker search_worker_;

@@ -21,8 +21,12 @@ PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view, const Eigen::V
       scene(occlusionScene(view->faces)),
       ground_level(groundLevel(*view)) {}
 
-PreparedMaps::PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m)
-    : tiles_(tiles), query_radius_m_(query_radius_m), reuse_distance_m_(reuse_distance_m) {}
+PreparedMaps::PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m,
+                           ForegroundGate* gate)
+    : tiles_(tiles),
+      query_radius_m_(query_radius_m),
+      reuse_distance_m_(reuse_distance_m),
+      worker_(gate) {}
 
 std::shared_ptr<const PreparedMap> PreparedMaps::around(const Eigen::Vector3d& position_world) {
   {

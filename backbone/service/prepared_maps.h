@@ -40,7 +40,10 @@ struct PreparedMap {
 
 class PreparedMaps {
  public:
-  PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m);
+  // Views are prepared as background work of `gate` (may be null), which
+  // must outlive this.
+  PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m,
+               ForegroundGate* gate);
 
   // The prepared map to localize a frame at `position_world` in (see above);
   // nullptr while none is ready. Starts preparing the frame's own view when

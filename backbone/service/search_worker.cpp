@@ -13,7 +13,7 @@ constexpr int kSearchNice = 10;
 
 }  // namespace
 
-SearchWorker::SearchWorker() : worker_([this] { work(); }) {}
+SearchWorker::SearchWorker(ForegroundGate* gate) : gate_(gate), worker_([this] { work(); }) {}
 
 SearchWorker::~SearchWorker() {
   {
@@ -43,6 +43,7 @@ void SearchWorker::waitUntilIdle() {
 
 void SearchWorker::work() {
   lowerThreadPriority(kSearchNice);
+  const BackgroundOf background(gate_);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     job_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
@@ -52,6 +53,9 @@ void SearchWorker::work() {
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
     lock.unlock();
+    if (gate_) {
+      gate_->yieldToForeground();
+    }
     job.search();
     lock.lock();
     busy_robots_.erase(job.robot_id);

@@ -3,7 +3,9 @@
 // pose_acquisition.h) on a thread of their own, so that every LineSet is
 // answered while they run. One search per robot at a time: a robot's next
 // search is accepted once its last one has finished. The backbone prepares
-// its maps on one too (prepared_maps.h), under a single key.
+// its maps on one too (prepared_maps.h), under a single key. Given a gate, the
+// worker is its background work (foreground_gate.h): a job starts, and each
+// piece of its parallelFor runs, only once the frames being answered are.
 #pragma once
 
 #include <condition_variable>
@@ -14,13 +16,16 @@
 #include <string>
 #include <thread>
 
+#include "common/parallel/foreground_gate.h"
+
 namespace lineloc {
 
 class SearchWorker {
  public:
   using Search = std::function<void()>;
 
-  SearchWorker();
+  // `gate` (may be null) must outlive the worker.
+  explicit SearchWorker(ForegroundGate* gate = nullptr);
   // Finishes the search that is running and every one queued.
   ~SearchWorker();
   SearchWorker(const SearchWorker&) = delete;
@@ -41,6 +46,7 @@ class SearchWorker {
 
   void work();
 
+  ForegroundGate* const gate_;
   std::mutex mutex_;
   std::condition_variable job_ready_;
   std::condition_variable idle_;

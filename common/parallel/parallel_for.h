@@ -4,7 +4,9 @@
 // for inner loops: it starts its threads on every call. fn must be safe to
 // call concurrently for different i. The first exception any call throws is
 // rethrown on the caller once every thread has stopped; indices not yet
-// started when it was thrown are skipped.
+// started when it was thrown are skipped. Called from background work
+// (foreground_gate.h), every thread yields to the foreground before each index,
+// and the threads it starts are background work of the same gate.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +15,8 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "common/parallel/foreground_gate.h"
 
 namespace lineloc {
 
@@ -28,8 +32,13 @@ void parallelFor(int count, int threads, const Function& fn) {
   std::atomic<int> next{0};
   std::exception_ptr first_error;
   std::mutex error_mutex;
+  ForegroundGate* const gate = backgroundGate();
   auto work = [&] {
+    const BackgroundOf background(gate);
     for (int i = next++; i < count; i = next++) {
+      if (gate) {
+        gate->yieldToForeground();
+      }
       try {
         fn(i);
       } catch (...) {

@@ -1,11 +1,14 @@
 // The search worker: one search per robot at a time, every accepted search
-// run, queued searches finished before it is destroyed.
+// run, queued searches finished before it is destroyed, and none started
+// while a frame is being answered.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <future>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "backbone/service/search_worker.h"
@@ -44,6 +47,21 @@ TEST(SearchWorker, TakesTheRobotsNextSearchOnceTheLastHasFinished) {
   ASSERT_TRUE(worker.submit("rover1", [&] { ++finished; }));
   worker.waitUntilIdle();
   EXPECT_EQ(finished.load(), 2);
+}
+
+TEST(SearchWorker, StartsASearchOnlyOnceTheFrameBeingAnsweredIs) {
+  ForegroundGate gate(60'000'000'000);
+  std::atomic<bool> frame_answered{false};
+  std::atomic<bool> started_after_frame{false};
+  SearchWorker worker(&gate);
+  {
+    const ForegroundGate::Scope frame(gate);
+    ASSERT_TRUE(worker.submit("rover1", [&] { started_after_frame = frame_answered.load(); }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    frame_answered = true;
+  }
+  worker.waitUntilIdle();
+  EXPECT_TRUE(started_after_frame);
 }
 
 }  // namespace

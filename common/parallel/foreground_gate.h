@@ -1,0 +1,157 @@
+// Keeps a process's background work (the backbone's pose searches, its map
+// preparation) from running beside its latency-bound work (answering a
+// tracked frame). Foreground work holds a Scope while it runs; a thread that
+// runs as background work of the gate (BackgroundOf) calls yieldToForeground
+// between pieces of its work, and waits there while any Scope is open.
+// parallelFor (parallel_for.h) does so before each index it hands out, on
+// every thread it starts for a background caller, so the searches need no
+// yield points of their own; a piece that is running when a frame arrives
+// runs to its end.
+//
+// A lower priority is not enough. Two cores busy with nice-19 spinners took
+// the backbone's tracked frame (bench_localization_stages, BM_BackboneTracking)
+// from 2.0 ms to 5.4 ms, and SCHED_IDLE spinners to 3.3 ms: its parallelFor
+// threads start and wake beside them. On the 50 simulated Delft drives, 49 of
+// the 128 OK answers slower than 10 ms came within two frames of the start of
+// a proof search, which runs while the robot is tracked (2.5 % of the answers).
+//
+// Foreground work that comes at a known time (a tracked robot's next frame)
+// can be announced: from expectForegroundFrom's time on, background work waits
+// as if a Scope were open, until one opens or max_yield_ns has passed. So no
+// piece is still running when the frame arrives, and none runs while the robot
+// extracts its lines when both share the machine.
+//
+// Background work never starves: after waiting w, a background thread runs at
+// least w before it waits again, so it keeps half of its time however busy the
+// foreground is (a backbone serving many robots), and no single wait exceeds
+// max_yield_ns.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <limits>
+#include <mutex>
+
+#include "common/time/clock.h"
+
+namespace lineloc {
+
+class ForegroundGate {
+ public:
+  explicit ForegroundGate(int64_t max_yield_ns) : max_yield_ns_(max_yield_ns) {}
+  ForegroundGate(const ForegroundGate&) = delete;
+  ForegroundGate& operator=(const ForegroundGate&) = delete;
+
+  // Foreground work is in progress while a Scope lives.
+  class Scope {
+   public:
+    explicit Scope(ForegroundGate& gate) : gate_(gate) { gate_.enter(); }
+    ~Scope() { gate_.leave(); }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    ForegroundGate& gate_;
+  };
+
+  // Background work steps aside from `steady_ns` (steadyClockNs) on, as described above; replaces
+  // the time announced before.
+  void expectForegroundFrom(int64_t steady_ns);
+
+  // Blocks while a Scope is open or announced foreground work is due, at most
+  // max_yield_ns, unless the calling thread has not yet run as long as it
+  // last waited.
+  void yieldToForeground();
+
+ private:
+  void enter();
+  void leave();
+  bool foregroundAt(int64_t steady_ns) const;
+
+  const int64_t max_yield_ns_;
+  std::atomic<int> open_scopes_{0};
+  std::atomic<int64_t> expected_from_ns_{std::numeric_limits<int64_t>::max()};
+  std::mutex mutex_;
+  std::condition_variable closed_;
+};
+
+// The gate whose background work the calling thread runs (nullptr: none).
+ForegroundGate* backgroundGate();
+
+// Makes the calling thread background work of `gate` while it lives.
+class BackgroundOf {
+ public:
+  explicit BackgroundOf(ForegroundGate* gate);
+  ~BackgroundOf();
+  BackgroundOf(const BackgroundOf&) = delete;
+  BackgroundOf& operator=(const BackgroundOf&) = delete;
+
+ private:
+  ForegroundGate* previous_;
+};
+
+// ---------------------------------------------------------------------------
+
+namespace detail {
+
+inline thread_local ForegroundGate* t_background_gate = nullptr;
+// Steady-clock time before which the calling thread does not wait again.
+inline thread_local int64_t t_runs_until_ns = 0;
+
+}  // namespace detail
+
+inline void ForegroundGate::enter() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  ++open_scopes_;
+}
+
+inline void ForegroundGate::leave() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    --open_scopes_;
+  }
+  closed_.notify_all();
+}
+
+inline void ForegroundGate::expectForegroundFrom(int64_t steady_ns) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    expected_from_ns_ = steady_ns;
+  }
+  closed_.notify_all();
+}
+
+inline bool ForegroundGate::foregroundAt(int64_t steady_ns) const {
+  const int64_t expected_ns = expected_from_ns_;
+  return open_scopes_ > 0 || (steady_ns >= expected_ns && steady_ns - expected_ns < max_yield_ns_);
+}
+
+inline void ForegroundGate::yieldToForeground() {
+  const int64_t start_ns = steadyClockNs();
+  if (!foregroundAt(start_ns) || start_ns < detail::t_runs_until_ns) {
+    return;
+  }
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    closed_.wait_for(lock, std::chrono::nanoseconds(max_yield_ns_),
+                     [this] { return !foregroundAt(steadyClockNs()); });
+  }
+  const int64_t end_ns = steadyClockNs();
+  detail::t_runs_until_ns = end_ns + (end_ns - start_ns);
+}
+
+inline ForegroundGate* backgroundGate() {
+  return detail::t_background_gate;
+}
+
+inline BackgroundOf::BackgroundOf(ForegroundGate* gate) : previous_(detail::t_background_gate) {
+  detail::t_background_gate = gate;
+}
+
+inline BackgroundOf::~BackgroundOf() {
+  detail::t_background_gate = previous_;
+}
+
+}  // namespace lineloc

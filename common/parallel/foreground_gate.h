@@ -21,10 +21,11 @@
 // piece is still running when the frame arrives, and none runs while the robot
 // extracts its lines when both share the machine.
 //
-// Background work never starves: after waiting w, a background thread runs at
-// least w before it waits again, so it keeps half of its time however busy the
-// foreground is (a backbone serving many robots), and no single wait exceeds
-// max_yield_ns.
+// Background work never starves: after a wait of w, the gate's background runs
+// at least w before any of its threads waits again (the threads parallelFor
+// starts anew for each call among them), so it keeps half of its time however
+// busy the foreground is (a backbone serving many robots), and no single wait
+// exceeds max_yield_ns.
 #pragma once
 
 #include <atomic>
@@ -61,8 +62,8 @@ class ForegroundGate {
   void expectForegroundFrom(int64_t steady_ns);
 
   // Blocks while a Scope is open or announced foreground work is due, at most
-  // max_yield_ns, unless the calling thread has not yet run as long as it
-  // last waited.
+  // max_yield_ns, unless the background has not yet run as long as it last
+  // waited.
   void yieldToForeground();
 
  private:
@@ -73,6 +74,8 @@ class ForegroundGate {
   const int64_t max_yield_ns_;
   std::atomic<int> open_scopes_{0};
   std::atomic<int64_t> expected_from_ns_{std::numeric_limits<int64_t>::max()};
+  // Steady-clock time before which background work does not wait again.
+  std::atomic<int64_t> runs_until_ns_{0};
   std::mutex mutex_;
   std::condition_variable closed_;
 };
@@ -97,8 +100,6 @@ class BackgroundOf {
 namespace detail {
 
 inline thread_local ForegroundGate* t_background_gate = nullptr;
-// Steady-clock time before which the calling thread does not wait again.
-inline thread_local int64_t t_runs_until_ns = 0;
 
 }  // namespace detail
 
@@ -120,7 +121,11 @@ inline void ForegroundGate::expectForegroundFrom(int64_t steady_ns) {
     const std::lock_guard<std::mutex> lock(mutex_);
     expected_from_ns_ = steady_ns;
   }
-  closed_.notify_all();
+  // Inside a Scope its leave() wakes the background; waking it here too would
+  // only switch it in beside the foreground to wait again.
+  if (open_scopes_ == 0) {
+    closed_.notify_all();
+  }
 }
 
 inline bool ForegroundGate::foregroundAt(int64_t steady_ns) const {
@@ -130,7 +135,7 @@ inline bool ForegroundGate::foregroundAt(int64_t steady_ns) const {
 
 inline void ForegroundGate::yieldToForeground() {
   const int64_t start_ns = steadyClockNs();
-  if (!foregroundAt(start_ns) || start_ns < detail::t_runs_until_ns) {
+  if (!foregroundAt(start_ns) || start_ns < runs_until_ns_) {
     return;
   }
   {
@@ -139,7 +144,7 @@ inline void ForegroundGate::yieldToForeground() {
                      [this] { return !foregroundAt(steadyClockNs()); });
   }
   const int64_t end_ns = steadyClockNs();
-  detail::t_runs_until_ns = end_ns + (end_ns - start_ns);
+  runs_until_ns_ = end_ns + (end_ns - start_ns);
 }
 
 inline ForegroundGate* backgroundGate() {

@@ -180,12 +180,12 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
     return acquisition;
   }
   const SearchSummary& summary = acquisition.summary;
-  if (summary.best_score <= 0.0) {
+  if (summary.best_score < options.min_verification_score) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message = fmt::format(
-        "the best aligned hypothesis puts more image edges in open sky than it covers (score "
-        "{:.1f})",
-        summary.best_score);
+        "the best aligned hypothesis scores {:.1f}, below {:.1f}: too little of its model on the "
+        "image's edges, or too many image edges in its open sky",
+        summary.best_score, options.min_verification_score);
     return acquisition;
   }
   if (summary.rival_score >= options.ambiguous_score_fraction * summary.best_score) {

@@ -120,7 +120,8 @@ void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odo
   const Alignment& alignment = localization.alignment;
   const std::string outcome =
       alignment.status == AlignmentStatus::kOk
-          ? describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera))
+          ? describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera),
+                     alignment.T_world_camera)
           : alignment.message;
   logSearch("search", line_set, localization, outcome, search_ns);
 }
@@ -215,9 +216,17 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
       summary.search_ns * 1e-6);
 }
 
-const char* LineSetHandler::describe(Confirmation confirmation) {
+std::string LineSetHandler::describe(Confirmation confirmation,
+                                     const PoseWithCovariance& found) const {
   switch (confirmation) {
     case Confirmation::kConfirmed:
+      if (needsAcquisition(found, options_.localizer)) {
+        return fmt::format(
+            "confirms the previous search, but is too wide to track from (position sigma {:.2f} "
+            "m, yaw sigma {:.2f} deg); searching on",
+            largestPositionSigma(found.covariance),
+            std::sqrt(std::max(0.0, found.covariance(5, 5))) * 180.0 / M_PI);
+      }
       return "confirms the previous search";
     case Confirmation::kFirst:
       return "awaits confirmation by the next search";

@@ -195,7 +195,10 @@ class LineSetHandler {
               const PoseWithCovariance& prior);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   enum class Confirmation { kConfirmed, kFirst, kDisagrees };
-  static const char* describe(Confirmation confirmation);
+  // A found pose's confirmation, for the search's log line; a confirmed one
+  // too wide to track from (needsAcquisition) says so, since the robot's
+  // frames are then searched for on.
+  std::string describe(Confirmation confirmation, const PoseWithCovariance& found) const;
   // Whether `acquired` at `line_set`'s time confirms the robot's previous
   // search result (kFirst: there is none recent); remembers it for the next
   // one either way, and a confirmed one for carriedSearch.

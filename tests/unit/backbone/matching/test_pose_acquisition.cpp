@@ -5,6 +5,7 @@
 // precise pose.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "backbone/matching/localizer.h"
@@ -108,6 +109,29 @@ TEST(PoseAcquisition, AnAlignmentFarFromThePriorsHeightIsNotTheCamera) {
   const Acquisition gated =
       acquirePose(scene.image, street.edges, occlusion, prior, kCamera, AcquisitionOptions{});
   EXPECT_NE(gated.alignment.status, AlignmentStatus::kOk) << gated.alignment.message;
+}
+
+// The same view, with the floor just above what its best aligned pose
+// scores, is not answered: no rival is needed for a weak view to be turned
+// down.
+TEST(PoseAcquisition, ABestScoringUnderTheFloorIsNotAnswered) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(21);
+  const Scene scene = render(street, occlusion, 0, random);
+  PoseWithCovariance prior = truePose();
+  prior.covariance = diagonalPoseCovariance(0.5, kPriorYawSigmaRad);
+  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  const Acquisition found =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, AcquisitionOptions{});
+  ASSERT_EQ(found.alignment.status, AlignmentStatus::kOk) << found.alignment.message;
+  AcquisitionOptions demanding;
+  demanding.min_verification_score =
+      std::nextafter(found.summary.best_score, std::numeric_limits<double>::infinity());
+  const Acquisition weak =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, demanding);
+  EXPECT_EQ(weak.alignment.status, AlignmentStatus::kTooFewMatches) << weak.alignment.message;
+  EXPECT_EQ(weak.summary.best_score, found.summary.best_score);
 }
 
 TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {

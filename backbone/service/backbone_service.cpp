@@ -3,14 +3,16 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
-#include "common/time/clock.h"
+#include "common/parallel/periodic_task.h"
 #include "common/time/percentile.h"
 #include "db/site.h"
 
@@ -37,6 +39,26 @@ std::optional<SiteSun> clockSun(const BackboneConfig& config) {
   spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
                config.site, place.latitude_deg, place.longitude_deg);
   return sun;
+}
+
+// Writes config.stats_file now, which fails the start when it cannot be
+// written, then every stats_period_s beside the serving loop
+// (periodic_task.h); none without a stats file. A later failed write is
+// logged and tried again a period later: serving goes on.
+std::optional<PeriodicTask> periodicStatsFile(const BackboneConfig& config,
+                                              const LineSetHandler& handler) {
+  if (config.stats_file.empty()) {
+    return std::nullopt;
+  }
+  writeCountersJson(handler.counters(), config.stats_file);
+  const std::chrono::nanoseconds period(static_cast<int64_t>(config.stats_period_s * 1e9));
+  return std::optional<PeriodicTask>(std::in_place, period, [&config, &handler] {
+    try {
+      writeCountersJson(handler.counters(), config.stats_file);
+    } catch (const std::exception& error) {
+      spdlog::warn("stats file not written: {}", error.what());
+    }
+  });
 }
 
 }  // namespace
@@ -90,9 +112,10 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
 
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
   if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0 ||
-      config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0) {
+      config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0)) {
     throw std::runtime_error(
-        "max_segments, query_radius_m, tile_size_m and max_cached_tiles must be positive");
+        "max_segments, query_radius_m, tile_size_m, max_cached_tiles and stats_period_s must be "
+        "positive");
   }
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
@@ -111,19 +134,16 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 
-  const int64_t stats_period_ns = static_cast<int64_t>(config.stats_period_s * 1e9);
-  int64_t next_stats_ns = steadyClockNs();
-  while (!stop) {
-    if (reader.waitForData(kWaitNs)) {
-      reader.takeEach([&](const lineloc_msg_LineSet& message) {
-        if (const auto fix = handler.handle(message)) {
-          writer.write(toMessage(*fix));
-        }
-      });
-    }
-    if (!config.stats_file.empty() && steadyClockNs() >= next_stats_ns) {
-      writeCountersJson(handler.counters(), config.stats_file);
-      next_stats_ns = steadyClockNs() + stats_period_ns;
+  {
+    const std::optional<PeriodicTask> stats_writer = periodicStatsFile(config, handler);
+    while (!stop) {
+      if (reader.waitForData(kWaitNs)) {
+        reader.takeEach([&](const lineloc_msg_LineSet& message) {
+          if (const auto fix = handler.handle(message)) {
+            writer.write(toMessage(*fix));
+          }
+        });
+      }
     }
   }
   if (!config.stats_file.empty()) {

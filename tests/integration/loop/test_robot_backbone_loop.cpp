@@ -170,13 +170,17 @@ class RobotBackboneLoop : public ::testing::Test {
   void TearDown() override { fs::remove_all(work_); }
 
   std::unique_ptr<test::ChildProcess> startBackbone() {
+    return startBackbone(work_ / "stats.json");
+  }
+
+  std::unique_ptr<test::ChildProcess> startBackbone(const fs::path& stats_file) {
     return std::make_unique<test::ChildProcess>(
         std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
         std::vector<std::string>{"--domain-id", std::to_string(test::testDomainId()),
                                  "--dds-config", test::testDdsConfig(), "--db",
                                  database_.conninfo(), "--site", "test", "--max-segments",
                                  std::to_string(kBackboneMaxSegments), "--stats-file",
-                                 (work_ / "stats.json").string(), "--stats-period-s", "0.1"},
+                                 stats_file.string(), "--stats-period-s", "0.1"},
         (work_ / "backbone.log").string());
   }
 
@@ -333,6 +337,16 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_EQ(stamps.rbegin()->first, static_cast<uint32_t>(kFrames - 1))
       << "the robot must keep sending after the backbone is gone";
   EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
+}
+
+// The stats file is rewritten beside the serving loop, whose answers must not
+// wait for the file system; one that cannot be written at all fails the start
+// instead of going unnoticed.
+TEST_F(RobotBackboneLoop, AStatsFileThatCannotBeWrittenFailsTheStart) {
+  auto backbone = startBackbone(work_ / "no such folder" / "stats.json");
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 1) << log("backbone.log");
+  EXPECT_NE(log("backbone.log").find("cannot write stats file"), std::string::npos)
+      << log("backbone.log");
 }
 
 }  // namespace

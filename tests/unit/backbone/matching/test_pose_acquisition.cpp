@@ -37,6 +37,16 @@ PoseWithCovariance dgpsPrior(std::mt19937& random) {
   return prior;
 }
 
+// The truth's pose, known to 0.5 m horizontally and to the ground's 0.1 m in
+// height: a prior close enough for one search to settle the camera.
+PoseWithCovariance nearPrior(const Eigen::Vector3d& offset_m) {
+  PoseWithCovariance prior = truePose();
+  prior.pose.translation() += offset_m;
+  prior.covariance = diagonalPoseCovariance(0.5, kPriorYawSigmaRad);
+  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  return prior;
+}
+
 // Trials each acquisition must answer with a consistent pose; ambiguity is
 // allowed (the street repeats), a wrong precise pose is not.
 void expectConsistentOrAmbiguous(int clutter_percent, uint32_t seed) {
@@ -94,10 +104,7 @@ TEST(PoseAcquisition, AnAlignmentFarFromThePriorsHeightIsNotTheCamera) {
   const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(21);
   const Scene scene = render(street, occlusion, 0, random);
-  PoseWithCovariance prior = truePose();
-  prior.pose.translation().z() += 0.4;
-  prior.covariance = diagonalPoseCovariance(0.5, kPriorYawSigmaRad);
-  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  const PoseWithCovariance prior = nearPrior(Eigen::Vector3d(0.0, 0.0, 0.4));
   AcquisitionOptions ungated;
   ungated.height_gate_sigmas = std::numeric_limits<double>::infinity();
   const Acquisition found =
@@ -119,9 +126,7 @@ TEST(PoseAcquisition, ABestScoringUnderTheFloorIsNotAnswered) {
   const OcclusionScene occlusion(street.faces, street.face_building_ids);
   std::mt19937 random(21);
   const Scene scene = render(street, occlusion, 0, random);
-  PoseWithCovariance prior = truePose();
-  prior.covariance = diagonalPoseCovariance(0.5, kPriorYawSigmaRad);
-  prior.covariance(2, 2) = kPriorHeightSigmaM * kPriorHeightSigmaM;
+  const PoseWithCovariance prior = nearPrior(Eigen::Vector3d::Zero());
   const Acquisition found =
       acquirePose(scene.image, street.edges, occlusion, prior, kCamera, AcquisitionOptions{});
   ASSERT_EQ(found.alignment.status, AlignmentStatus::kOk) << found.alignment.message;

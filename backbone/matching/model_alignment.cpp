@@ -8,6 +8,7 @@
 #include "common/pose/pose_estimator.h"
 #include "common/stats/confidence_scale.h"
 #include "common/time/clock.h"
+#include "db/citymodel/line_extraction.h"
 
 namespace lineloc {
 namespace {
@@ -17,13 +18,20 @@ struct MatchedProblem {
   std::vector<LineMatch> matches;
 };
 
-// Isotropic pixel variance of edge bias and model error for a model point
-// seen from the pose: floor^2 + (f sigma_model / z)^2.
-Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world,
+// Survey error of a model line: a building's foot is less certain than the
+// rest of it (AlignmentOptions::ground_line_sigma_m).
+double modelSigmaM(const VisibleSegment& line, const AlignmentOptions& options) {
+  return line.kind == static_cast<int>(citymodel::LineKind::kGround) ? options.ground_line_sigma_m
+                                                                     : options.model_sigma_m;
+}
+
+// Isotropic pixel variance of edge bias and model error for a point of a
+// model line seen from the pose: floor^2 + (f sigma_model / z)^2.
+Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world, double model_sigma_m,
                                 const Eigen::Isometry3d& T_camera_world,
                                 const PinholeCamera& camera, const AlignmentOptions& options) {
   const double depth_m = std::max((T_camera_world * point_world).z(), 1e-3);
-  const double model_px = 0.5 * (camera.fx + camera.fy) * options.model_sigma_m / depth_m;
+  const double model_px = 0.5 * (camera.fx + camera.fy) * model_sigma_m / depth_m;
   const double variance =
       options.edge_sigma_floor_px * options.edge_sigma_floor_px + model_px * model_px;
   return variance * Eigen::Matrix2d::Identity();
@@ -57,13 +65,14 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
     correspondence.end_pixel = seen.end.cast<double>();
     // A model line seen through uncertain visibility counts for less: its
     // measurement variance is inflated by 1 / weight.
+    const double model_sigma_m = modelSigmaM(line, options);
     correspondence.start_covariance =
         (seen.start_covariance.cast<double>() +
-         floorCovariance(line.start_world, T_camera_world, camera, options)) /
+         floorCovariance(line.start_world, model_sigma_m, T_camera_world, camera, options)) /
         line.weight;
     correspondence.end_covariance =
         (seen.end_covariance.cast<double>() +
-         floorCovariance(line.end_world, T_camera_world, camera, options)) /
+         floorCovariance(line.end_world, model_sigma_m, T_camera_world, camera, options)) /
         line.weight;
     matched.problem.lines.push_back(correspondence);
     matched.matches.push_back(best);
@@ -151,6 +160,7 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   MatchedProblem last_round;
   PoseOptions pose_options;
   pose_options.refinement.loss = RobustLoss::kCauchy;
+  pose_options.refinement.loss_scale = options.loss_scale_sigma;
   pose_options.refinement.function_tolerance = options.function_tolerance;
   pose_options.refinement.parameter_tolerance = options.parameter_tolerance;
   pose_options.refinement.step_information_tolerance = options.step_information_tolerance;

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include "backbone/matching/model_alignment.h"
+#include "db/citymodel/line_extraction.h"
 #include "synthetic_street.h"
 
 namespace lineloc {
 namespace {
 
 using namespace lineloc::testing;
+
+constexpr int kGroundKind = static_cast<int>(citymodel::LineKind::kGround);
 
 TEST(ModelAlignment, RecoversThePoseConsistentlyWithItsCovariance) {
   const Street street = makeStreet();
@@ -39,6 +42,105 @@ TEST(ModelAlignment, ClutterNotInTheModelDoesNotPullThePose) {
     ASSERT_EQ(alignment.status, AlignmentStatus::kOk) << alignment.message;
     EXPECT_LT(normalizedErrorSquared(alignment.T_world_camera, truePose().pose), kChi2Six999);
   }
+}
+
+// A street whose buildings stand 0.2 m lower in the model than the pavement
+// meets them (a flat pavement at the terrain's median, bases spread about it):
+// the image shows every wall's foot 0.2 m above the model's ground line.
+Scene withRaisedFeet(const Street& street, const OcclusionScene& occlusion, std::mt19937& random) {
+  Scene scene = render(street, occlusion, 0, random);
+  const Eigen::Vector3d raised(0.0, 0.0, 0.2);
+  for (size_t i = 0; i < scene.visible.size(); ++i) {
+    const VisibleSegment& line = scene.visible[i];
+    if (line.kind != kGroundKind) {
+      continue;
+    }
+    const ProjectedSegment p =
+        projectSegment(line.start_world + raised, line.end_world + raised, truePose(), kCamera);
+    scene.image[i] = observe(p.start_px, p.end_px, random);
+  }
+  return scene;
+}
+
+TEST(ModelAlignment, GroundLinesOffTheWallFeetDoNotPullThePose) {
+  Street street = makeStreet();
+  for (ModelSegment& edge : street.edges) {
+    if (edge.start_world.z() == 0.0 && edge.end_world.z() == 0.0) {
+      edge.kind = kGroundKind;
+    }
+  }
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  AlignmentOptions ground_as_surveyed;
+  ground_as_surveyed.ground_line_sigma_m = ground_as_surveyed.model_sigma_m;
+  std::mt19937 random(13);
+  double height_error_m = 0.0;
+  double height_error_surveyed_m = 0.0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Scene scene = withRaisedFeet(street, occlusion, random);
+    const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.1, 0.01);
+    const Alignment alignment = alignModel(scene.image, scene.visible, prior, kCamera, {});
+    const Alignment surveyed =
+        alignModel(scene.image, scene.visible, prior, kCamera, ground_as_surveyed);
+    ASSERT_EQ(alignment.status, AlignmentStatus::kOk) << alignment.message;
+    EXPECT_LT(normalizedErrorSquared(alignment.T_world_camera, truePose().pose), kChi2Six999);
+    height_error_m += std::abs(alignment.T_world_camera.pose.translation().z() - 1.5);
+    height_error_surveyed_m += std::abs(surveyed.T_world_camera.pose.translation().z() - 1.5);
+  }
+  // Taken as surveyed as the roofs, the feet pull the camera down towards them.
+  EXPECT_LT(height_error_m, 0.5 * height_error_surveyed_m);
+}
+
+// Window frames beside the building edges: every vertical model line's image
+// edge has a parallel one offset_px to its right, and for every other one the
+// building edge itself is not seen (a corner the image does not show).
+Scene withDetailBesideTheEdges(const Street& street, const OcclusionScene& occlusion,
+                               double offset_px, std::mt19937& random) {
+  Scene scene = render(street, occlusion, 0, random);
+  int vertical_lines = 0;
+  for (size_t i = 0; i < scene.visible.size(); ++i) {
+    const VisibleSegment& line = scene.visible[i];
+    const Eigen::Vector3d direction = (line.end_world - line.start_world).normalized();
+    if (std::abs(direction.z()) < 0.99) {
+      continue;
+    }
+    const ProjectedSegment p =
+        projectSegment(line.start_world, line.end_world, truePose(), kCamera);
+    const Eigen::Vector2d beside(offset_px, 0.0);
+    const ImageSegment frame = observe(p.start_px + beside, p.end_px + beside, random);
+    if (++vertical_lines % 2 == 0) {
+      scene.image[i] = frame;
+    } else {
+      scene.image.push_back(frame);
+    }
+  }
+  return scene;
+}
+
+double positionErrorM(const Alignment& alignment) {
+  return (alignment.T_world_camera.pose.translation() - truePose().pose.translation()).norm();
+}
+
+// Detail 3 px beside the edges lies 2-5 standard deviations off, as it does
+// on the simulated Delft frames (model_alignment.h, loss_scale_sigma).
+TEST(ModelAlignment, DetailBesideTheBuildingEdgesPullsThePoseLessThanWithAWideLoss) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  AlignmentOptions wide_loss;
+  wide_loss.loss_scale_sigma = 2.0;
+  std::mt19937 random(17);
+  double error_m = 0.0;
+  double error_wide_loss_m = 0.0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Scene scene = withDetailBesideTheEdges(street, occlusion, 3.0, random);
+    const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.1, 0.01);
+    const Alignment alignment = alignModel(scene.image, scene.visible, prior, kCamera, {});
+    const Alignment wide = alignModel(scene.image, scene.visible, prior, kCamera, wide_loss);
+    ASSERT_EQ(alignment.status, AlignmentStatus::kOk) << alignment.message;
+    EXPECT_LT(normalizedErrorSquared(alignment.T_world_camera, truePose().pose), kChi2Six999);
+    error_m += positionErrorM(alignment);
+    error_wide_loss_m += positionErrorM(wide);
+  }
+  EXPECT_LT(error_m, 0.7 * error_wide_loss_m);
 }
 
 TEST(ModelAlignment, ASingleFacadeIsReportedIllConditionedNotPrecise) {

@@ -10,12 +10,11 @@
 // next round gates with their fusion (fusePoses, common/geometry/pose.h) and
 // refines from its centre, until the pose stops moving. Gating with the
 // refined pose alone widened the gates wherever a round's matches left the
-// pose undetermined: on
-// a Delft frame predicted at the truth with nine model segments in view, the
-// second round took in 22 candidates instead of 7 and the alignment settled
-// 1.3 m off reporting 0.2 m (tests/integration/drive). A model line may take
-// several collinear image pieces; an image segment takes at most one model
-// line.
+// pose undetermined: on a Delft frame predicted at the truth with nine model
+// segments in view, the second round took in 22 candidates instead of 7 and
+// the alignment settled 1.3 m off reporting 0.2 m (tests/integration/drive).
+// A model line may take several collinear image pieces; an image segment
+// takes at most one model line.
 //
 // Each correspondence's endpoint covariance is the image fit's plus the edge
 // and model error floors below, divided by the model line's visibility weight.
@@ -120,13 +119,14 @@ struct AlignmentOptions {
   // r / (1 + r^2 / c^2)); with c = 0.7 it pulls a third as hard. Along a
   // street only the vertical edges fix the position, and a few of them held
   // the fixes of every drive 2-6 cm along it. With c = 0.7 and the ground
-  // lines' sigma above, the position RMSE of 10 simulated drives fell from a
-  // median of 4.9 cm to 2.8 cm, with no fix beyond three sigma; with the
-  // ground lines at model_sigma_m, seed 9 tracked its start's neighbouring
-  // basin, 0.6 m RMS off with 55 fixes beyond three sigma. The narrower basin
-  // needs a prior within a few pixels: from 0.3 m off on the synthetic street
-  // of the unit tests, detail 1-2 px beside the edges left some alignments
-  // unconverged; acquisition's hypotheses keep c = 2 (pose_acquisition.h).
+  // lines' sigma above, the position RMSE of 50 simulated drives fell from a
+  // median of 4.1 cm (over 5 cm on 18) to 2.8 cm (over 5 cm on 8), with no
+  // fix beyond three sigma; with the ground lines at model_sigma_m, seed 9
+  // tracked its start's neighbouring basin, 0.6 m RMS off with 55 fixes
+  // beyond three sigma (10 drives). The narrower basin needs a prior within a
+  // few pixels: from 0.3 m off on the synthetic street of the unit tests,
+  // detail 1-2 px beside the edges left some alignments unconverged;
+  // acquisition's hypotheses keep c = 2 (pose_acquisition.h).
   double loss_scale_sigma = 0.7;
   // Image segments whose best candidate is not this much better (chi^2) than
   // the second, within the first round, are left out: ambiguous under the prior.

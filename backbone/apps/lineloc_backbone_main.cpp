@@ -9,6 +9,7 @@
 
 #include "backbone/service/backbone_service.h"
 #include "common/config/program_options.h"
+#include "common/parallel/resident_heap.h"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
+  if (!lineloc::keepFreedMemoryResident()) {
+    spdlog::warn(
+        "the allocator keeps returning freed memory: frame buffers may fault their pages in");
+  }
   try {
     if (!sun_deg.empty()) {
       config.sunlight =

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/config/program_options.h"
+#include "common/parallel/resident_heap.h"
 #include "common/time/percentile.h"
 #include "robot/agent/robot_agent.h"
 
@@ -73,6 +74,10 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
+  if (!lineloc::keepFreedMemoryResident()) {
+    spdlog::warn(
+        "the allocator keeps returning freed memory: frame buffers may fault their pages in");
+  }
   try {
     const lineloc::RobotRunSummary summary = lineloc::runRobot(config, g_stop);
     std::cout << fmt::format(

@@ -50,10 +50,7 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  if (!lineloc::keepFreedMemoryResident()) {
-    spdlog::warn(
-        "the allocator keeps returning freed memory: frame buffers may fault their pages in");
-  }
+  lineloc::keepFreedMemoryResident();
   try {
     if (!sun_deg.empty()) {
       config.sunlight =

@@ -74,10 +74,7 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  if (!lineloc::keepFreedMemoryResident()) {
-    spdlog::warn(
-        "the allocator keeps returning freed memory: frame buffers may fault their pages in");
-  }
+  lineloc::keepFreedMemoryResident();
   try {
     const lineloc::RobotRunSummary summary = lineloc::runRobot(config, g_stop);
     std::cout << fmt::format(

@@ -203,10 +203,21 @@ bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& o
            yaw_sigma_rad <= options.max_tracking_yaw_sigma_rad);
 }
 
+std::vector<VisibleSegment> visibleFromPrior(const std::vector<ModelSegment>& lines,
+                                             const OcclusionScene& scene,
+                                             const PoseWithCovariance& prior,
+                                             const PinholeCamera& camera,
+                                             const LocalizerOptions& options) {
+  VisibilityOptions visibility = options.visibility;
+  visibility.threads = options.threads;
+  return visibleSegments(lines, scene, prior, camera, visibility);
+}
+
 Localization localize(const std::vector<ImageSegment>& image,
                       const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                       const PoseWithCovariance& prior, const PinholeCamera& camera,
-                      const LocalizerOptions& options) {
+                      const LocalizerOptions& options,
+                      const std::vector<VisibleSegment>* visible_from_prior) {
   Localization localization;
   if (needsAcquisition(prior, options)) {
     Acquisition acquisition = acquirePose(image, lines, scene, prior, camera, options.acquisition);
@@ -217,9 +228,9 @@ Localization localize(const std::vector<ImageSegment>& image,
     return localization;
   }
   const int64_t visibility_start_ns = steadyClockNs();
-  VisibilityOptions visibility = options.visibility;
-  visibility.threads = options.threads;
-  localization.visible = visibleSegments(lines, scene, prior, camera, visibility);
+  localization.visible = visible_from_prior
+                             ? *visible_from_prior
+                             : visibleFromPrior(lines, scene, prior, camera, options);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
   localization.alignment = track(image, localization.visible, prior, camera, options);
   widenForConfidence(localization.alignment, options.alignment.confidence);

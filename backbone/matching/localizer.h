@@ -132,9 +132,23 @@ struct Localization {
 // True when `prior` is too poor for gated matching.
 bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& options);
 
+// Tracking's hidden-line removal from `prior` (visible_lines.h, under
+// options.visibility on options.threads): the first step of localize for a
+// prior needsAcquisition refuses, and the only one that needs no image, so a
+// caller that knows the prior before the image's lines can run it meanwhile.
+std::vector<VisibleSegment> visibleFromPrior(const std::vector<ModelSegment>& lines,
+                                             const OcclusionScene& scene,
+                                             const PoseWithCovariance& prior,
+                                             const PinholeCamera& camera,
+                                             const LocalizerOptions& options);
+
+// `visible_from_prior`, when given, is visibleFromPrior's answer for these
+// lines, scene, prior, camera and options, which tracking then takes instead
+// of removing the hidden lines itself; a search ignores it.
 Localization localize(const std::vector<ImageSegment>& image,
                       const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                       const PoseWithCovariance& prior, const PinholeCamera& camera,
-                      const LocalizerOptions& options);
+                      const LocalizerOptions& options,
+                      const std::vector<VisibleSegment>* visible_from_prior = nullptr);
 
 }  // namespace lineloc

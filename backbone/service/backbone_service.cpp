@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
@@ -95,6 +96,7 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"dropped_invalid", counters.dropped_invalid},
                                {"map_errors", counters.map_errors},
                                {"searches", counters.searches},
+                               {"visibility_ahead", counters.visibility_ahead},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -130,12 +132,24 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
+  dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(participant,
+                                                                 dds::Qos(kHistoryDepth));
   dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::Qos(kHistoryDepth));
   LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 
   {
     const std::optional<PeriodicTask> stats_writer = periodicStatsFile(config, handler);
+    // Exposure notices on a thread of their own: a robot's frame is exposed
+    // while the backbone may still answer another robot's LineSet.
+    const std::jthread exposure_thread([&] {
+      while (!stop) {
+        if (exposures.waitForData(kWaitNs)) {
+          exposures.takeEach(
+              [&](const lineloc_msg_LineSet& message) { handler.handleExposure(message); });
+        }
+      }
+    });
     while (!stop) {
       if (reader.waitForData(kWaitNs)) {
         reader.takeEach([&](const lineloc_msg_LineSet& message) {

@@ -75,6 +75,11 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
   return prior;
 }
 
+PoseWithCovariance LineSetHandler::trackingPrior(const LineSetData& line_set,
+                                                 const PreparedMap& map) {
+  return searchPrior(line_set.robot_id, groundedPrior(line_set, map));
+}
+
 std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp_ns) {
   if (options.sun_from_clock) {
     return options.sun_from_clock->at(stamp_ns);
@@ -91,9 +96,10 @@ LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) c
 void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odometry,
                            const std::shared_ptr<const PreparedMap>& map,
                            const PoseWithCovariance& prior, const LocalizerOptions& options,
-                           PoseFixData& fix) {
-  const Localization localization =
-      localize(line_set.segments, map->segments, map->scene, prior, line_set.camera, options);
+                           PoseFixData& fix,
+                           const std::vector<VisibleSegment>* visible_from_prior) {
+  const Localization localization = localize(line_set.segments, map->segments, map->scene, prior,
+                                             line_set.camera, options, visible_from_prior);
   const Alignment& alignment = localization.alignment;
   fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
@@ -393,10 +399,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     ++counters_.received;
   }
   if (const std::optional<std::string> error = findLineSetError(message, limits_)) {
-    spdlog::warn("dropped LineSet #{}: {}", message.sequence_number, *error);
-    const std::lock_guard<std::mutex> lock(counters_mutex_);
-    ++counters_.dropped_invalid;
-    counters_.last_drop_reason = *error;
+    countDrop("LineSet", message.sequence_number, *error);
     return std::nullopt;
   }
   const LineSetData line_set = fromMessage(message);
@@ -422,9 +425,14 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
       return finish(fix, start_ns);
     }
-    const PoseWithCovariance prior = searchPrior(line_set.robot_id, groundedPrior(line_set, *map));
+    const PoseWithCovariance prior = trackingPrior(line_set, *map);
     if (!needsAcquisition(prior, options_.localizer)) {
-      track(line_set, odometry, map, prior, localizerOptions(line_set), fix);
+      const int64_t waiting_start_ns = steadyClockNs();
+      const std::optional<std::vector<VisibleSegment>> ahead =
+          visibilityAhead(line_set, map, prior);
+      fix.timings.visibility = ahead ? steadyClockNs() - waiting_start_ns : 0;
+      track(line_set, odometry, map, prior, localizerOptions(line_set), fix,
+            ahead ? &*ahead : nullptr);
       return finish(fix, start_ns);
     }
     const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
@@ -445,6 +453,78 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
   }
   return finish(fix, start_ns);
+}
+
+void LineSetHandler::countDrop(const char* kind, uint32_t sequence_number,
+                               const std::string& error) {
+  spdlog::warn("dropped {} #{}: {}", kind, sequence_number, error);
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.dropped_invalid;
+  counters_.last_drop_reason = error;
+}
+
+void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
+  const ForegroundGate::Scope foreground(foreground_);
+  if (const std::optional<std::string> error = findLineSetError(message, limits_)) {
+    countDrop("exposure notice", message.sequence_number, *error);
+    return;
+  }
+  const LineSetData exposure = fromMessage(message);
+  std::promise<std::vector<VisibleSegment>> visible;
+  try {
+    const std::shared_ptr<const PreparedMap> map =
+        maps_.around(exposure.predicted_T_world_camera.pose.translation());
+    if (!map || map->view->lines.empty()) {
+      return;
+    }
+    const PoseWithCovariance prior = trackingPrior(exposure, *map);
+    if (needsAcquisition(prior, options_.localizer)) {
+      return;
+    }
+    {
+      const std::lock_guard<std::mutex> lock(ahead_mutex_);
+      ahead_.insert_or_assign(exposure.robot_id,
+                              VisibilityAhead{exposure.sequence_number, map, prior, exposure.camera,
+                                              visible.get_future().share()});
+    }
+    LocalizerOptions options = localizerOptions(exposure);
+    options.threads = options_.exposure_visibility_threads;
+    visible.set_value(visibleFromPrior(map->segments, map->scene, prior, exposure.camera, options));
+  } catch (const std::exception& error) {
+    spdlog::error("exposure notice for {} #{} failed: {}", exposure.robot_id,
+                  exposure.sequence_number, error.what());
+    visible.set_exception(std::current_exception());
+  }
+}
+
+std::optional<std::vector<VisibleSegment>> LineSetHandler::visibilityAhead(
+    const LineSetData& line_set, const std::shared_ptr<const PreparedMap>& map,
+    const PoseWithCovariance& prior) {
+  VisibilityAhead ahead;
+  {
+    const std::lock_guard<std::mutex> lock(ahead_mutex_);
+    const auto found = ahead_.find(line_set.robot_id);
+    if (found == ahead_.end()) {
+      return std::nullopt;
+    }
+    ahead = std::move(found->second);
+    ahead_.erase(found);
+  }
+  const bool same_view = ahead.sequence_number == line_set.sequence_number && ahead.map == map &&
+                         ahead.prior.pose.matrix() == prior.pose.matrix() &&
+                         ahead.prior.covariance == prior.covariance &&
+                         ahead.camera == line_set.camera;
+  if (!same_view) {
+    return std::nullopt;
+  }
+  try {
+    std::vector<VisibleSegment> visible = ahead.visible.get();
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.visibility_ahead;
+    return visible;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace lineloc

@@ -27,6 +27,8 @@ struct PinholeCamera {
   Eigen::Matrix3d K() const;
   // Projects a point in the camera frame (z > 0) to pixels.
   Eigen::Vector2d project(const Eigen::Vector3d& p_camera) const;
+
+  bool operator==(const PinholeCamera&) const = default;
 };
 
 struct CameraCalibration {

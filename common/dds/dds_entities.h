@@ -86,7 +86,9 @@ class Qos {
   dds_qos_t* qos_;
 };
 
-// Message type traits, specialised next to each IDL type (common/messages/topics.h).
+// Message type traits, specialised next to each IDL type (common/messages/topics.h):
+// the type's own topic. A second topic of the same type has traits of its own,
+// given to Writer and Reader as `Topic`.
 template <typename Message>
 struct TopicTraits;
 
@@ -100,12 +102,12 @@ uint32_t serializedSizeBytes(const Message& sample) {
   return serializedSizeBytes(&sample, *TopicTraits<Message>::descriptor());
 }
 
-template <typename Message>
+template <typename Message, typename Topic = TopicTraits<Message>>
 class Writer {
  public:
   Writer(const Participant& participant, const Qos& qos)
-      : topic_(dds_create_topic(participant.handle(), TopicTraits<Message>::descriptor(),
-                                TopicTraits<Message>::kName, nullptr, nullptr),
+      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
+                                nullptr),
                "topic"),
         writer_(dds_create_writer(participant.handle(), topic_.handle(), qos.get(), nullptr),
                 "writer") {}
@@ -128,12 +130,12 @@ class Writer {
   Entity writer_;
 };
 
-template <typename Message>
+template <typename Message, typename Topic = TopicTraits<Message>>
 class Reader {
  public:
   Reader(const Participant& participant, const Qos& qos)
-      : topic_(dds_create_topic(participant.handle(), TopicTraits<Message>::descriptor(),
-                                TopicTraits<Message>::kName, nullptr, nullptr),
+      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
+                                nullptr),
                "topic"),
         reader_(dds_create_reader(participant.handle(), topic_.handle(), qos.get(), nullptr),
                 "reader"),

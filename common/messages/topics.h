@@ -12,6 +12,15 @@ struct TopicTraits<lineloc_msg_LineSet> {
   static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_LineSet_desc; }
 };
 
+// A frame's LineSet without its features, sent by the robot at the frame's
+// exposure, before it extracts them: the prediction the LineSet will carry,
+// so the backbone removes the hidden model lines while the robot extracts its
+// image lines (line_set_handler.h). The LineSet follows on its own topic.
+struct ExposureTopic {
+  static constexpr const char* kName = "lineloc_Exposure";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_LineSet_desc; }
+};
+
 template <>
 struct TopicTraits<lineloc_msg_PoseFix> {
   static constexpr const char* kName = "lineloc_PoseFix";

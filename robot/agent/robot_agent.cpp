@@ -312,6 +312,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
            : summary.fixes_rejected);
   });
   dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(kHistoryDepth));
+  dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic> exposure_writer(participant,
+                                                                       dds::Qos(kHistoryDepth));
   dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(kHistoryDepth));
   TumWriter fused(config.fused_trajectory_out);
   waitForBackbone(writer, receiver.reader(), config.wait_for_backbone_s, stop);
@@ -376,6 +378,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           line_set.predicted_T_world_camera = configured;
         }
         fused.write({line_set.stamp_ns, line_set.predicted_T_world_camera.pose});
+        if (config.exposure_notices) {
+          exposure_writer.write(LineSetMessage(line_set).message());
+        }
         const FrameFeatures& features = extractor.extract(images.take(event.index));
         line_set.segments = features.segments;
         line_set.corners = features.corners;

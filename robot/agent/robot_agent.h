@@ -1,8 +1,9 @@
 // The robot's side of the loop (paper §1.2): replay the camera, IMU, DGPS and
 // compass as they were measured; keep the pose with the inertial navigator
 // (robot/inertial) started from DGPS and compass; for each camera frame send
-// the extracted segments and corners with the pose predicted at its exposure
-// time; apply each PoseFix that comes back (late) at its frame's time; publish
+// the pose predicted at its exposure time at once (ExposureTopic,
+// common/messages/topics.h), then the extracted segments and corners with it;
+// apply each PoseFix that comes back (late) at its frame's time; publish
 // the fused state (RobotState) at a fixed rate.
 //
 // Without IMU data (a plain image folder) the prediction is the configured
@@ -46,6 +47,10 @@ struct RobotConfig {
   // Every PoseFix received, with its status and covariance (fix_log.h); empty: none.
   std::string fix_log_out;
   double state_rate_hz = 20.0;
+  // Send each frame's prediction at its exposure, before its lines
+  // (ExposureTopic): the backbone then removes the hidden model lines while
+  // the robot extracts the image's.
+  bool exposure_notices = true;
   double wait_for_backbone_s = 5.0;
   double fix_timeout_s = 2.0;
 };

@@ -65,6 +65,9 @@ int main(int argc, char** argv) {
               "file every PoseFix received goes to: TUM pose, status, counts, covariance (empty: "
               "none)");
   options.add("state_rate_hz", config.state_rate_hz, "RobotState publication rate");
+  options.add("exposure_notices", config.exposure_notices,
+              "send each frame's prediction at its exposure, so the backbone removes the hidden "
+              "model lines while the robot extracts the image's");
   options.add("wait_for_backbone_s", config.wait_for_backbone_s,
               "how long to wait for a backbone before sending");
   options.add("fix_timeout_s", config.fix_timeout_s,

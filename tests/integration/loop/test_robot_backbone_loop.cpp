@@ -79,7 +79,8 @@ class Observer {
         participant_(domain_),
         line_sets_(participant_, dds::Qos(256)),
         fixes_(participant_, dds::Qos(256)),
-        writer_(participant_, dds::Qos(32)) {}
+        writer_(participant_, dds::Qos(32)),
+        exposure_writer_(participant_, dds::Qos(32)) {}
 
   void poll() {
     fixes_.waitForData(5'000'000);
@@ -102,8 +103,13 @@ class Observer {
   }
 
   dds::Writer<lineloc_msg_LineSet>& writer() { return writer_; }
+  dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic>& exposureWriter() {
+    return exposure_writer_;
+  }
   // The observer's own LineSet reader is one of the writer's matched readers.
-  bool backboneListening() const { return writer_.matchedReaders() >= 2; }
+  bool backboneListening() const {
+    return writer_.matchedReaders() >= 2 && exposure_writer_.matchedReaders() >= 1;
+  }
   size_t fixesFor(const std::string& robot_id) const {
     return std::count_if(fixes.begin(), fixes.end(),
                          [&](const PoseFixData& f) { return f.robot_id == robot_id; });
@@ -118,6 +124,7 @@ class Observer {
   dds::Reader<lineloc_msg_LineSet> line_sets_;
   dds::Reader<lineloc_msg_PoseFix> fixes_;
   dds::Writer<lineloc_msg_LineSet> writer_;
+  dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic> exposure_writer_;
 };
 
 // The count in the robot's summary line "... N fixes received ...".
@@ -246,6 +253,8 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   for (LineSetData* bad : {&nan_segment, &oversized, &bad_robot_id}) {
     observer.writer().write(LineSetMessage(*bad).message());
   }
+  // So is a malformed exposure notice, on its own topic and thread.
+  observer.exposureWriter().write(LineSetMessage(bad_robot_id).message());
   // The next good one is answered at once, without a pose while the map
   // around it is prepared.
   observer.writer().write(LineSetMessage(probeLineSet("probe", 4, 5)).message());
@@ -268,7 +277,8 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   EXPECT_EQ(observer.fixes.back().status, lineloc_msg_FIX_TOO_FEW_MATCHES);
   const int probes_answered = static_cast<int>(sequence) - 3;
   ASSERT_TRUE(observer.pollUntil([&] { return stats().value("answered", 0) == probes_answered; }));
-  EXPECT_EQ(stats()["dropped_invalid"], 3);
+  ASSERT_TRUE(observer.pollUntil([&] { return stats().value("dropped_invalid", 0) == 4; }))
+      << log("backbone.log");
   EXPECT_EQ(stats()["received"], probes_answered + 3);
 
   // Two robots at once.

@@ -134,6 +134,74 @@ TEST_F(LineSetHandlerTest, TracksFromAGoodPrediction) {
   EXPECT_EQ(handler.counters().searches, 0u);
 }
 
+// A frame whose exposure notice came first is answered as it would be
+// without one: the hidden lines removed at its exposure are those tracking
+// removes from its prediction.
+TEST_F(LineSetHandlerTest, TracksWithTheHiddenLinesRemovedAtExposure) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler noticed(cache, MessageLimits{}, PipelineOptions{});
+  LineSetHandler unnoticed(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(noticed, {13, -30, 1.5});
+  prepareMapAt(unnoticed, {13, -30, 1.5});
+  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  noticed.handleExposure(lineSetMessage({}, predicted)->message());
+  const auto line_set = lineSetMessage(observedEdges(database_.conninfo(), truth), predicted);
+  const auto fix = noticed.handle(line_set->message());
+  const auto reference = unnoticed.handle(line_set->message());
+  ASSERT_TRUE(fix.has_value() && reference.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  EXPECT_EQ(noticed.counters().visibility_ahead, 1u);
+  EXPECT_EQ(unnoticed.counters().visibility_ahead, 0u);
+  EXPECT_EQ(fix->status, reference->status);
+  EXPECT_EQ(fix->inliers, reference->inliers);
+  EXPECT_EQ(fix->T_world_camera.pose.matrix(), reference->T_world_camera.pose.matrix());
+  EXPECT_EQ(fix->T_world_camera.covariance, reference->T_world_camera.covariance);
+  expectWithinThreeSigma(fix->T_world_camera, truth);
+}
+
+// A notice for another frame, or one whose prediction the LineSet does not
+// carry, is not taken: the frame's hidden lines are removed again.
+TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPrediction) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
+  const std::vector<ImageSegment> seen =
+      observedEdges(database_.conninfo(), lookingNorth({13, -30, 1.5}));
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
+            lineloc_msg_FIX_OK);
+  handler.handleExposure(
+      lineSetMessage({}, lookingNorth({13.1, -30, 1.5}, 0.1, 0.003), 5)->message());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 5)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 0u);
+  EXPECT_EQ(handler.counters().fixes_ok, 2u);
+}
+
+// A malformed notice is dropped and counted; the frame is answered all the same.
+TEST_F(LineSetHandlerTest, DropsAndCountsAMalformedExposureNotice) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  prepareMapAt(handler, {13, -30, 1.5});
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  const auto holder = lineSetMessage({}, predicted);
+  lineloc_msg_LineSet notice = holder->message();
+  notice.predicted_T_world_camera.pose.rotation_xyzw[3] = 7.0;
+  handler.handleExposure(notice);
+  EXPECT_EQ(handler.counters().dropped_invalid, 1u);
+  EXPECT_NE(handler.counters().last_drop_reason.find("predicted_T_world_camera"), std::string::npos)
+      << handler.counters().last_drop_reason;
+  const auto fix = handler.handle(
+      lineSetMessage(observedEdges(database_.conninfo(), lookingNorth({13, -30, 1.5})), predicted)
+          ->message());
+  ASSERT_TRUE(fix.has_value());
+  EXPECT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  EXPECT_EQ(handler.counters().visibility_ahead, 0u);
+  EXPECT_EQ(handler.counters().received, 2u);
+}
+
 // No frame waits for the database or for a scene to be built: the first one
 // is answered without a pose while its map is prepared, a frame 40 m on, whose
 // own view is not prepared yet, is localized in the one prepared nearby.

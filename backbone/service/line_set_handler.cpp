@@ -473,7 +473,7 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
   std::promise<std::vector<VisibleSegment>> visible;
   try {
     const std::shared_ptr<const PreparedMap> map =
-        maps_.around(exposure.predicted_T_world_camera.pose.translation());
+        maps_.preparedAround(exposure.predicted_T_world_camera.pose.translation());
     if (!map || map->view->lines.empty()) {
       return;
     }

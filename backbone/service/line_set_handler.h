@@ -74,8 +74,10 @@
 //
 // A robot may send each frame's LineSet without its features at the frame's
 // exposure (ExposureTopic, common/messages/topics.h): the prediction the
-// LineSet will carry. When that prediction is one to track, the hidden-line
-// removal from it (visibleFromPrior, localizer.h) runs at once, on
+// LineSet will carry. When that prediction is one to track in a map already
+// prepared (a notice neither starts a preparation nor takes its error, which
+// are the frame's), the hidden-line removal from it (visibleFromPrior,
+// localizer.h) runs at once, on
 // exposure_visibility_threads, while the robot extracts its lines, and the
 // LineSet that follows takes it when its prior, map view and camera are the
 // ones it was computed for, waiting for the rest of it if it is still running.

@@ -35,16 +35,32 @@ std::shared_ptr<const PreparedMap> PreparedMaps::around(const Eigen::Vector3d& p
       std::rethrow_exception(std::exchange(failure_, nullptr));
     }
   }
-  if (const std::shared_ptr<const MapView> view =
-          tiles_.aroundIfLoaded(position_world, query_radius_m_)) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (std::shared_ptr<const PreparedMap> prepared = findPrepared(view)) {
-      return prepared;
-    }
+  if (std::shared_ptr<const PreparedMap> own = ownPrepared(position_world)) {
+    return own;
   }
   worker_.submit(kPreparation, [this, position_world] { prepare(position_world); });
   const std::lock_guard<std::mutex> lock(mutex_);
   return nearestPrepared(position_world);
+}
+
+std::shared_ptr<const PreparedMap> PreparedMaps::preparedAround(
+    const Eigen::Vector3d& position_world) {
+  if (std::shared_ptr<const PreparedMap> own = ownPrepared(position_world)) {
+    return own;
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return nearestPrepared(position_world);
+}
+
+std::shared_ptr<const PreparedMap> PreparedMaps::ownPrepared(
+    const Eigen::Vector3d& position_world) {
+  const std::shared_ptr<const MapView> view =
+      tiles_.aroundIfLoaded(position_world, query_radius_m_);
+  if (!view) {
+    return nullptr;
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return findPrepared(view);
 }
 
 void PreparedMaps::waitUntilIdle() {

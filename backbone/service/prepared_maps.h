@@ -49,6 +49,10 @@ class PreparedMaps {
   // nullptr while none is ready. Starts preparing the frame's own view when
   // it is not. Rethrows, once, the error that ended the last preparation.
   std::shared_ptr<const PreparedMap> around(const Eigen::Vector3d& position_world);
+  // The map around() would return now, without starting a preparation or
+  // taking its error: for work ahead of a frame, which must leave both to the
+  // frame itself.
+  std::shared_ptr<const PreparedMap> preparedAround(const Eigen::Vector3d& position_world);
 
   // Blocks until the view being prepared is.
   void waitUntilIdle();
@@ -59,6 +63,8 @@ class PreparedMaps {
   // Runs on the worker: loads the view around `position_world` (waiting for
   // the database) and prepares it.
   void prepare(const Eigen::Vector3d& position_world);
+  // The map prepared from the loaded view around `position_world`, if any.
+  std::shared_ptr<const PreparedMap> ownPrepared(const Eigen::Vector3d& position_world);
   // Under mutex_: the map prepared from `view`, moved to the front.
   std::shared_ptr<const PreparedMap> findPrepared(const std::shared_ptr<const MapView>& view);
   // Under mutex_: the most recent map centred within reuse_distance_m.

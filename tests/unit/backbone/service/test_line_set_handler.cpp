@@ -504,9 +504,11 @@ TEST_F(LineSetHandlerTest, UnreachableDatabaseIsAnsweredAsInternalErrorAndCounte
   MapTileCache cache = makeCache("host=127.0.0.1 port=1 user=nobody dbname=none connect_timeout=2");
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
   const auto message = lineSetMessage(fewSegments(), lookingNorth({0, 0, 0}));
-  // Answered at once while the map is loaded; the next frame learns it failed.
+  // Answered at once while the map is loaded; the next frame learns it failed,
+  // not the exposure notice before it.
   EXPECT_EQ(handler.handle(message->message())->status, lineloc_msg_FIX_NO_MATCH_COMPUTED);
   handler.waitForSearches();
+  handler.handleExposure(message->message());
   const auto fix = handler.handle(message->message());
   ASSERT_TRUE(fix.has_value());
   EXPECT_EQ(fix->status, lineloc_msg_FIX_INTERNAL_ERROR);

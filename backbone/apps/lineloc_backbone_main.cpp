@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   options.add("max_cached_tiles", config.max_cached_tiles, "map tiles kept in memory");
   options.add("prefetch_lookahead_s", config.prefetch_lookahead_s,
               "map tiles are loaded where each robot will be this much later (s)");
+  options.add("forget_robot_after_s", config.forget_robot_after_s,
+              "a robot not heard from for this long is forgotten and served as new (s)");
   options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");

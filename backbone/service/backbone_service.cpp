@@ -97,6 +97,8 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"map_errors", counters.map_errors},
                                {"searches", counters.searches},
                                {"visibility_ahead", counters.visibility_ahead},
+                               {"robots", counters.robots},
+                               {"robots_forgotten", counters.robots_forgotten},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -114,10 +116,11 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
 
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
   if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0 ||
-      config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0)) {
+      config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0) ||
+      !(config.forget_robot_after_s > 0.0)) {
     throw std::runtime_error(
-        "max_segments, query_radius_m, tile_size_m, max_cached_tiles and stats_period_s must be "
-        "positive");
+        "max_segments, query_radius_m, tile_size_m, max_cached_tiles, stats_period_s and "
+        "forget_robot_after_s must be positive");
   }
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
@@ -127,6 +130,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   PipelineOptions pipeline;
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
+  pipeline.forget_robot_after_s = config.forget_robot_after_s;
   pipeline.localizer.visibility.sunlight = config.sunlight;
   pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);

@@ -22,6 +22,8 @@ struct BackboneConfig {
   double tile_size_m = 100.0;
   int max_cached_tiles = 4096;
   double prefetch_lookahead_s = 3.0;
+  // A robot not heard from for this long is forgotten (line_set_handler.h).
+  double forget_robot_after_s = 30.0;
   int max_segments = 2048;
   int max_corners = 2048;
   // Written on exit (and every stats_period_s): counters as JSON; empty: none.

@@ -33,4 +33,8 @@ int64_t FrameCadence::quietFrom_ns(int64_t now_ns) const {
   return earliest_ns;
 }
 
+void FrameCadence::forget(const std::function<bool(const std::string& robot_id)>& forgotten) {
+  std::erase_if(robots_, [&](const auto& robot) { return forgotten(robot.first); });
+}
+
 }  // namespace lineloc

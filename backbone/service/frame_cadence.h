@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -38,6 +39,9 @@ class FrameCadence {
   // The earliest time, at or after now_ns - stale_after_ns, from which
   // background work steps aside for a robot's next frame; kNever for none.
   int64_t quietFrom_ns(int64_t now_ns) const;
+
+  // Drops the robots `forgotten` names (line_set_handler.h: silent robots).
+  void forget(const std::function<bool(const std::string& robot_id)>& forgotten);
 
  private:
   struct Robot {

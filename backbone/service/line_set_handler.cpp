@@ -33,6 +33,7 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
     : map_(map),
       limits_(limits),
       options_(options),
+      silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
       foreground_(static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
       cadence_(static_cast<int64_t>(options.quiet_before_frame_ms * 1e6),
                static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
@@ -47,6 +48,69 @@ void LineSetHandler::waitForSearches() {
 BackboneCounters LineSetHandler::counters() const {
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   return counters_;
+}
+
+namespace {
+
+const std::string& robotIdOf(const std::string& robot_id) {
+  return robot_id;
+}
+
+template <typename Entry>
+const std::string& robotIdOf(const std::pair<const std::string, Entry>& entry) {
+  return entry.first;
+}
+
+// Erases the entries of `table`, a map or set keyed by robot id, whose robot
+// `unheard` names.
+template <typename Table, typename Unheard>
+void eraseRobots(Table& table, const Unheard& unheard) {
+  std::erase_if(table, [&](const auto& entry) { return unheard(robotIdOf(entry)); });
+}
+
+}  // namespace
+
+void LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
+  if (arrival_ns >= next_forgetting_ns_) {
+    next_forgetting_ns_ = arrival_ns + silence_ns_ / 2;
+    forgetSilentRobots(arrival_ns);
+  }
+  last_heard_ns_[robot_id] = arrival_ns;
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  counters_.robots = last_heard_ns_.size();
+}
+
+void LineSetHandler::forgetSilentRobots(int64_t now_ns) {
+  const uint64_t forgotten = std::erase_if(last_heard_ns_, [&](const auto& robot) {
+    const int64_t silent_ns = now_ns - robot.second;
+    if (silent_ns <= silence_ns_) {
+      return false;
+    }
+    spdlog::info("forgetting robot {}: not heard from for {:.1f} s", robot.first, silent_ns * 1e-9);
+    return true;
+  });
+  forgetUnheardRobots();
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  counters_.robots = last_heard_ns_.size();
+  counters_.robots_forgotten += forgotten;
+}
+
+void LineSetHandler::forgetUnheardRobots() {
+  const auto unheard = [this](const std::string& robot_id) {
+    return !last_heard_ns_.contains(robot_id);
+  };
+  eraseRobots(last_position_, unheard);
+  eraseRobots(motion_, unheard);
+  eraseRobots(fix_scatter_, unheard);
+  cadence_.forget(unheard);
+  {
+    const std::lock_guard<std::mutex> lock(searches_mutex_);
+    eraseRobots(last_search_, unheard);
+    eraseRobots(confirmed_search_, unheard);
+    eraseRobots(searching_again_, unheard);
+  }
+  const std::lock_guard<std::mutex> lock(ahead_mutex_);
+  eraseRobots(ahead_, unheard);
 }
 
 void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
@@ -403,6 +467,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     return std::nullopt;
   }
   const LineSetData line_set = fromMessage(message);
+  hearFrom(line_set.robot_id, start_ns);
   const OdometryPose odometry =
       motion_.try_emplace(line_set.robot_id, options_.motion)
           .first->second.add(line_set.stamp_ns, line_set.predicted_T_world_camera);

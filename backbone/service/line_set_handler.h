@@ -88,6 +88,15 @@
 // machine's noise, as the removal then competes with the robot's line
 // extraction for the cores.
 //
+// A robot not heard from for forget_robot_after_s is forgotten: its motion,
+// recent answers, searches, proofs, notice and frame cadence are dropped, so
+// that a backbone serving robots that come and go holds only the ones it
+// serves (a forgotten notice held a prepared map of its own). One that comes
+// back after that long is served as after a backbone restart: tracked from
+// its own prediction, or searched for when that is poor. The sweep runs on
+// the LineSets' thread, at most every forget_robot_after_s / 2, so a robot is
+// forgotten between one and one and a half of that after its last LineSet.
+//
 // The searches and the map preparation are background work: they pause
 // between pieces while a LineSet is being handled and from
 // quiet_before_frame_ms before a tracked robot's next one is due
@@ -128,6 +137,9 @@ struct BackboneCounters {
   uint64_t searches = 0;
   // Tracked frames whose hidden lines were removed from their exposure notice.
   uint64_t visibility_ahead = 0;
+  // Robots heard from within forget_robot_after_s, and those forgotten since start.
+  uint64_t robots = 0;
+  uint64_t robots_forgotten = 0;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -179,6 +191,9 @@ struct PipelineOptions {
   // Threads of the hidden-line removal started at a frame's exposure: one,
   // so that a robot on the same machine keeps a core for its line extraction.
   int exposure_visibility_threads = 1;
+  // A robot not heard from for this long is forgotten (see above); one whose
+  // radio drops out for seconds keeps its state.
+  double forget_robot_after_s = 30.0;
   PredictedMotionOptions motion;
   FixScatterOptions fix_scatter;
   LocalizerOptions localizer;
@@ -202,12 +217,24 @@ class LineSetHandler {
   // counted. Safe to call beside handle().
   void handleExposure(const lineloc_msg_LineSet& message);
 
+  // Forgets the robots not heard from for forget_robot_after_s before
+  // `now_ns` (steady clock); handle() does so itself (see above). Call it from
+  // the thread that calls handle().
+  void forgetSilentRobots(int64_t now_ns);
+
   // Blocks until the searches under way have finished.
   void waitForSearches();
 
   BackboneCounters counters() const;
 
  private:
+  // Records that `robot_id`'s LineSet arrived at `arrival_ns` (steady
+  // clock), first forgetting the silent robots when that is due: itself too
+  // when it was one.
+  void hearFrom(const std::string& robot_id, int64_t arrival_ns);
+  // Drops every table's entries of robots not in last_heard_ns_: also those a
+  // search that finished after its robot was forgotten wrote.
+  void forgetUnheardRobots();
   void prefetchAlongMotion(const LineSetData& line_set);
   // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
@@ -292,8 +319,13 @@ class LineSetHandler {
   MapTileCache& map_;
   MessageLimits limits_;
   PipelineOptions options_;
+  const int64_t silence_ns_;  // forget_robot_after_s
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
+  // The arrival of each robot's last LineSet, and when silent robots are next
+  // looked for (see above).
+  std::map<std::string, int64_t> last_heard_ns_;
+  int64_t next_forgetting_ns_ = 0;
   std::map<std::string, StampedPosition> last_position_;
   std::map<std::string, PredictedMotion> motion_;
   std::map<std::string, FixScatter> fix_scatter_;

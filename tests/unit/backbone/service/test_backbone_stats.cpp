@@ -21,6 +21,8 @@ BackboneCounters twoHundredAnswers() {
     counters.recent_timings.push_back(timings);
   }
   counters.answered = 200;
+  counters.robots = 3;
+  counters.robots_forgotten = 2;
   return counters;
 }
 
@@ -48,6 +50,8 @@ TEST(CountersJson, HoldsEachStagesMaximum) {
   writeCountersJson(twoHundredAnswers(), path.string());
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(path));
   EXPECT_EQ(json.at("answered"), 200);
+  EXPECT_EQ(json.at("robots"), 3);
+  EXPECT_EQ(json.at("robots_forgotten"), 2);
   EXPECT_DOUBLE_EQ(json.at("stage_ms").at("total").at("max").get<double>(), 200.0);
   EXPECT_DOUBLE_EQ(json.at("stage_ms").at("total").at("p99").get<double>(), 198.0);
   std::filesystem::remove(path);

@@ -1,6 +1,7 @@
 // FrameCadence: a tracked robot's next frame is due a frame period after its
 // last arrived; the earliest robot's, less the lead, is announced, and
-// nothing for robots searched for, just started, back after a gap, or gone.
+// nothing for robots searched for, just started, back after a gap, gone or
+// forgotten.
 #include <gtest/gtest.h>
 
 #include "backbone/service/frame_cadence.h"
@@ -52,6 +53,19 @@ TEST(FrameCadence, AnnouncesTheEarliestRobotsFrameUntilItIsStale) {
   EXPECT_EQ(cadence.quietFrom_ns(rover1_quiet_ns + kStaleAfter_ns + 1), rover2_quiet_ns)
       << "rover1 stopped sending";
   EXPECT_EQ(cadence.quietFrom_ns(rover2_quiet_ns + kStaleAfter_ns + 1), FrameCadence::kNever);
+}
+
+TEST(FrameCadence, ExpectsNothingOfAForgottenRobot) {
+  FrameCadence cadence(kLead_ns, kStaleAfter_ns);
+  cadence.add("rover1", kStamp_ns, kArrival_ns, true);
+  cadence.add("rover2", kStamp_ns, kArrival_ns + 10 * kMs, true);
+  cadence.add("rover1", kStamp_ns + kPeriod_ns, kArrival_ns + kPeriod_ns, true);
+  cadence.add("rover2", kStamp_ns + kPeriod_ns, kArrival_ns + 10 * kMs + kPeriod_ns, true);
+  cadence.forget([](const std::string& robot_id) { return robot_id == "rover1"; });
+  EXPECT_EQ(cadence.quietFrom_ns(kArrival_ns + kPeriod_ns),
+            kArrival_ns + 10 * kMs + 2 * kPeriod_ns - kLead_ns);
+  cadence.forget([](const std::string&) { return true; });
+  EXPECT_EQ(cadence.quietFrom_ns(kArrival_ns + kPeriod_ns), FrameCadence::kNever);
 }
 
 }  // namespace

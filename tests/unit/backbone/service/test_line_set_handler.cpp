@@ -10,6 +10,7 @@
 #include "backbone/matching/line_matcher.h"
 #include "backbone/service/line_set_handler.h"
 #include "backbone/service/map_geometry.h"
+#include "common/time/clock.h"
 #include "common/time/utc_time.h"
 #include "tests/support/test_database.h"
 
@@ -284,6 +285,17 @@ void expectTrackedAfterSearches(LineSetHandler& handler, const std::string& conn
   EXPECT_EQ(handler.counters().searches, 2u);
 }
 
+// The map prepared and `start`'s frames 2 and 3 searched for, the second
+// confirming the first; returns what the camera sees there.
+std::vector<ImageSegment> confirmPoorStart(LineSetHandler& handler, const std::string& conninfo,
+                                           const PoorStart& start) {
+  prepareMapAt(handler, {13, -30, 1.5});
+  const std::vector<ImageSegment> seen = observedEdges(conninfo, start.truth);
+  expectSearched(handler, seen, start.predicted, 2);
+  expectSearched(handler, seen, start.predicted, 3);
+  return seen;
+}
+
 TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
@@ -306,11 +318,8 @@ TEST_F(LineSetHandlerTest, SearchesFromAPoorPredictionThenTracksFromTheConfirmed
 TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPrediction) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  prepareMapAt(handler, {13, -30, 1.5});
-  PoorStart start;
-  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
-  expectSearched(handler, seen, start.predicted, 2);
-  expectSearched(handler, seen, start.predicted, 3);
+  const PoorStart start;
+  confirmPoorStart(handler, database_.conninfo(), start);
   // The robot stood still; a DGPS update moved its prediction 2 m north and
   // shrank its covariance (still too wide to track from).
   PoseWithCovariance corrected = start.predicted;
@@ -328,11 +337,8 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhe
   MapTileCache cache = makeCache(database_.conninfo());
   const PipelineOptions options;
   LineSetHandler handler(cache, MessageLimits{}, options);
-  prepareMapAt(handler, {13, -30, 1.5});
   const PoorStart start;
-  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), start.truth);
-  expectSearched(handler, seen, start.predicted, 2);
-  expectSearched(handler, seen, start.predicted, 3);
+  confirmPoorStart(handler, database_.conninfo(), start);
   const double acquired_variance =
       std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2);
   const auto expectFix = [&](const PoseWithCovariance& truth, const PoseWithCovariance& predicted,
@@ -386,8 +392,7 @@ struct TrackedBeside {
 TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& conninfo,
                                   float beside_length) {
   const PoorStart start;
-  expectSearched(handler, observedEdges(conninfo, start.truth), start.predicted, 2);
-  expectSearched(handler, observedEdges(conninfo, start.truth), start.predicted, 3);
+  confirmPoorStart(handler, conninfo, start);
   TrackedBeside frame{start.truth, start.predicted, {}};
   frame.truth.pose.translation().y() += 1.5;
   PoseWithCovariance beside = frame.truth;
@@ -414,7 +419,6 @@ TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& co
 TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  prepareMapAt(handler, {13, -30, 1.5});
   const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.4f);
 
   expectSearched(handler, frame.seen, frame.predicted, 6);
@@ -439,7 +443,6 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
   options.localizer.acquisition.search.max_hypotheses = 1;
   options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
   LineSetHandler handler(cache, MessageLimits{}, options);
-  prepareMapAt(handler, {13, -30, 1.5});
   const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.8f);
 
   const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 6)->message());
@@ -449,6 +452,59 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
             std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2));
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 3u);
+}
+
+// The steady clock a handler with `options` forgets the robots it heard
+// from until now at.
+int64_t onceSilentFor(const PipelineOptions& options) {
+  return steadyClockNs() + static_cast<int64_t>(options.forget_robot_after_s * 1e9) + 1;
+}
+
+// A robot not heard from for forget_robot_after_s is served as new: the
+// search its frames 2 and 3 confirmed no longer carries its frame 4 (see
+// SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose), which is
+// searched for again.
+TEST_F(LineSetHandlerTest, ARobotSilentForForgetRobotAfterIsServedAsNew) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  const PipelineOptions options;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  const PoorStart start;
+  confirmPoorStart(handler, database_.conninfo(), start);
+  handler.forgetSilentRobots(steadyClockNs());
+  EXPECT_EQ(handler.counters().robots, 2u) << "the warm-up robot and the searched one";
+  EXPECT_EQ(handler.counters().robots_forgotten, 0u);
+
+  handler.forgetSilentRobots(onceSilentFor(options));
+  EXPECT_EQ(handler.counters().robots, 0u);
+  EXPECT_EQ(handler.counters().robots_forgotten, 2u);
+  expectSearched(handler, observedEdges(database_.conninfo(), start.truth_moved),
+                 start.predicted_moved, 4);
+  EXPECT_EQ(handler.counters().searches, 3u);
+  EXPECT_EQ(handler.counters().fixes_ok, 0u);
+  EXPECT_EQ(handler.counters().robots, 1u);
+}
+
+// A silent robot's exposure notice, which holds a prepared map, is forgotten
+// with it: the frame it was for has its hidden lines removed again.
+TEST_F(LineSetHandlerTest, ASilentRobotsExposureNoticeIsForgottenWithIt) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  const PipelineOptions options;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  const std::vector<ImageSegment> seen =
+      observedEdges(database_.conninfo(), lookingNorth({13, -30, 1.5}));
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 3)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 1u);
+
+  handler.handleExposure(lineSetMessage({}, predicted, 4)->message());
+  handler.forgetSilentRobots(onceSilentFor(options));
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 1u);
+  EXPECT_EQ(handler.counters().robots_forgotten, 2u);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {

@@ -4,7 +4,8 @@
 // backbone works out from each frame's stamp), lineloc-backbone and lineloc-robot as separate
 // processes over DDS on loopback in real time, and the robot's poses checked
 // against the simulator's ground truth — once as it is, once with the
-// backbone killed mid-drive and started again.
+// backbone killed mid-drive and started again, once with a second robot on
+// another drive served by the same backbone.
 //
 // Bounds, from the simulated noise: the renderer's sensor noise and blur leave
 // segment endpoints 0.05-0.3 px uncertain; twenty-odd building lines 10-60 m
@@ -136,12 +137,22 @@ class DelftDrive : public ::testing::Test {
     load.insert(load.end(), origin_.begin(), origin_.end());
     load.push_back(city.string());
     runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
+    simulateDrive(1, "dataset");
+  }
+  void TearDown() override {
+    if (!HasFailure()) {
+      fs::remove_all(work_);
+    }
+  }
+
+  // Simulates the drive of `seed` into `dataset`, under work_.
+  void simulateDrive(int seed, const fs::path& dataset) const {
     std::vector<std::string> simulate = {"--city-model",
-                                         city.string(),
+                                         test::delftCityModel().string(),
                                          "--output",
-                                         (work_ / "dataset").string(),
+                                         (work_ / dataset).string(),
                                          "--seed",
-                                         "1",
+                                         std::to_string(seed),
                                          "--duration-s",
                                          std::to_string(kDriveSeconds),
                                          "--camera-height-m",
@@ -151,12 +162,7 @@ class DelftDrive : public ::testing::Test {
                                          "--sun-from-clock",
                                          "--site-origin"};
     simulate.insert(simulate.end(), origin_.begin(), origin_.end());
-    runOrFail("lineloc-sim", simulate, work_ / "sim.log", 600'000);
-  }
-  void TearDown() override {
-    if (!HasFailure()) {
-      fs::remove_all(work_);
-    }
+    runOrFail("lineloc-sim", simulate, work_ / (dataset.string() + "-sim.log"), 600'000);
   }
 
   std::vector<std::string> dds() const {
@@ -173,22 +179,60 @@ class DelftDrive : public ::testing::Test {
                                                 args, (work_ / log_name).string());
   }
 
-  std::unique_ptr<test::ChildProcess> startRobot() const {
+  // Robot `robot_id` driving through `dataset`; it writes <robot_id>.log,
+  // <robot_id>-fixes.tum and <robot_id>-fused.tum under work_.
+  std::unique_ptr<test::ChildProcess> startRobot(const std::string& robot_id = "drive",
+                                                 const fs::path& dataset = "dataset") const {
     std::vector<std::string> args = dds();
-    args.insert(args.end(),
-                {"--robot-id", "drive", "--images", (work_ / "dataset").string(), "--calibration",
-                 (work_ / "dataset" / "cam0" / "calibration.yaml").string(), "--site-crs",
-                 "EPSG:7415", "--camera-height-m", fmt::format("{}", test::kDelftCameraHeightM),
-                 "--trajectory-out", (work_ / "fixes.tum").string(), "--fused-trajectory-out",
-                 (work_ / "fused.tum").string(), "--site-origin"});
+    args.insert(
+        args.end(),
+        {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--calibration",
+         (work_ / dataset / "cam0" / "calibration.yaml").string(), "--site-crs", "EPSG:7415",
+         "--camera-height-m", fmt::format("{}", test::kDelftCameraHeightM), "--trajectory-out",
+         (work_ / (robot_id + "-fixes.tum")).string(), "--fused-trajectory-out",
+         (work_ / (robot_id + "-fused.tum")).string(), "--site-origin"});
     args.insert(args.end(), origin_.begin(), origin_.end());
     return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot",
-                                                args, (work_ / "robot.log").string());
+                                                args, (work_ / (robot_id + ".log")).string());
   }
 
-  void waitForRobot(test::ChildProcess& robot) const {
+  void waitForRobot(test::ChildProcess& robot, const std::string& robot_id = "drive") const {
     ASSERT_EQ(robot.wait((kDriveSeconds + 120) * 1000), std::optional<int>(0))
-        << readFile(work_ / "robot.log");
+        << readFile(work_ / (robot_id + ".log"));
+  }
+
+  // Robot `robot_id`'s drive through `dataset`, once it has ended: one answer
+  // per frame sent, and from kSettleSeconds after its first fix, position and
+  // attitude within the bounds above and a fix on nearly every frame.
+  void expectLocalized(const std::string& robot_id = "drive",
+                       const fs::path& dataset = "dataset") const {
+    const std::string robot_log = readFile(work_ / (robot_id + ".log"));
+    const int sent = countIn(robot_log, R"(([0-9]+) frames sent)");
+    ASSERT_GT(sent, kDriveSeconds * 10) << robot_log;
+    EXPECT_EQ(countIn(robot_log, R"(([0-9]+) fixes received)"), sent) << robot_log;
+    const auto fused = poses(robot_id + "-fused.tum");
+    const auto fixes = poses(robot_id + "-fixes.tum");
+    ASSERT_FALSE(fixes.empty()) << robot_log;
+    ASSERT_FALSE(fused.empty());
+    const int64_t first_frame_ns = fused.begin()->first;
+    const int64_t first_fix_ns = fixes.begin()->first;
+
+    const Accuracy accuracy =
+        accuracyFrom(fused, poses(dataset / "groundtruth_cam0.tum"),
+                     first_fix_ns + static_cast<int64_t>(kSettleSeconds * 1e9));
+    const auto fixes_after =
+        static_cast<double>(std::distance(fixes.lower_bound(first_fix_ns), fixes.end()));
+    const auto frames_after =
+        static_cast<double>(std::distance(fused.lower_bound(first_fix_ns), fused.end()));
+    fmt::print(
+        "{}: first fix {:.2f} s after the first frame; from {:.0f} s after it, position "
+        "RMSE {:.3f} m, attitude RMSE {:.3f} deg over {} frames; {} fixes over {} frames\n",
+        robot_id, (first_fix_ns - first_frame_ns) * 1e-9, kSettleSeconds, accuracy.position_rmse_m,
+        accuracy.attitude_rmse_deg, accuracy.frames, fixes_after, frames_after);
+    ASSERT_GT(accuracy.frames, 0);
+    EXPECT_LE(accuracy.position_rmse_m, kMaxPositionRmseM) << robot_id;
+    EXPECT_LE(accuracy.attitude_rmse_deg, kMaxAttitudeRmseDeg) << robot_id;
+    EXPECT_GE(fixes_after / frames_after, kMinFixedFraction) << robot_id;
   }
 
   std::map<int64_t, Eigen::Isometry3d> poses(const fs::path& relative) const {
@@ -206,11 +250,7 @@ TEST_F(DelftDrive, TheRobotKnowsItsPoseToCentimetresSoonAfterADgpsStart) {
   waitForRobot(*robot);
   backbone->signal(SIGTERM);
   backbone->wait(10'000);
-
-  const std::string robot_log = readFile(work_ / "robot.log");
-  const int sent = countIn(robot_log, R"(([0-9]+) frames sent)");
-  ASSERT_GT(sent, kDriveSeconds * 10) << robot_log;
-  EXPECT_EQ(countIn(robot_log, R"(([0-9]+) fixes received)"), sent) << robot_log;
+  expectLocalized();
   // Tracked frames take the hidden-line removal their exposure notice started;
   // a few may not, when a LineSet overtakes its notice or a search ends between
   // the two and changes the prior.
@@ -220,29 +260,22 @@ TEST_F(DelftDrive, TheRobotKnowsItsPoseToCentimetresSoonAfterADgpsStart) {
   EXPECT_GE(countIn(backbone_log, R"(([0-9]+) tracked with the hidden lines removed at exposure)"),
             0.9 * (with_a_pose - searches))
       << backbone_log;
+}
 
-  const auto fused = poses("fused.tum");
-  const auto fixes = poses("fixes.tum");
-  ASSERT_FALSE(fixes.empty()) << robot_log;
-  ASSERT_FALSE(fused.empty());
-  const int64_t first_frame_ns = fused.begin()->first;
-  const int64_t first_fix_ns = fixes.begin()->first;
-
-  const Accuracy accuracy = accuracyFrom(fused, poses(fs::path("dataset") / "groundtruth_cam0.tum"),
-                                         first_fix_ns + static_cast<int64_t>(kSettleSeconds * 1e9));
-  const auto fixes_after =
-      static_cast<double>(std::distance(fixes.lower_bound(first_fix_ns), fixes.end()));
-  const auto frames_after =
-      static_cast<double>(std::distance(fused.lower_bound(first_fix_ns), fused.end()));
-  fmt::print(
-      "drive: first fix {:.2f} s after the first frame; from {:.0f} s after it, position "
-      "RMSE {:.3f} m, attitude RMSE {:.3f} deg over {} frames; {} fixes over {} frames\n",
-      (first_fix_ns - first_frame_ns) * 1e-9, kSettleSeconds, accuracy.position_rmse_m,
-      accuracy.attitude_rmse_deg, accuracy.frames, fixes_after, frames_after);
-  ASSERT_GT(accuracy.frames, 0);
-  EXPECT_LE(accuracy.position_rmse_m, kMaxPositionRmseM);
-  EXPECT_LE(accuracy.attitude_rmse_deg, kMaxAttitudeRmseDeg);
-  EXPECT_GE(fixes_after / frames_after, kMinFixedFraction);
+// One backbone serves a second robot on another drive (seed 8) at the same
+// time: each robot's searches, tracking and fixes are its own, and both know
+// their pose as the one robot alone does.
+TEST_F(DelftDrive, OneBackboneLocalizesTwoRobotsAtOnce) {
+  simulateDrive(8, "dataset-2");
+  const auto backbone = startBackbone("backbone.log");
+  const auto first = startRobot();
+  const auto second = startRobot("drive-2", "dataset-2");
+  waitForRobot(*first);
+  waitForRobot(*second, "drive-2");
+  backbone->signal(SIGTERM);
+  backbone->wait(10'000);
+  expectLocalized();
+  expectLocalized("drive-2", "dataset-2");
 }
 
 // The backbone killed mid-drive and started again: the robot dead-reckons
@@ -252,9 +285,9 @@ TEST_F(DelftDrive, ABackboneKilledMidDriveAndRestartedPullsTheRobotBack) {
   auto backbone = startBackbone("backbone.log");
   const auto robot = startRobot();
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(kDriveSeconds);
-  while (!holdsAPose(work_ / "fixes.tum")) {
+  while (!holdsAPose(work_ / "drive-fixes.tum")) {
     ASSERT_LT(std::chrono::steady_clock::now(), give_up) << "no fix before the kill:\n"
-                                                         << readFile(work_ / "robot.log");
+                                                         << readFile(work_ / "drive.log");
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   std::this_thread::sleep_for(std::chrono::seconds(kKillAfterFirstFixSeconds));
@@ -266,8 +299,8 @@ TEST_F(DelftDrive, ABackboneKilledMidDriveAndRestartedPullsTheRobotBack) {
   backbone->signal(SIGTERM);
   backbone->wait(10'000);
 
-  const auto fused = poses("fused.tum");
-  const auto fixes = poses("fixes.tum");
+  const auto fused = poses("drive-fused.tum");
+  const auto fixes = poses("drive-fixes.tum");
   ASSERT_FALSE(fused.empty());
   // The outage shows as frames without a fix (the robot dead-reckoned).
   int64_t longest_gap_ns = 0;
@@ -278,7 +311,7 @@ TEST_F(DelftDrive, ABackboneKilledMidDriveAndRestartedPullsTheRobotBack) {
   const int64_t end_ns = fused.rbegin()->first;
   const int64_t last_part_ns = end_ns - static_cast<int64_t>(kLastPartSeconds * 1e9);
   ASSERT_NE(fixes.lower_bound(last_part_ns), fixes.end()) << "no fix after the restart:\n"
-                                                          << readFile(work_ / "robot.log");
+                                                          << readFile(work_ / "drive.log");
   const Accuracy accuracy =
       accuracyFrom(fused, poses(fs::path("dataset") / "groundtruth_cam0.tum"), last_part_ns);
   fmt::print(

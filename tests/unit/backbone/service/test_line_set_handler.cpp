@@ -454,6 +454,27 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
   EXPECT_EQ(handler.counters().searches, 3u);
 }
 
+// Each robot's searches are its own: another robot at the same place, with
+// the same poor prediction, is searched for, not carried by the first
+// robot's confirmed search.
+TEST_F(LineSetHandlerTest, ARobotsConfirmedSearchCarriesNoOtherRobot) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const PoorStart start;
+  const std::vector<ImageSegment> seen = confirmPoorStart(handler, database_.conninfo(), start);
+  const auto other = handler.handle(lineSetMessage(seen, start.predicted, 4, "other")->message());
+  ASSERT_TRUE(other.has_value());
+  EXPECT_EQ(other->status, lineloc_msg_FIX_NO_MATCH_COMPUTED) << toString(other->status);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 3u);
+  const auto tracked =
+      handler.handle(lineSetMessage(observedEdges(database_.conninfo(), start.truth_moved),
+                                    start.predicted_moved, 4)
+                         ->message());
+  ASSERT_TRUE(tracked.has_value());
+  EXPECT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
+}
+
 // The steady clock a handler with `options` forgets the robots it heard
 // from until now at.
 int64_t onceSilentFor(const PipelineOptions& options) {

@@ -505,6 +505,24 @@ TEST_F(LineSetHandlerTest, ARobotSilentForForgetRobotAfterIsServedAsNew) {
   EXPECT_EQ(handler.counters().robots, 1u);
 }
 
+// Serving forgets the silent robots itself: with a silence of a nanosecond,
+// each LineSet forgets every other robot (and a robot heard from again is
+// remembered anew).
+TEST_F(LineSetHandlerTest, ServingForgetsTheRobotsSilentForForgetRobotAfter) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.forget_robot_after_s = 1e-9;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  EXPECT_EQ(handler.counters().robots, 1u);
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  ASSERT_TRUE(handler.handle(lineSetMessage(fewSegments(), predicted, 3)->message()));
+  EXPECT_EQ(handler.counters().robots, 1u);
+  EXPECT_EQ(handler.counters().robots_forgotten, 1u);
+  ASSERT_TRUE(handler.handle(lineSetMessage(fewSegments(), predicted, 4)->message()));
+  EXPECT_EQ(handler.counters().robots_forgotten, 2u) << "itself, silent since its last frame";
+}
+
 // A silent robot's exposure notice, which holds a prepared map, is forgotten
 // with it: the frame it was for has its hidden lines removed again.
 TEST_F(LineSetHandlerTest, ASilentRobotsExposureNoticeIsForgottenWithIt) {

@@ -75,7 +75,9 @@ void LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
     next_forgetting_ns_ = arrival_ns + silence_ns_ / 2;
     forgetSilentRobots(arrival_ns);
   }
-  last_heard_ns_[robot_id] = arrival_ns;
+  if (!last_heard_ns_.insert_or_assign(robot_id, arrival_ns).second) {
+    return;
+  }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   counters_.robots = last_heard_ns_.size();
 }

@@ -161,9 +161,16 @@ TEST_F(LineSetHandlerTest, TracksWithTheHiddenLinesRemovedAtExposure) {
   expectWithinThreeSigma(fix->T_world_camera, truth);
 }
 
-// A notice for another frame, or one whose prediction the LineSet does not
-// carry, is not taken: the frame's hidden lines are removed again.
-TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPrediction) {
+// The steady clock a handler with `options` forgets the robots it heard
+// from until now at.
+int64_t onceSilentFor(const PipelineOptions& options) {
+  return steadyClockNs() + static_cast<int64_t>(options.forget_robot_after_s * 1e9) + 1;
+}
+
+// A notice for another frame, one whose prediction the LineSet does not
+// carry, or one its robot left before it was forgotten (the notice held a
+// prepared map), is not taken: the frame's hidden lines are removed again.
+TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPredictionOrForgottenRobot) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
   prepareMapAt(handler, {13, -30, 1.5});
@@ -177,8 +184,12 @@ TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPrediction)
       lineSetMessage({}, lookingNorth({13.1, -30, 1.5}, 0.1, 0.003), 5)->message());
   EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 5)->message())->status,
             lineloc_msg_FIX_OK);
+  handler.handleExposure(lineSetMessage({}, predicted, 6)->message());
+  handler.forgetSilentRobots(onceSilentFor(PipelineOptions{}));
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 6)->message())->status,
+            lineloc_msg_FIX_OK);
   EXPECT_EQ(handler.counters().visibility_ahead, 0u);
-  EXPECT_EQ(handler.counters().fixes_ok, 2u);
+  EXPECT_EQ(handler.counters().fixes_ok, 3u);
 }
 
 // A malformed notice is dropped and counted; the frame is answered all the same.
@@ -475,12 +486,6 @@ TEST_F(LineSetHandlerTest, ARobotsConfirmedSearchCarriesNoOtherRobot) {
   EXPECT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
 }
 
-// The steady clock a handler with `options` forgets the robots it heard
-// from until now at.
-int64_t onceSilentFor(const PipelineOptions& options) {
-  return steadyClockNs() + static_cast<int64_t>(options.forget_robot_after_s * 1e9) + 1;
-}
-
 // A robot not heard from for forget_robot_after_s is served as new: the
 // search its frames 2 and 3 confirmed no longer carries its frame 4 (see
 // SearchesFromAPoorPredictionThenTracksFromTheConfirmedPose), which is
@@ -521,29 +526,6 @@ TEST_F(LineSetHandlerTest, ServingForgetsTheRobotsSilentForForgetRobotAfter) {
   EXPECT_EQ(handler.counters().robots_forgotten, 1u);
   ASSERT_TRUE(handler.handle(lineSetMessage(fewSegments(), predicted, 4)->message()));
   EXPECT_EQ(handler.counters().robots_forgotten, 2u) << "itself, silent since its last frame";
-}
-
-// A silent robot's exposure notice, which holds a prepared map, is forgotten
-// with it: the frame it was for has its hidden lines removed again.
-TEST_F(LineSetHandlerTest, ASilentRobotsExposureNoticeIsForgottenWithIt) {
-  MapTileCache cache = makeCache(database_.conninfo());
-  const PipelineOptions options;
-  LineSetHandler handler(cache, MessageLimits{}, options);
-  prepareMapAt(handler, {13, -30, 1.5});
-  const std::vector<ImageSegment> seen =
-      observedEdges(database_.conninfo(), lookingNorth({13, -30, 1.5}));
-  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
-  handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
-  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 3)->message())->status,
-            lineloc_msg_FIX_OK);
-  EXPECT_EQ(handler.counters().visibility_ahead, 1u);
-
-  handler.handleExposure(lineSetMessage({}, predicted, 4)->message());
-  handler.forgetSilentRobots(onceSilentFor(options));
-  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
-            lineloc_msg_FIX_OK);
-  EXPECT_EQ(handler.counters().visibility_ahead, 1u);
-  EXPECT_EQ(handler.counters().robots_forgotten, 2u);
 }
 
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {

@@ -14,6 +14,7 @@
 #include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
 #include "common/parallel/periodic_task.h"
+#include "common/time/clock.h"
 #include "common/time/percentile.h"
 #include "db/site.h"
 
@@ -155,13 +156,15 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       }
     });
     while (!stop) {
-      if (reader.waitForData(kWaitNs)) {
-        reader.takeEach([&](const lineloc_msg_LineSet& message) {
-          if (const auto fix = handler.handle(message)) {
-            writer.write(toMessage(*fix));
-          }
-        });
+      if (!reader.waitForData(kWaitNs)) {
+        handler.forgetSilentRobotsWhenDue(steadyClockNs());
+        continue;
       }
+      reader.takeEach([&](const lineloc_msg_LineSet& message) {
+        if (const auto fix = handler.handle(message)) {
+          writer.write(toMessage(*fix));
+        }
+      });
     }
   }
   if (!config.stats_file.empty()) {

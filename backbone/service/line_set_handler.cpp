@@ -71,15 +71,20 @@ void eraseRobots(Table& table, const Unheard& unheard) {
 }  // namespace
 
 void LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
-  if (arrival_ns >= next_forgetting_ns_) {
-    next_forgetting_ns_ = arrival_ns + silence_ns_ / 2;
-    forgetSilentRobots(arrival_ns);
-  }
+  forgetSilentRobotsWhenDue(arrival_ns);
   if (!last_heard_ns_.insert_or_assign(robot_id, arrival_ns).second) {
     return;
   }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   counters_.robots = last_heard_ns_.size();
+}
+
+void LineSetHandler::forgetSilentRobotsWhenDue(int64_t now_ns) {
+  if (now_ns < next_forgetting_ns_) {
+    return;
+  }
+  next_forgetting_ns_ = now_ns + silence_ns_ / 2;
+  forgetSilentRobots(now_ns);
 }
 
 void LineSetHandler::forgetSilentRobots(int64_t now_ns) {

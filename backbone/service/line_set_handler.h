@@ -94,8 +94,10 @@
 // serves (a forgotten notice held a prepared map of its own). One that comes
 // back after that long is served as after a backbone restart: tracked from
 // its own prediction, or searched for when that is poor. The sweep runs on
-// the LineSets' thread, at most every forget_robot_after_s / 2, so a robot is
-// forgotten between one and one and a half of that after its last LineSet.
+// the LineSets' thread, at most every forget_robot_after_s / 2, at each
+// LineSet and, while none comes, each time the serving loop wakes without
+// one (forgetSilentRobotsWhenDue): a robot is forgotten between one and one
+// and a half of that after its last LineSet, also when no robot is left.
 //
 // The searches and the map preparation are background work: they pause
 // between pieces while a LineSet is being handled and from
@@ -218,9 +220,11 @@ class LineSetHandler {
   void handleExposure(const lineloc_msg_LineSet& message);
 
   // Forgets the robots not heard from for forget_robot_after_s before
-  // `now_ns` (steady clock); handle() does so itself (see above). Call it from
-  // the thread that calls handle().
+  // `now_ns` (steady clock). Call both from the thread that calls handle();
+  // handle() calls the second itself (see above).
   void forgetSilentRobots(int64_t now_ns);
+  // The same, unless a sweep ran within forget_robot_after_s / 2.
+  void forgetSilentRobotsWhenDue(int64_t now_ns);
 
   // Blocks until the searches under way have finished.
   void waitForSearches();

@@ -180,15 +180,25 @@ class RobotBackboneLoop : public ::testing::Test {
     return startBackbone(work_ / "stats.json");
   }
 
-  std::unique_ptr<test::ChildProcess> startBackbone(const fs::path& stats_file) {
-    return std::make_unique<test::ChildProcess>(
-        std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
-        std::vector<std::string>{"--domain-id", std::to_string(test::testDomainId()),
-                                 "--dds-config", test::testDdsConfig(), "--db",
-                                 database_.conninfo(), "--site", "test", "--max-segments",
-                                 std::to_string(kBackboneMaxSegments), "--stats-file",
-                                 stats_file.string(), "--stats-period-s", "0.1"},
-        (work_ / "backbone.log").string());
+  std::unique_ptr<test::ChildProcess> startBackbone(const fs::path& stats_file,
+                                                    std::vector<std::string> more_options = {}) {
+    std::vector<std::string> options{"--domain-id",
+                                     std::to_string(test::testDomainId()),
+                                     "--dds-config",
+                                     test::testDdsConfig(),
+                                     "--db",
+                                     database_.conninfo(),
+                                     "--site",
+                                     "test",
+                                     "--max-segments",
+                                     std::to_string(kBackboneMaxSegments),
+                                     "--stats-file",
+                                     stats_file.string(),
+                                     "--stats-period-s",
+                                     "0.1"};
+    options.insert(options.end(), more_options.begin(), more_options.end());
+    return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
+                                                options, (work_ / "backbone.log").string());
   }
 
   std::unique_ptr<test::ChildProcess> startRobot(const std::string& robot_id, double rate_hz) {
@@ -347,6 +357,25 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_EQ(stamps.rbegin()->first, static_cast<uint32_t>(kFrames - 1))
       << "the robot must keep sending after the backbone is gone";
   EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
+}
+
+// A robot that falls silent is forgotten although no other robot sends
+// anything that would make the backbone look for silent ones.
+TEST_F(RobotBackboneLoop, TheLastRobotLeftIsForgottenInTheSilenceAfterIt) {
+  Observer observer;
+  auto backbone = startBackbone(work_ / "stats.json", {"--forget-robot-after-s", "0.5"});
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+  observer.writer().write(LineSetMessage(probeLineSet("probe", 1, 5)).message());
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") == 1; }))
+      << log("backbone.log");
+  ASSERT_TRUE(observer.pollUntil([&] { return stats().value("robots_forgotten", 0) == 1; }))
+      << log("backbone.log");
+  EXPECT_EQ(stats()["robots"], 0);
+  EXPECT_NE(log("backbone.log").find("forgetting robot probe"), std::string::npos)
+      << log("backbone.log");
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
 }
 
 // The stats file is rewritten beside the serving loop, whose answers must not

@@ -8,7 +8,8 @@
 #
 # Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
 # LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42),
-# LINELOC_DEMO_OUT (where everything goes, out/demo/).
+# LINELOC_DEMO_OUT (where everything goes, out/demo/),
+# LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -18,6 +19,9 @@ DOMAIN_ID="${LINELOC_DEMO_DOMAIN:-42}"
 DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
 SEED="${LINELOC_DEMO_SEED:-1}"
 CAMERA_HZ="${LINELOC_DEMO_CAMERA_HZ:-30}"
+# The robot's front end runs ahead of the backbone's threads on the cores
+# they share here, as it would on a computer of its own (thread_priority.h).
+REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
 CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
 # Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
 SITE_CRS=EPSG:7415
@@ -57,7 +61,7 @@ trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 echo "demo: robot and backbone running in real time over DDS"
 "$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
   --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
-  --camera-height-m "$CAMERA_HEIGHT_M" \
+  --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
   --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
   --fix-log-out "$OUT/fixes.txt" --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 

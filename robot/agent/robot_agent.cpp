@@ -17,6 +17,7 @@
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
+#include "common/parallel/thread_priority.h"
 #include "common/time/clock.h"
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
@@ -272,6 +273,28 @@ class Playback {
   int64_t frame_period_ns_;
 };
 
+// Raises the calling thread, the one that replays the sensors and extracts
+// and sends each frame's lines, to SCHED_FIFO at `priority` (0: leaves it).
+// Not for a replay as fast as possible, which never sleeps: it would keep a
+// core from every time-shared thread, the robot's own receive thread too.
+void runFrontEndRealtime(int priority, bool paced) {
+  if (priority == 0) {
+    return;
+  }
+  if (!paced) {
+    spdlog::warn("realtime_priority {}: ignored for a replay as fast as possible", priority);
+    return;
+  }
+  if (!runThreadRealtime(priority)) {
+    spdlog::warn(
+        "realtime_priority {}: SCHED_FIFO refused (needs CAP_SYS_NICE or ulimit -r {}); the "
+        "front end runs time-shared",
+        priority, priority);
+    return;
+  }
+  spdlog::info("front end runs under SCHED_FIFO at priority {}", priority);
+}
+
 }  // namespace
 
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop) {
@@ -279,6 +302,11 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     throw std::runtime_error(
         fmt::format("robot_id '{}' must match [A-Za-z0-9][A-Za-z0-9_.-]* (at most 32 characters)",
                     config.robot_id));
+  }
+  if (config.realtime_priority < 0 || config.realtime_priority > 99) {
+    throw std::runtime_error(
+        fmt::format("realtime_priority {} must be 0 (time-shared) or a SCHED_FIFO priority of 1-99",
+                    config.realtime_priority));
   }
   if (config.calibration.empty()) {
     throw std::runtime_error("calibration: a camera calibration file is required");
@@ -321,6 +349,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
   // Frames are decoded ahead of their exposure, as a camera driver delivers them.
   ImagePrefetcher images(streams.frames);
+  // After the decoding and DDS threads have started, which stay time-shared.
+  runFrontEndRealtime(config.realtime_priority,
+                      stamped ? config.playback_speed > 0.0 : config.rate_hz > 0.0);
   const Playback playback(config, streams.timeline.empty() ? 0 : streams.timeline.front().stamp_ns);
   const int64_t state_period_ns =
       config.state_rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.state_rate_hz) : 0;

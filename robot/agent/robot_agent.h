@@ -51,6 +51,11 @@ struct RobotConfig {
   // (ExposureTopic): the backbone then removes the hidden model lines while
   // the robot extracts the image's.
   bool exposure_notices = true;
+  // SCHED_FIFO priority (1-99) of the thread that extracts each frame's lines
+  // and sends them (thread_priority.h); 0: time-shared like the rest. A
+  // refusal is logged and the robot runs on time-shared, as it does when
+  // replaying as fast as possible.
+  int realtime_priority = 0;
   double wait_for_backbone_s = 5.0;
   double fix_timeout_s = 2.0;
 };

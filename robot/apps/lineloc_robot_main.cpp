@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
   options.add("exposure_notices", config.exposure_notices,
               "send each frame's prediction at its exposure, so the backbone removes the hidden "
               "model lines while the robot extracts the image's");
+  options.add("realtime_priority", config.realtime_priority,
+              "SCHED_FIFO priority (1-99) of the thread that extracts and sends each frame's "
+              "lines, so that no other process's thread preempts it on its core (needs "
+              "CAP_SYS_NICE or ulimit -r); 0: time-shared");
   options.add("wait_for_backbone_s", config.wait_for_backbone_s,
               "how long to wait for a backbone before sending");
   options.add("fix_timeout_s", config.fix_timeout_s,

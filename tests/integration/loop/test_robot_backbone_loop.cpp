@@ -180,57 +180,53 @@ class RobotBackboneLoop : public ::testing::Test {
     return startBackbone(work_ / "stats.json");
   }
 
-  std::unique_ptr<test::ChildProcess> startBackbone(const fs::path& stats_file,
-                                                    std::vector<std::string> more_options = {}) {
-    std::vector<std::string> options{"--domain-id",
-                                     std::to_string(test::testDomainId()),
-                                     "--dds-config",
-                                     test::testDdsConfig(),
-                                     "--db",
-                                     database_.conninfo(),
-                                     "--site",
-                                     "test",
-                                     "--max-segments",
-                                     std::to_string(kBackboneMaxSegments),
-                                     "--stats-file",
-                                     stats_file.string(),
-                                     "--stats-period-s",
-                                     "0.1"};
-    options.insert(options.end(), more_options.begin(), more_options.end());
-    return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
-                                                options, (work_ / "backbone.log").string());
+  std::unique_ptr<test::ChildProcess> startBackbone(
+      const fs::path& stats_file, const std::vector<std::string>& more_options = {}) {
+    return start("lineloc-backbone", "backbone.log",
+                 {"--db", database_.conninfo(), "--site", "test", "--max-segments",
+                  std::to_string(kBackboneMaxSegments), "--stats-file", stats_file.string(),
+                  "--stats-period-s", "0.1"},
+                 more_options);
   }
 
-  std::unique_ptr<test::ChildProcess> startRobot(const std::string& robot_id, double rate_hz) {
-    return std::make_unique<test::ChildProcess>(
-        std::string(LINELOC_BIN_DIR) + "/lineloc-robot",
-        std::vector<std::string>{"--domain-id",
-                                 std::to_string(test::testDomainId()),
-                                 "--dds-config",
-                                 test::testDdsConfig(),
-                                 "--robot-id",
-                                 robot_id,
-                                 "--images",
-                                 (work_ / "images").string(),
-                                 "--calibration",
-                                 (work_ / "camera.yml").string(),
-                                 "--predicted-pose",
-                                 "5",
-                                 "-20",
-                                 "1.5",
-                                 "0",
-                                 "0",
-                                 "0",
-                                 "1",
-                                 "--rate-hz",
-                                 std::to_string(rate_hz),
-                                 "--trajectory-out",
-                                 (work_ / (robot_id + ".tum")).string(),
-                                 "--fused-trajectory-out",
-                                 (work_ / (robot_id + "-fused.tum")).string(),
-                                 "--fix-timeout-s",
-                                 "3"},
-        (work_ / (robot_id + ".log")).string());
+  std::unique_ptr<test::ChildProcess> startRobot(
+      const std::string& robot_id, double rate_hz,
+      const std::vector<std::string>& more_options = {}) {
+    return start("lineloc-robot", robot_id + ".log",
+                 {"--robot-id",
+                  robot_id,
+                  "--images",
+                  (work_ / "images").string(),
+                  "--calibration",
+                  (work_ / "camera.yml").string(),
+                  "--predicted-pose",
+                  "5",
+                  "-20",
+                  "1.5",
+                  "0",
+                  "0",
+                  "0",
+                  "1",
+                  "--rate-hz",
+                  std::to_string(rate_hz),
+                  "--trajectory-out",
+                  (work_ / (robot_id + ".tum")).string(),
+                  "--fused-trajectory-out",
+                  (work_ / (robot_id + "-fused.tum")).string(),
+                  "--fix-timeout-s",
+                  "3"},
+                 more_options);
+  }
+
+  // `program` on the test's DDS domain with `options`, then `more_options`.
+  std::unique_ptr<test::ChildProcess> start(const std::string& program, const std::string& log,
+                                            std::vector<std::string> options,
+                                            const std::vector<std::string>& more_options) {
+    options.insert(options.begin(), {"--domain-id", std::to_string(test::testDomainId()),
+                                     "--dds-config", test::testDdsConfig()});
+    options.insert(options.end(), more_options.begin(), more_options.end());
+    return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/" + program,
+                                                options, (work_ / log).string());
   }
 
   // The backbone's counters; an empty object until its first stats file exists.
@@ -291,11 +287,16 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
       << log("backbone.log");
   EXPECT_EQ(stats()["received"], probes_answered + 3);
 
-  // Two robots at once.
+  // Two robots at once, one extracting under SCHED_FIFO when the machine
+  // allows it.
   auto robot_a = startRobot("robot-a", 20.0);
-  auto robot_b = startRobot("robot-b", 25.0);
+  auto robot_b = startRobot("robot-b", 25.0, {"--realtime-priority", "5"});
   ASSERT_EQ(robot_a->wait(kTimeoutMs), 0) << log("robot-a.log");
   ASSERT_EQ(robot_b->wait(kTimeoutMs), 0) << log("robot-b.log");
+  const std::string robot_b_log = log("robot-b.log");
+  EXPECT_TRUE(robot_b_log.find("under SCHED_FIFO at priority 5") != std::string::npos ||
+              robot_b_log.find("SCHED_FIFO refused") != std::string::npos)
+      << robot_b_log;
   observer.pollUntil([&] {
     return observer.fixesFor("robot-a") == kFrames && observer.fixesFor("robot-b") == kFrames;
   });
@@ -357,6 +358,13 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_EQ(stamps.rbegin()->first, static_cast<uint32_t>(kFrames - 1))
       << "the robot must keep sending after the backbone is gone";
   EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
+}
+
+TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsStart) {
+  auto robot = startRobot("robot-d", 20.0, {"--realtime-priority", "100"});
+  EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-d.log");
+  EXPECT_NE(log("robot-d.log").find("realtime_priority 100 must be 0"), std::string::npos)
+      << log("robot-d.log");
 }
 
 // A robot that falls silent is forgotten although no other robot sends

@@ -27,5 +27,48 @@ TEST(ThreadPriority, LowersOnlyTheCallingThreadAndWhatItStarts) {
   EXPECT_EQ(threadNice(), caller_nice);
 }
 
+struct Scheduling {
+  int policy = -1;
+  int priority = -1;
+};
+
+Scheduling threadScheduling() {
+  Scheduling scheduling;
+  sched_param parameters{};
+  pthread_getschedparam(pthread_self(), &scheduling.policy, &parameters);
+  scheduling.priority = parameters.sched_priority;
+  return scheduling;
+}
+
+// Without the privilege (an unprivileged user, a container without
+// CAP_SYS_NICE) the refusal must leave the thread as it was.
+TEST(ThreadPriority, RunsOnlyTheCallingThreadRealtimeOrLeavesItAsItWas) {
+  const Scheduling caller = threadScheduling();
+  bool granted = false;
+  Scheduling realtime;
+  std::thread latency_critical([&] {
+    granted = runThreadRealtime(3);
+    realtime = threadScheduling();
+  });
+  latency_critical.join();
+  if (granted) {
+    EXPECT_EQ(realtime.policy, SCHED_FIFO);
+    EXPECT_EQ(realtime.priority, 3);
+  } else {
+    EXPECT_EQ(realtime.policy, caller.policy);
+    EXPECT_EQ(realtime.priority, caller.priority);
+  }
+  EXPECT_EQ(threadScheduling().policy, caller.policy);
+}
+
+TEST(ThreadPriority, RefusesARealtimePriorityOutsideOneToNinetyNine) {
+  std::thread latency_critical([] {
+    EXPECT_FALSE(runThreadRealtime(0));
+    EXPECT_FALSE(runThreadRealtime(100));
+    EXPECT_EQ(threadScheduling().policy, SCHED_OTHER);
+  });
+  latency_critical.join();
+}
+
 }  // namespace
 }  // namespace lineloc

@@ -261,6 +261,8 @@ class Playback {
     }
     return start_steady_ns_ + static_cast<int64_t>((event.stamp_ns - first_stamp_ns_) / speed_);
   }
+  // False for a replay as fast as possible, which never waits for an event.
+  bool paced(bool stamped) const { return stamped ? speed_ > 0.0 : frame_period_ns_ > 0; }
   int64_t wallAt(int64_t steady_ns) const {
     return start_wall_ns_ + std::max<int64_t>(0, steady_ns - start_steady_ns_);
   }
@@ -349,10 +351,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
   // Frames are decoded ahead of their exposure, as a camera driver delivers them.
   ImagePrefetcher images(streams.frames);
-  // After the decoding and DDS threads have started, which stay time-shared.
-  runFrontEndRealtime(config.realtime_priority,
-                      stamped ? config.playback_speed > 0.0 : config.rate_hz > 0.0);
   const Playback playback(config, streams.timeline.empty() ? 0 : streams.timeline.front().stamp_ns);
+  // After the decoding and DDS threads have started, which stay time-shared.
+  runFrontEndRealtime(config.realtime_priority, playback.paced(stamped));
   const int64_t state_period_ns =
       config.state_rate_hz > 0.0 ? static_cast<int64_t>(1e9 / config.state_rate_hz) : 0;
   int64_t next_state_ns = 0;

@@ -53,7 +53,7 @@ struct RobotConfig {
   bool exposure_notices = true;
   // SCHED_FIFO priority (1-99) of the thread that extracts each frame's lines
   // and sends them (thread_priority.h); 0: time-shared like the rest. A
-  // refusal is logged and the robot runs on time-shared, as it does when
+  // refusal is logged and the robot runs time-shared, as it does when
   // replaying as fast as possible.
   int realtime_priority = 0;
   double wait_for_backbone_s = 5.0;

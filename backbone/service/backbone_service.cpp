@@ -139,7 +139,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
   dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(participant,
                                                                  dds::Qos(kHistoryDepth));
-  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::Qos(kHistoryDepth));
+  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::poseFixQos(kHistoryDepth));
   LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 

@@ -118,10 +118,21 @@ ParticipantGuid Participant::guid() const {
   return toParticipantGuid(guid);
 }
 
-Qos::Qos(int32_t history_depth) : qos_(dds_create_qos()) {
+Qos::Qos(int32_t history_depth) : Qos(history_depth, DDS_DURABILITY_VOLATILE, DDS_INFINITY) {}
+
+Qos Qos::keptForLateReaders(int32_t history_depth, int64_t lifespan_ns) {
+  return Qos(history_depth, DDS_DURABILITY_TRANSIENT_LOCAL, lifespan_ns);
+}
+
+Qos::Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns)
+    : qos_(dds_create_qos()) {
   dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
-  dds_qset_durability(qos_, DDS_DURABILITY_VOLATILE);
+  dds_qset_durability(qos_, durability);
   dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, history_depth);
+  // What a transient-local writer keeps for late readers (Cyclone's default: 1 sample).
+  dds_qset_durability_service(qos_, 0, DDS_HISTORY_KEEP_LAST, history_depth, DDS_LENGTH_UNLIMITED,
+                              DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  dds_qset_lifespan(qos_, lifespan_ns);
 }
 
 Qos::~Qos() {

@@ -72,17 +72,27 @@ class Participant {
   Entity participant_;
 };
 
-// QoS of lineloc's data topics: reliable, volatile, keep the last `depth`
+// QoS of lineloc's data topics: reliable, keep the last `history_depth`
 // samples per robot (instance).
 class Qos {
  public:
+  // Volatile: a reader gets what is written once the writer has matched it.
   explicit Qos(int32_t history_depth);
+  // Transient-local with a lifespan: the writer keeps each instance's last
+  // `history_depth` samples for `lifespan_ns` after writing them and sends
+  // them to a reader it matches in that time, when the reader asks for them
+  // with this QoS too. Discovery is not symmetric: a reader may know a writer
+  // before the writer knows the reader, and what is written in between would
+  // reach nobody.
+  static Qos keptForLateReaders(int32_t history_depth, int64_t lifespan_ns);
   ~Qos();
   Qos(const Qos&) = delete;
   Qos& operator=(const Qos&) = delete;
   const dds_qos_t* get() const { return qos_; }
 
  private:
+  Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns);
+
   dds_qos_t* qos_;
 };
 

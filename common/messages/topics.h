@@ -27,6 +27,19 @@ struct TopicTraits<lineloc_msg_PoseFix> {
   static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_PoseFix_desc; }
 };
 
+// QoS of PoseFix writers and readers. A robot starts sending once it sees
+// the backbone's LineSet reader and PoseFix writer (robot_agent.cpp), but the
+// backbone may meet the robot's PoseFix reader only after answering its first
+// frames; kept for late readers, those answers still arrive. A second covers
+// discovery under load many times over. A robot restarted within it numbers
+// its frames from 0 again and may be sent the run before's answers: it takes
+// an answer only with its frame's stamp (OutstandingFrames).
+inline constexpr int64_t kPoseFixKeptForNs = 1'000'000'000;
+
+inline Qos poseFixQos(int32_t history_depth) {
+  return Qos::keptForLateReaders(history_depth, kPoseFixKeptForNs);
+}
+
 template <>
 struct TopicTraits<lineloc_msg_RobotState> {
   static constexpr const char* kName = "lineloc_RobotState";

@@ -10,7 +10,6 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
-#include <unordered_map>
 
 #include "common/camera/camera_calibration.h"
 #include "common/geodesy/site_projection.h"
@@ -21,6 +20,7 @@
 #include "common/time/clock.h"
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
+#include "robot/agent/outstanding_frames.h"
 #include "robot/agent/sensor_streams.h"
 #include "robot/input/image_prefetcher.h"
 #include "robot/vision/features/feature_extractor.h"
@@ -59,7 +59,7 @@ class FixReceiver {
 
   FixReceiver(const dds::Participant& participant, const RobotConfig& config,
               RobotRunSummary& summary, Handler handler)
-      : reader_(participant, dds::Qos(kHistoryDepth)),
+      : reader_(participant, dds::poseFixQos(kHistoryDepth)),
         robot_id_(config.robot_id),
         trajectory_(config.trajectory_out),
         fix_log_(config.fix_log_out.empty() ? std::nullopt
@@ -67,11 +67,11 @@ class FixReceiver {
         summary_(summary),
         handler_(std::move(handler)) {}
 
-  void expect(uint32_t sequence_number, int64_t exposure_wall_ns, int64_t sent_wall_ns) {
-    outstanding_[sequence_number] = {exposure_wall_ns, sent_wall_ns};
+  void expect(uint32_t sequence_number, const OutstandingFrames::Frame& frame) {
+    outstanding_.expect(sequence_number, frame);
   }
   size_t outstanding() const { return outstanding_.size(); }
-  bool answered(uint32_t sequence_number) const { return outstanding_.count(sequence_number) == 0; }
+  bool answered(uint32_t sequence_number) const { return outstanding_.answered(sequence_number); }
   const dds::Reader<lineloc_msg_PoseFix>& reader() const { return reader_; }
 
   void poll(int64_t timeout_ns) {
@@ -90,20 +90,20 @@ class FixReceiver {
       spdlog::warn("dropped a malformed PoseFix: {}", *error);
       return;
     }
-    const auto frame = outstanding_.find(message.sequence_number);
-    if (frame == outstanding_.end()) {
+    const auto frame = outstanding_.take(message.sequence_number, message.stamp_ns);
+    if (!frame) {
       ++summary_.fixes_dropped;
-      spdlog::warn("dropped a PoseFix for unknown or answered frame {}", message.sequence_number);
+      spdlog::warn("dropped a PoseFix for frame {} stamped {} ns: no such frame awaits an answer",
+                   message.sequence_number, message.stamp_ns);
       return;
     }
     const PoseFixData fix = fromMessage(message);
-    const int64_t latency_ns = wallClockNs() - frame->second.exposure_wall_ns;
-    const int64_t front_end_ns = frame->second.sent_wall_ns - frame->second.exposure_wall_ns;
+    const int64_t latency_ns = wallClockNs() - frame->exposure_wall_ns;
+    const int64_t front_end_ns = frame->sent_wall_ns - frame->exposure_wall_ns;
     summary_.latency_ns.push_back(latency_ns);
     summary_.front_end_ns.push_back(front_end_ns);
     summary_.backbone_ns.push_back(fix.timings.total);
     summary_.transport_ns.push_back(latency_ns - front_end_ns - fix.timings.total);
-    outstanding_.erase(frame);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
@@ -124,11 +124,7 @@ class FixReceiver {
   std::optional<FixLogWriter> fix_log_;
   RobotRunSummary& summary_;
   Handler handler_;
-  struct Outstanding {
-    int64_t exposure_wall_ns;
-    int64_t sent_wall_ns;
-  };
-  std::unordered_map<uint32_t, Outstanding> outstanding_;
+  OutstandingFrames outstanding_;
 };
 
 lineloc_msg_Health toHealth(NavigatorMode mode) {
@@ -417,7 +413,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         line_set.segments = features.segments;
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);
-        receiver.expect(line_set.sequence_number, exposure_wall_ns, wallClockNs());
+        receiver.expect(line_set.sequence_number,
+                        {line_set.stamp_ns, exposure_wall_ns, wallClockNs()});
         writer.write(message.message());
         in_flight = {true, line_set.sequence_number, due_ns + kDecodeUnansweredAfterNs};
         ++summary.frames_sent;

@@ -67,7 +67,7 @@ void BM_LineSetRoundTrip(benchmark::State& state) {
 
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());
   dds::Participant participant(domain);
-  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::Qos(8));
+  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::poseFixQos(8));
   dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(8));
   while (writer.matchedReaders() == 0 || fixes.matchedWriters() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));

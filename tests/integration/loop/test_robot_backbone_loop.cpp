@@ -78,7 +78,7 @@ class Observer {
       : domain_(test::testDomainId(), test::testDdsConfig()),
         participant_(domain_),
         line_sets_(participant_, dds::Qos(256)),
-        fixes_(participant_, dds::Qos(256)),
+        fixes_(participant_, dds::poseFixQos(256)),
         writer_(participant_, dds::Qos(32)),
         exposure_writer_(participant_, dds::Qos(32)) {}
 

@@ -86,6 +86,61 @@ TEST(DdsLoopback, LineSetOf300SegmentsArrivesIntactBetweenParticipants) {
   EXPECT_EQ(received[0].segments[299].start.x(), 299.0f);
 }
 
+// Writes fixes numbered 1..count for `robot_id` before any reader exists.
+void writeFixesToNobody(dds::Writer<lineloc_msg_PoseFix>& writer, const std::string& robot_id,
+                        uint32_t count) {
+  for (uint32_t sequence = 1; sequence <= count; ++sequence) {
+    PoseFixData fix;
+    fix.robot_id = robot_id;
+    fix.sequence_number = sequence;
+    writer.write(toMessage(fix));
+  }
+}
+
+std::vector<uint32_t> takeSequenceNumbers(dds::Reader<lineloc_msg_PoseFix>& reader) {
+  std::vector<uint32_t> sequence_numbers;
+  reader.takeEach(
+      [&](const lineloc_msg_PoseFix& fix) { sequence_numbers.push_back(fix.sequence_number); });
+  return sequence_numbers;
+}
+
+TEST(DdsLoopback, AnswersKeptForLateReadersReachAReaderTheWriterMeetsAfterWritingThem) {
+  constexpr int32_t kDepth = 4;
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant backbone(domain);
+  dds::Writer<lineloc_msg_PoseFix> writer(backbone,
+                                          dds::Qos::keptForLateReaders(kDepth, 10'000'000'000));
+  writeFixesToNobody(writer, "late", 6);
+  dds::Participant robot(domain);
+  dds::Reader<lineloc_msg_PoseFix> kept_for(robot,
+                                            dds::Qos::keptForLateReaders(kDepth, 10'000'000'000));
+  dds::Reader<lineloc_msg_PoseFix> volatile_reader(robot, dds::Qos(kDepth));
+  std::vector<uint32_t> received;
+  ASSERT_TRUE(waitFor([&] {
+    kept_for.waitForData(10'000'000);
+    const std::vector<uint32_t> taken = takeSequenceNumbers(kept_for);
+    received.insert(received.end(), taken.begin(), taken.end());
+    return received.size() >= kDepth;
+  })) << received.size()
+      << " of the last " << kDepth << " answers arrived";
+  EXPECT_EQ(received, (std::vector<uint32_t>{3, 4, 5, 6})) << "the robot's last kDepth answers";
+  ASSERT_TRUE(waitFor([&] { return writer.matchedReaders() == 2; }));
+  EXPECT_FALSE(volatile_reader.waitForData(200'000'000));
+}
+
+TEST(DdsLoopback, AnswersKeptForLateReadersAreGoneAfterTheirLifespan) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant backbone(domain);
+  dds::Writer<lineloc_msg_PoseFix> writer(backbone, dds::Qos::keptForLateReaders(8, 100'000'000));
+  writeFixesToNobody(writer, "late", 3);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  dds::Participant robot(domain);
+  dds::Reader<lineloc_msg_PoseFix> reader(robot, dds::Qos::keptForLateReaders(8, 100'000'000));
+  ASSERT_TRUE(waitFor([&] { return writer.matchedReaders() == 1; }));
+  EXPECT_FALSE(reader.waitForData(300'000'000));
+  EXPECT_TRUE(takeSequenceNumbers(reader).empty());
+}
+
 TEST(DdsLoopback, MissingConfigFileIsAClearError) {
   try {
     dds::Domain domain(test::testDomainId(), "/nonexistent/cyclonedds.xml");

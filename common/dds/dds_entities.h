@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace lineloc::dds {
@@ -140,6 +141,14 @@ class Writer {
   Entity writer_;
 };
 
+// What DDS tells a reader about a sample besides its data.
+struct SampleInfo {
+  // When the writer wrote it, on the writer's wall clock (CLOCK_REALTIME ns):
+  // comparable with the reader's clock only where the two hosts' clocks are
+  // synchronised (one host, or PTP).
+  int64_t source_stamp_ns = 0;
+};
+
 template <typename Message, typename Topic = TopicTraits<Message>>
 class Reader {
  public:
@@ -165,8 +174,9 @@ class Reader {
     return check(dds_waitset_wait(waitset_.handle(), nullptr, 0, timeout_ns), "waitset wait") > 0;
   }
 
-  // Takes every available sample and calls `handle(const Message&)` on each
-  // valid one (not on disposal notices). Returns the number handled.
+  // Takes every available sample and calls `handle(const Message&)`, or
+  // `handle(const Message&, const SampleInfo&)`, on each valid one (not on
+  // disposal notices). Returns the number handled.
   template <typename Handler>
   int takeEach(Handler&& handle) {
     constexpr int kBatch = 16;
@@ -177,10 +187,16 @@ class Reader {
       const dds_return_t count =
           check(dds_take(reader_.handle(), samples, infos, kBatch, kBatch), "dds_take");
       for (int i = 0; i < count; ++i) {
-        if (infos[i].valid_data) {
-          handle(*static_cast<const Message*>(samples[i]));
-          ++handled;
+        if (!infos[i].valid_data) {
+          continue;
         }
+        const Message& message = *static_cast<const Message*>(samples[i]);
+        if constexpr (std::is_invocable_v<Handler&, const Message&, const SampleInfo&>) {
+          handle(message, SampleInfo{infos[i].source_timestamp});
+        } else {
+          handle(message);
+        }
+        ++handled;
       }
       if (count > 0) {
         dds_return_loan(reader_.handle(), samples, count);

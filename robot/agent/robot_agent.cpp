@@ -76,12 +76,15 @@ class FixReceiver {
 
   void poll(int64_t timeout_ns) {
     if (reader_.waitForData(timeout_ns)) {
-      reader_.takeEach([this](const lineloc_msg_PoseFix& fix) { receive(fix); });
+      reader_.takeEach([this](const lineloc_msg_PoseFix& fix, const dds::SampleInfo& info) {
+        receive(fix, info.source_stamp_ns);
+      });
     }
   }
 
  private:
-  void receive(const lineloc_msg_PoseFix& message) {
+  // `written_wall_ns`: when the backbone wrote the answer, on its clock.
+  void receive(const lineloc_msg_PoseFix& message, int64_t written_wall_ns) {
     if (robot_id_ != message.robot_id) {
       return;  // another robot's answer
     }
@@ -98,12 +101,13 @@ class FixReceiver {
       return;
     }
     const PoseFixData fix = fromMessage(message);
-    const int64_t latency_ns = wallClockNs() - frame->exposure_wall_ns;
-    const int64_t front_end_ns = frame->sent_wall_ns - frame->exposure_wall_ns;
+    const int64_t received_wall_ns = wallClockNs();
+    const int64_t latency_ns = received_wall_ns - frame->exposure_wall_ns;
     summary_.latency_ns.push_back(latency_ns);
-    summary_.front_end_ns.push_back(front_end_ns);
+    summary_.front_end_ns.push_back(frame->sent_wall_ns - frame->exposure_wall_ns);
+    summary_.to_backbone_ns.push_back(written_wall_ns - frame->sent_wall_ns - fix.timings.total);
     summary_.backbone_ns.push_back(fix.timings.total);
-    summary_.transport_ns.push_back(latency_ns - front_end_ns - fix.timings.total);
+    summary_.from_backbone_ns.push_back(received_wall_ns - written_wall_ns);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {

@@ -74,15 +74,21 @@ struct RobotRunSummary {
   // answers that carried a pose (FIX_OK).
   std::vector<int64_t> latency_ns;
   std::vector<int64_t> pose_latency_ns;
-  // latency_ns split, per answered frame: exposure -> LineSet handed to DDS
-  // (the robot's front end), the backbone's own time (the PoseFix's
-  // timings.total), and the rest (DDS both ways, and the answer waiting to
-  // be read between the robot's other work). The backbone can start on a
-  // LineSet before the write that sent it has returned, so the front end
-  // ends before the write.
+  // latency_ns split, per answered frame, at the clock readings the robot
+  // and the backbone take: exposure -> LineSet handed to DDS (the robot's
+  // front end); from there to the PoseFix's write, less the backbone's own
+  // time (DDS to the backbone, the LineSet waiting to be taken, and the
+  // answer's hand-over to DDS); the backbone's own time (the PoseFix's
+  // timings.total); and the PoseFix's write -> taken by the robot (DDS back,
+  // and the answer waiting between the robot's other work). The write is
+  // stamped on the backbone's clock (dds::SampleInfo), so the two DDS legs
+  // are only as good as the hosts' clock synchronisation; their sum is exact.
+  // The backbone can start on a LineSet before the write that sent it has
+  // returned, so the front end ends before the write.
   std::vector<int64_t> front_end_ns;
+  std::vector<int64_t> to_backbone_ns;
   std::vector<int64_t> backbone_ns;
-  std::vector<int64_t> transport_ns;
+  std::vector<int64_t> from_backbone_ns;
   // Each LineSet's bytes on the wire (dds::serializedSizeBytes), per frame sent.
   std::vector<int64_t> line_set_bytes;
   std::string health;

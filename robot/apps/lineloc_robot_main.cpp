@@ -100,10 +100,10 @@ int main(int argc, char** argv) {
         lineloc::percentile(summary.line_set_bytes, 99), summary.states_published,
         summary.sensor_lines_dropped, summary.health);
     std::cout << fmt::format(
-        "lineloc-robot: exposure -> fix by stage, ms median/p99/max: front end {}, backbone {}, "
-        "DDS and waiting {}\n",
-        describeLatency(summary.front_end_ns), describeLatency(summary.backbone_ns),
-        describeLatency(summary.transport_ns));
+        "lineloc-robot: exposure -> fix by stage, ms median/p99/max: front end {}, to the "
+        "backbone {}, backbone {}, back {}\n",
+        describeLatency(summary.front_end_ns), describeLatency(summary.to_backbone_ns),
+        describeLatency(summary.backbone_ns), describeLatency(summary.from_backbone_ns));
     for (const auto& [status, count] : summary.fixes_by_status) {
       std::cout << fmt::format("lineloc-robot:   {:>6} fixes {}\n", count, status);
     }

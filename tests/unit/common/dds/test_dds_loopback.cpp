@@ -86,6 +86,31 @@ TEST(DdsLoopback, LineSetOf300SegmentsArrivesIntactBetweenParticipants) {
   EXPECT_EQ(received[0].segments[299].start.x(), 299.0f);
 }
 
+TEST(DdsLoopback, ASampleCarriesWhenItsWriterWroteIt) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant backbone(domain);
+  dds::Participant robot(domain);
+  dds::Writer<lineloc_msg_PoseFix> writer(backbone, dds::Qos(8));
+  dds::Reader<lineloc_msg_PoseFix> reader(robot, dds::Qos(8));
+  ASSERT_TRUE(waitFor([&] { return writer.matchedReaders() == 1; }));
+  PoseFixData fix;
+  fix.robot_id = "stamped";
+  const int64_t before_write_ns = wallClockNs();
+  writer.write(toMessage(fix));
+  const int64_t after_write_ns = wallClockNs();
+  std::vector<int64_t> source_stamps_ns;
+  ASSERT_TRUE(waitFor([&] {
+    reader.waitForData(10'000'000);
+    reader.takeEach([&](const lineloc_msg_PoseFix&, const dds::SampleInfo& info) {
+      source_stamps_ns.push_back(info.source_stamp_ns);
+    });
+    return !source_stamps_ns.empty();
+  }));
+  ASSERT_EQ(source_stamps_ns.size(), 1u);
+  EXPECT_GE(source_stamps_ns[0], before_write_ns);
+  EXPECT_LE(source_stamps_ns[0], after_write_ns);
+}
+
 // Writes fixes numbered 1..count for `robot_id` before any reader exists.
 void writeFixesToNobody(dds::Writer<lineloc_msg_PoseFix>& writer, const std::string& robot_id,
                         uint32_t count) {

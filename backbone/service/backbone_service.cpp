@@ -21,7 +21,6 @@
 namespace lineloc {
 namespace {
 
-constexpr int kHistoryDepth = 32;
 constexpr int64_t kWaitNs = 100'000'000;
 
 // The sun over the configured site by the clock, when asked for.
@@ -136,10 +135,10 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
-  dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(kHistoryDepth));
+  dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(dds::kHistoryDepth));
   dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(participant,
-                                                                 dds::Qos(kHistoryDepth));
-  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::poseFixQos(kHistoryDepth));
+                                                                 dds::Qos(dds::kHistoryDepth));
+  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::poseFixQos(dds::kHistoryDepth));
   LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 

@@ -6,6 +6,10 @@
 
 namespace lineloc::dds {
 
+// Samples per robot (instance) that lineloc's writers and readers of every
+// topic keep: about a second of frames at 30 Hz, for a reader woken late.
+inline constexpr int32_t kHistoryDepth = 32;
+
 template <>
 struct TopicTraits<lineloc_msg_LineSet> {
   static constexpr const char* kName = "lineloc_LineSet";

@@ -28,7 +28,6 @@
 namespace lineloc {
 namespace {
 
-constexpr int kHistoryDepth = 32;
 constexpr int64_t kPollNs = 2'000'000;
 // The replay decodes its next frame once the frame in flight is answered, or
 // this long after its exposure when no answer comes (ImagePrefetcher): by
@@ -59,7 +58,7 @@ class FixReceiver {
 
   FixReceiver(const dds::Participant& participant, const RobotConfig& config,
               RobotRunSummary& summary, Handler handler)
-      : reader_(participant, dds::poseFixQos(kHistoryDepth)),
+      : reader_(participant, dds::poseFixQos(dds::kHistoryDepth)),
         robot_id_(config.robot_id),
         trajectory_(config.trajectory_out),
         fix_log_(config.fix_log_out.empty() ? std::nullopt
@@ -341,10 +340,10 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
            ? summary.fixes_applied
            : summary.fixes_rejected);
   });
-  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(kHistoryDepth));
-  dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic> exposure_writer(participant,
-                                                                       dds::Qos(kHistoryDepth));
-  dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(kHistoryDepth));
+  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(dds::kHistoryDepth));
+  dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic> exposure_writer(
+      participant, dds::Qos(dds::kHistoryDepth));
+  dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(dds::kHistoryDepth));
   TumWriter fused(config.fused_trajectory_out);
   waitForBackbone(writer, receiver.reader(), config.wait_for_backbone_s, stop);
 

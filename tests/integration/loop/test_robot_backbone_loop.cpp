@@ -79,8 +79,8 @@ class Observer {
         participant_(domain_),
         line_sets_(participant_, dds::Qos(256)),
         fixes_(participant_, dds::poseFixQos(256)),
-        writer_(participant_, dds::Qos(32)),
-        exposure_writer_(participant_, dds::Qos(32)) {}
+        writer_(participant_, dds::Qos(dds::kHistoryDepth)),
+        exposure_writer_(participant_, dds::Qos(dds::kHistoryDepth)) {}
 
   void poll() {
     fixes_.waitForData(5'000'000);

@@ -9,7 +9,8 @@
 # Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
 # LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42),
 # LINELOC_DEMO_OUT (where everything goes, out/demo/),
-# LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off).
+# LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off),
+# LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY (the backbone's, 5; 0: off).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -22,6 +23,9 @@ CAMERA_HZ="${LINELOC_DEMO_CAMERA_HZ:-30}"
 # The robot's front end runs ahead of the backbone's threads on the cores
 # they share here, as it would on a computer of its own (thread_priority.h).
 REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
+# The backbone's answering threads below it, above the backbone's searches and
+# the replay's decoding.
+BACKBONE_REALTIME_PRIORITY="${LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY:-5}"
 CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
 # Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
 SITE_CRS=EPSG:7415
@@ -54,7 +58,8 @@ echo "demo: simulating a ${DURATION_S} s drive (seed $SEED, camera ${CAMERA_HZ} 
   --start-utc "$START_UTC" --sun-from-clock
 
 "$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft --sun-from-clock \
-  --stats-file "$OUT/backbone-stats.json" >"$OUT/backbone.log" 2>&1 &
+  --realtime-priority "$BACKBONE_REALTIME_PRIORITY" --stats-file "$OUT/backbone-stats.json" \
+  >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 

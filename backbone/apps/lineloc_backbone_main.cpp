@@ -34,6 +34,10 @@ int main(int argc, char** argv) {
               "map tiles are loaded where each robot will be this much later (s)");
   options.add("forget_robot_after_s", config.forget_robot_after_s,
               "a robot not heard from for this long is forgotten and served as new (s)");
+  options.add("realtime_priority", config.realtime_priority,
+              "SCHED_FIFO priority (1-99) of the threads that answer LineSets and exposure "
+              "notices, so that background work does not delay an answer (needs CAP_SYS_NICE or "
+              "ulimit -r); 0: time-shared");
   options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");

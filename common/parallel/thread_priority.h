@@ -25,11 +25,23 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace lineloc {
 
 // Returns whether the calling thread now runs at `nice`.
 inline bool lowerThreadPriority(int nice) {
   return setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), nice) == 0;
+}
+
+// Throws std::runtime_error naming the option `realtime_priority` unless
+// `priority` is 0 (time-shared) or a SCHED_FIFO priority (1-99).
+inline void requireRealtimePriority(int priority) {
+  if (priority < 0 || priority > 99) {
+    throw std::runtime_error("realtime_priority " + std::to_string(priority) +
+                             " must be 0 (time-shared) or a SCHED_FIFO priority of 1-99");
+  }
 }
 
 // Returns whether the calling thread now runs under SCHED_FIFO at `priority`

@@ -304,11 +304,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         fmt::format("robot_id '{}' must match [A-Za-z0-9][A-Za-z0-9_.-]* (at most 32 characters)",
                     config.robot_id));
   }
-  if (config.realtime_priority < 0 || config.realtime_priority > 99) {
-    throw std::runtime_error(
-        fmt::format("realtime_priority {} must be 0 (time-shared) or a SCHED_FIFO priority of 1-99",
-                    config.realtime_priority));
-  }
+  requireRealtimePriority(config.realtime_priority);
   if (config.calibration.empty()) {
     throw std::runtime_error("calibration: a camera calibration file is required");
   }

@@ -149,6 +149,19 @@ std::vector<double> latencyStageMedians(const std::string& robot_log) {
   return {std::stod(match[1]), std::stod(match[2]), std::stod(match[3]), std::stod(match[4])};
 }
 
+// Whether the backbone's log says its `thread` runs under SCHED_FIFO at
+// `priority`, or that the machine refused it that.
+bool askedForRealtimePriority(const std::string& backbone_log, const std::string& thread,
+                              int priority) {
+  const std::string granted =
+      fmt::format("the {} runs under SCHED_FIFO at priority {}", thread, priority);
+  const std::string refused = fmt::format(
+      "SCHED_FIFO refused (needs CAP_SYS_NICE or ulimit -r {}); the {} runs time-shared", priority,
+      thread);
+  return backbone_log.find(granted) != std::string::npos ||
+         backbone_log.find(refused) != std::string::npos;
+}
+
 LineSetData probeLineSet(const std::string& robot_id, uint32_t sequence, int segments) {
   LineSetData data;
   data.robot_id = robot_id;
@@ -248,7 +261,8 @@ class RobotBackboneLoop : public ::testing::Test {
 
 TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   Observer observer;
-  auto backbone = startBackbone();
+  // Its answering threads under SCHED_FIFO when the machine allows it.
+  auto backbone = startBackbone(work_ / "stats.json", {"--realtime-priority", "3"});
   ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
       << log("backbone.log");
 
@@ -339,6 +353,9 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   }
   backbone->signal(SIGTERM);
   EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+  for (const std::string thread : {"LineSets' thread", "exposure notices' thread"}) {
+    EXPECT_TRUE(askedForRealtimePriority(log("backbone.log"), thread, 3)) << log("backbone.log");
+  }
 }
 
 TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
@@ -391,6 +408,13 @@ TEST_F(RobotBackboneLoop, TheLastRobotLeftIsForgottenInTheSilenceAfterIt) {
 // The stats file is rewritten beside the serving loop, whose answers must not
 // wait for the file system; one that cannot be written at all fails the start
 // instead of going unnoticed.
+TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheBackbonesStart) {
+  auto backbone = startBackbone(work_ / "stats.json", {"--realtime-priority", "-1"});
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 1) << log("backbone.log");
+  EXPECT_NE(log("backbone.log").find("realtime_priority -1 must be 0"), std::string::npos)
+      << log("backbone.log");
+}
+
 TEST_F(RobotBackboneLoop, AStatsFileThatCannotBeWrittenFailsTheStart) {
   auto backbone = startBackbone(work_ / "no such folder" / "stats.json");
   EXPECT_EQ(backbone->wait(kTimeoutMs), 1) << log("backbone.log");

@@ -27,6 +27,15 @@ TEST(ThreadPriority, LowersOnlyTheCallingThreadAndWhatItStarts) {
   EXPECT_EQ(threadNice(), caller_nice);
 }
 
+TEST(ThreadPriority, ARealtimePriorityIsZeroOrOneToNinetyNine) {
+  for (const int priority : {0, 1, 99}) {
+    EXPECT_NO_THROW(requireRealtimePriority(priority)) << priority;
+  }
+  for (const int priority : {-1, 100}) {
+    EXPECT_THROW(requireRealtimePriority(priority), std::runtime_error) << priority;
+  }
+}
+
 struct Scheduling {
   int policy = -1;
   int priority = -1;

@@ -10,7 +10,8 @@
 # LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42),
 # LINELOC_DEMO_OUT (where everything goes, out/demo/),
 # LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off),
-# LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY (the backbone's, 5; 0: off).
+# LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY (the backbone's, 5, and with it
+# Cyclone DDS's receive threads'; 0: off).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -30,7 +31,13 @@ CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
 # Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
 SITE_CRS=EPSG:7415
 SITE_ORIGIN=(84900 447600 0)
-DDS=(--domain-id "$DOMAIN_ID" --dds-config "$ROOT/deploy/cyclonedds.xml")
+DDS_CONFIG="$ROOT/deploy/cyclonedds.xml"
+# With them, Cyclone's receive thread (deploy/cyclonedds-realtime.xml), where
+# the machine grants SCHED_FIFO: without it Cyclone could not start at all.
+if [ "$BACKBONE_REALTIME_PRIORITY" -gt 0 ] && chrt -f 6 true 2>/dev/null; then
+  DDS_CONFIG+=",$ROOT/deploy/cyclonedds-realtime.xml"
+fi
+DDS=(--domain-id "$DOMAIN_ID" --dds-config "$DDS_CONFIG")
 # The simulated robot's camera rides this high above the road; the robot knows
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5

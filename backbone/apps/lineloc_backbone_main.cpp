@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
   lineloc::ProgramOptions options("lineloc-backbone", "lineloc backbone matching service");
   options.add("domain_id", config.domain_id, "DDS domain id");
   options.add("dds_config", config.dds_config,
-              "Cyclone DDS XML configuration file (empty: CYCLONEDDS_URI / defaults)");
+              "Cyclone DDS XML configuration file, or several separated by commas, each adding "
+              "to the ones before (empty: CYCLONEDDS_URI / defaults)");
   options.add("db", config.db, "libpq connection string of the building database");
   options.add("site", config.site, "name of the site in the database");
   options.add("query_radius_m", config.query_radius_m,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <utility>
 
 namespace lineloc::dds {
@@ -88,15 +89,25 @@ Entity& Entity::operator=(Entity&& other) noexcept {
 
 namespace {
 
-Entity createDomain(uint32_t domain_id, const std::string& config_file) {
-  if (config_file.empty()) {
+// "file://a,file://b" for "a,b": Cyclone reads the files of such a list in
+// turn, each adding to or overriding the ones before.
+std::string configUri(const std::string& config_files) {
+  std::string uri;
+  std::stringstream files(config_files);
+  for (std::string file; std::getline(files, file, ',');) {
+    if (!std::filesystem::is_regular_file(file)) {
+      throw std::runtime_error(fmt::format("DDS config file '{}' does not exist", file));
+    }
+    uri += (uri.empty() ? "file://" : ",file://") + std::filesystem::absolute(file).string();
+  }
+  return uri;
+}
+
+Entity createDomain(uint32_t domain_id, const std::string& config_files) {
+  if (config_files.empty()) {
     return {};
   }
-  if (!std::filesystem::is_regular_file(config_file)) {
-    throw std::runtime_error(fmt::format("DDS config file '{}' does not exist", config_file));
-  }
-  const std::string uri = "file://" + std::filesystem::absolute(config_file).string();
-  const dds_entity_t domain = dds_create_domain(domain_id, uri.c_str());
+  const dds_entity_t domain = dds_create_domain(domain_id, configUri(config_files).c_str());
   if (domain == DDS_RETCODE_PRECONDITION_NOT_MET) {
     // Already created in this process (by another Domain object): share it.
     return {};
@@ -106,8 +117,8 @@ Entity createDomain(uint32_t domain_id, const std::string& config_file) {
 
 }  // namespace
 
-Domain::Domain(uint32_t domain_id, const std::string& config_file)
-    : id_(domain_id), domain_(createDomain(domain_id, config_file)) {}
+Domain::Domain(uint32_t domain_id, const std::string& config_files)
+    : id_(domain_id), domain_(createDomain(domain_id, config_files)) {}
 
 Participant::Participant(const Domain& domain)
     : participant_(dds_create_participant(domain.id(), nullptr, nullptr), "create participant") {}

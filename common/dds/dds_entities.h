@@ -51,11 +51,13 @@ class Entity {
 };
 
 // A DDS domain created with an explicit configuration, so tests and programs
-// do not depend on the environment. `config_file` empty: Cyclone's defaults
-// and the CYCLONEDDS_URI environment variable apply, as for any DDS program.
+// do not depend on the environment. `config_files`: one Cyclone DDS XML file,
+// or several separated by commas, each adding to or overriding the ones
+// before it; empty: Cyclone's defaults and the CYCLONEDDS_URI environment
+// variable apply, as for any DDS program.
 class Domain {
  public:
-  Domain(uint32_t domain_id, const std::string& config_file);
+  Domain(uint32_t domain_id, const std::string& config_files);
   uint32_t id() const { return id_; }
 
  private:

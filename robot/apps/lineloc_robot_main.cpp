@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
               "shortest segment sent (pixels)");
   options.add("domain_id", config.domain_id, "DDS domain id");
   options.add("dds_config", config.dds_config,
-              "Cyclone DDS XML configuration file (empty: CYCLONEDDS_URI / defaults)");
+              "Cyclone DDS XML configuration file, or several separated by commas, each adding "
+              "to the ones before (empty: CYCLONEDDS_URI / defaults)");
   options.add("trajectory_out", config.trajectory_out, "TUM file the received fixes go to");
   options.add("fused_trajectory_out", config.fused_trajectory_out,
               "TUM file of the pose predicted at each frame (what the robot knew then)");

@@ -1,8 +1,12 @@
 // Real Cyclone DDS participants on loopback, configured by deploy/cyclonedds.xml.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "common/messages/messages.h"
@@ -12,6 +16,8 @@
 
 namespace lineloc {
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr int64_t kTimeoutNs = 10'000'000'000;
 
@@ -173,6 +179,37 @@ TEST(DdsLoopback, MissingConfigFileIsAClearError) {
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/cyclonedds.xml"), std::string::npos);
   }
+}
+
+TEST(DdsLoopback, AMissingConfigFileAmongSeveralIsNamed) {
+  try {
+    dds::Domain domain(test::testDomainId(), test::testDdsConfig() + ",/nonexistent/layer.xml");
+    FAIL() << "a missing DDS config must throw";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("'/nonexistent/layer.xml'"), std::string::npos);
+  }
+}
+
+TEST(DdsLoopback, ConfigFilesSeparatedByCommasAddToEachOther) {
+  const fs::path work = fs::temp_directory_path() / ("dds_layers_" + std::to_string(getpid()));
+  fs::create_directories(work);
+  const fs::path trace = work / "trace.log";
+  const fs::path layer = work / "trace.xml";
+  std::ofstream(layer) << "<CycloneDDS xmlns=\"https://cdds.io/config\"><Domain id=\"any\">"
+                          "<Tracing><Verbosity>config</Verbosity><OutputFile>"
+                       << trace.string() << "</OutputFile></Tracing></Domain></CycloneDDS>\n";
+  {
+    // Another domain than the other tests': this process has not created it yet.
+    dds::Domain domain(test::testDomainId() + 1, test::testDdsConfig() + "," + layer.string());
+    dds::Participant participant(domain);
+  }
+  std::ifstream traced(trace);
+  const std::string text((std::istreambuf_iterator<char>(traced)),
+                         std::istreambuf_iterator<char>());
+  fs::remove_all(work);
+  // The second file's tracing, with the first file's loopback-only settings.
+  EXPECT_NE(text.find("AllowMulticast"), std::string::npos) << text;
+  EXPECT_NE(text.find("127.0.0.1"), std::string::npos) << text;
 }
 
 TEST(DdsLoopback, WaitTimesOutWithoutData) {

@@ -26,9 +26,10 @@ struct BackboneConfig {
   double forget_robot_after_s = 30.0;
   // SCHED_FIFO priority (1-99) of the threads a frame's answer waits on, the
   // LineSets' and the exposure notices' (thread_priority.h); 0: time-shared.
-  // Below a robot's front end sharing the machine, above the searches, the
-  // map preparation and DDS's own threads. A refusal is logged and they run
-  // time-shared.
+  // Below a robot's front end sharing the machine, above the searches and the
+  // map preparation; Cyclone's receive thread, which hands them their
+  // samples, may sit between the two (deploy/cyclonedds-realtime.xml). A
+  // refusal is logged and they run time-shared.
   int realtime_priority = 0;
   int max_segments = 2048;
   int max_corners = 2048;

@@ -395,8 +395,10 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
                  });
   }
   const AcquisitionOptions& acquisition = options_.localizer.acquisition;
-  fix.T_world_camera.covariance += diagonalPoseCovariance(acquisition.acquired_position_sigma_m,
-                                                          acquisition.acquired_rotation_sigma_rad);
+  fix.unproven_position_sigma_m = acquisition.acquired_position_sigma_m;
+  fix.unproven_rotation_sigma_rad = acquisition.acquired_rotation_sigma_rad;
+  fix.T_world_camera.covariance +=
+      diagonalPoseCovariance(fix.unproven_position_sigma_m, fix.unproven_rotation_sigma_rad);
 }
 
 PoseWithCovariance LineSetHandler::searchPrior(const std::string& robot_id,

@@ -40,7 +40,9 @@
 // confirmed). Tracking from the carried pose therefore probes
 // carried_start_step_m either way along the horizontal axes, not the
 // tracking floor; and every OK fix keeps the acquired pose's resolution term
-// (acquired_*_sigma, pose_acquisition.h) added to its covariance until
+// (acquired_*_sigma, pose_acquisition.h) added to its covariance, and states
+// it as the fix's unproven part (PoseFix::unproven_*: an offset the fixes
+// share, which the robot fuses as one, inertial_navigator.h), until
 // searches from other viewpoints agree with tracking: once the robot has
 // moved acquisition_proven_after_m from where its confirmed search saw it, a
 // proof search runs on the worker over proof_position_sigma_m around the
@@ -280,7 +282,9 @@ class LineSetHandler {
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
   // pose_acquisition.h) to an OK fix's covariance until proof searches have
-  // agreed with tracking, and submits the next one when it is due.
+  // agreed with tracking, stating it as the fix's unproven part (one offset
+  // the robot's fixes share until then), and submits the next proof search
+  // when it is due.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };

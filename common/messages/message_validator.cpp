@@ -62,6 +62,26 @@ Error checkPose(const lineloc_msg_PoseWithCovariance& pose, const std::string& w
   return std::nullopt;
 }
 
+// The unproven part of a fix's covariance lies within it: each variance at
+// most the covariance's diagonal there.
+Error checkUnprovenPart(const lineloc_msg_PoseFix& message) {
+  const double sigmas[2] = {message.unproven_position_sigma_m, message.unproven_rotation_sigma_rad};
+  const char* names[2] = {"unproven_position_sigma_m", "unproven_rotation_sigma_rad"};
+  for (int block = 0; block < 2; ++block) {
+    if (!(std::isfinite(sigmas[block]) && sigmas[block] >= 0.0)) {
+      return fmt::format("{} {} must be finite and non-negative", names[block], sigmas[block]);
+    }
+    for (int axis = 3 * block; axis < 3 * block + 3; ++axis) {
+      const double variance = message.T_world_camera.covariance[axis * 6 + axis];
+      if (sigmas[block] * sigmas[block] > variance) {
+        return fmt::format("{} {} exceeds T_world_camera's sigma {} on axis {}", names[block],
+                           sigmas[block], std::sqrt(variance), axis);
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 Error checkRobotId(const char* robot_id) {
   if (!isValidRobotId(robot_id)) {
     return fmt::format("robot_id '{}' is not of the form [A-Za-z0-9][A-Za-z0-9_.-]*",
@@ -200,7 +220,9 @@ std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message) 
   if (!std::isfinite(message.residual_rms_px) || message.residual_rms_px < 0.0f) {
     return std::string("residual_rms_px must be finite and non-negative");
   }
-  return checkPose(message.T_world_camera, "T_world_camera");
+  if (Error e = checkPose(message.T_world_camera, "T_world_camera"))
+    return e;
+  return checkUnprovenPart(message);
 }
 
 std::optional<std::string> findRobotStateError(const lineloc_msg_RobotState& message) {

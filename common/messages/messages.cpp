@@ -198,6 +198,8 @@ lineloc_msg_PoseFix toMessage(const PoseFixData& data) {
   message.inliers = data.inliers;
   message.residual_rms_px = data.residual_rms_px;
   message.timings = toMessage(data.timings);
+  message.unproven_position_sigma_m = data.unproven_position_sigma_m;
+  message.unproven_rotation_sigma_rad = data.unproven_rotation_sigma_rad;
   return message;
 }
 
@@ -212,6 +214,8 @@ PoseFixData fromMessage(const lineloc_msg_PoseFix& message) {
   data.inliers = message.inliers;
   data.residual_rms_px = message.residual_rms_px;
   data.timings = fromMessage(message.timings);
+  data.unproven_position_sigma_m = message.unproven_position_sigma_m;
+  data.unproven_rotation_sigma_rad = message.unproven_rotation_sigma_rad;
   return data;
 }
 

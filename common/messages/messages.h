@@ -60,6 +60,8 @@ struct PoseFixData {
   uint32_t inliers = 0;
   float residual_rms_px = 0.0f;
   StageTimingsNs timings;
+  double unproven_position_sigma_m = 0.0;
+  double unproven_rotation_sigma_rad = 0.0;
 };
 
 const char* toString(lineloc_msg_FixStatus status);

@@ -13,6 +13,7 @@
 
 #include "common/camera/camera_calibration.h"
 #include "common/geodesy/site_projection.h"
+#include "common/geometry/pose.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
@@ -331,7 +332,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     if (!navigator) {
       return;
     }
-    const MeasurementOutcome outcome = navigator->applyVisionFix(fix.stamp_ns, fix.T_world_camera);
+    const MeasurementOutcome outcome = navigator->applyVisionFix(
+        fix.stamp_ns, fix.T_world_camera,
+        diagonalPoseCovariance(fix.unproven_position_sigma_m, fix.unproven_rotation_sigma_rad));
     ++(outcome == MeasurementOutcome::kAccepted || outcome == MeasurementOutcome::kPending
            ? summary.fixes_applied
            : summary.fixes_rejected);

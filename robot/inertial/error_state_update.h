@@ -5,9 +5,12 @@
 //   K = P H^T S^-1,  dx = K r,  P = (I - K H) P (I - K H)^T + K R K^T (Joseph),
 // then dx is injected into the nominal state and reset to zero.
 //
-// A measurement whose error it shares with measurements already applied (a
-// time-correlated error) is gated with its own R, the spread of its error,
-// but updates with c R, c >= 1: it carries less new information than that.
+// A measurement whose error it shares with other measurements (a
+// time-correlated error, an offset common to them) is gated with its own R,
+// the spread of its error, but updates with R_u, the part of R that is new
+// information (c R, c >= 1, for a time-correlated error; R less the offset's
+// covariance for a common offset): K = P H^T (H P H^T + R_u)^-1 and the
+// Joseph form with R_u.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -40,7 +43,8 @@ struct LinearisedMeasurement {
 
 template <int M>
 UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, NavigationState& state,
-                          ErrorCovariance& covariance, double noise_inflation = 1.0) {
+                          ErrorCovariance& covariance,
+                          const Eigen::Matrix<double, M, M>& update_noise) {
   using MatrixMM = Eigen::Matrix<double, M, M>;
   const Eigen::Matrix<double, kErrorStateSize, M> PHt = covariance * z.jacobian.transpose();
   const MatrixMM S = z.jacobian * PHt + z.noise;
@@ -52,15 +56,23 @@ UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, Naviga
   if (!(nis <= gate)) {
     return {UpdateStatus::kGated, nis};
   }
-  const MatrixMM R = noise_inflation * z.noise;
   const Eigen::LLT<MatrixMM> update_llt =
-      noise_inflation == 1.0 ? llt : Eigen::LLT<MatrixMM>(z.jacobian * PHt + R);
+      &update_noise == &z.noise ? llt : Eigen::LLT<MatrixMM>(z.jacobian * PHt + update_noise);
+  if (update_llt.info() != Eigen::Success) {
+    return {UpdateStatus::kDegenerate, nis};
+  }
   const Eigen::Matrix<double, kErrorStateSize, M> K = update_llt.solve(PHt.transpose()).transpose();
   const ErrorCovariance I_KH = ErrorCovariance::Identity() - K * z.jacobian;
-  covariance = I_KH * covariance * I_KH.transpose() + K * R * K.transpose();
+  covariance = I_KH * covariance * I_KH.transpose() + K * update_noise * K.transpose();
   covariance = 0.5 * (covariance + covariance.transpose()).eval();
   injectError(K * z.residual, state);
   return {UpdateStatus::kAccepted, nis};
+}
+
+template <int M>
+UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, NavigationState& state,
+                          ErrorCovariance& covariance) {
+  return applyUpdate(z, gate, state, covariance, z.noise);
 }
 
 // A measurement whose error persists over the filter's whole span (a DGPS

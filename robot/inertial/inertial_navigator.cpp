@@ -50,6 +50,16 @@ bool isPositiveDefinite(const Matrix6d& covariance) {
          Eigen::LLT<Matrix6d>(covariance).info() == Eigen::Success;
 }
 
+// A fix's unproven part: symmetric, no negative variance, and within the fix's
+// covariance, what is left of it positive definite.
+bool isUnprovenPartOf(const Matrix6d& unproven, const Matrix6d& covariance) {
+  return unproven.allFinite() && unproven.isApprox(unproven.transpose(), 1e-9) &&
+         Eigen::SelfAdjointEigenSolver<Matrix6d>(unproven, Eigen::EigenvaluesOnly)
+                 .eigenvalues()
+                 .minCoeff() >= 0.0 &&
+         isPositiveDefinite(covariance - unproven);
+}
+
 MeasurementOutcome fromUpdate(UpdateStatus status) {
   switch (status) {
     case UpdateStatus::kAccepted:
@@ -80,6 +90,29 @@ int64_t& counterOf(MeasurementCounters& counters, MeasurementOutcome outcome) {
       break;
   }
   throw std::logic_error("a pending measurement has no counter");
+}
+
+// The part of a fix's unproven covariance (camera pose error [dp; dtheta],
+// dtheta in the world frame) the filter takes as a frame offset: all but the
+// tilt (rotation about the world's horizontal axes), which gravity makes
+// observable to the accelerometers and which stays noise on each fix.
+Matrix6d levelFrameOffset(Matrix6d unproven) {
+  for (const int tilt_axis : {3, 4}) {
+    unproven.row(tilt_axis).setZero();
+    unproven.col(tilt_axis).setZero();
+  }
+  return unproven;
+}
+
+// The covariance the filter reports: its own, of the pose relative to the
+// fixes' frame, plus the unproven offset of that frame (body pose error
+// [dp; dtheta]).
+ErrorCovariance withUnproven(ErrorCovariance covariance, const Matrix6d& unproven_body) {
+  covariance.block<3, 3>(kPosition, kPosition) += unproven_body.topLeftCorner<3, 3>();
+  covariance.block<3, 3>(kPosition, kAttitude) += unproven_body.topRightCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kPosition) += unproven_body.bottomLeftCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kAttitude) += unproven_body.bottomRightCorner<3, 3>();
+  return covariance;
 }
 
 Eigen::Quaterniond quaternionFromYawPitchRoll(double yaw, double pitch, double roll) {
@@ -216,13 +249,13 @@ void InertialNavigator::addCompass(const CompassReading& reading) {
 
 MeasurementOutcome InertialNavigator::applyVisionFix(int64_t stamp_ns,
                                                      const PoseWithCovariance& T_world_camera,
-                                                     const Eigen::Isometry3d& T_body_camera) {
+                                                     const Matrix6d& unproven_covariance) {
   if (!isFinitePose(T_world_camera) || !isPositiveDefinite(T_world_camera.covariance) ||
-      !T_body_camera.matrix().allFinite()) {
+      !isUnprovenPartOf(unproven_covariance, T_world_camera.covariance)) {
     ++counters_.vision.invalid;
     return MeasurementOutcome::kInvalid;
   }
-  const VisionPayload vision{T_world_camera, T_body_camera};
+  const VisionPayload vision{T_world_camera, levelFrameOffset(unproven_covariance)};
   if (snapshots_.empty()) {
     const BodyFix fix = bodyFixOf(stamp_ns, vision);
     const std::optional<StartVelocity> velocity = startVelocity(fix, startup_vision_);
@@ -299,12 +332,16 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
   ErrorCovariance& covariance = snapshot.covariance;
   if (const auto* vision = std::get_if<VisionPayload>(&measurement.payload)) {
     const LinearisedMeasurement<6> z =
-        linearisePoseFix(state, vision->T_world_camera, vision->T_body_camera);
+        linearisePoseFix(state, vision->T_world_camera, config_.T_body_camera);
     measurement.vision_residual = z.residual;
+    const Matrix6d update_noise =
+        correlatedFixInflation(snapshot) * (z.noise - vision->unproven_covariance);
     const UpdateOutcome outcome =
-        applyUpdate(z, gate_by_dimension_[6], state, covariance, correlatedFixInflation(snapshot));
+        applyUpdate(z, gate_by_dimension_[6], state, covariance, update_noise);
     if (outcome.status == UpdateStatus::kAccepted) {
       snapshot.at_last_vision = state;
+      snapshot.unproven_covariance =
+          bodyCovarianceOf(vision->T_world_camera.pose, vision->unproven_covariance);
     }
     return fromUpdate(outcome.status);
   }
@@ -409,7 +446,8 @@ bool InertialNavigator::initialise(const NavigationState& state,
 }
 
 void InertialNavigator::startAt(const NavigationState& state, const ErrorCovariance& covariance,
-                                const ImuSample& imu, bool from_vision) {
+                                const ImuSample& imu, bool from_vision,
+                                const Matrix6d& unproven_covariance) {
   snapshots_.clear();
   measurements_.clear();
   Snapshot snapshot;
@@ -417,6 +455,7 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshot.covariance = covariance;
   snapshot.imu = imu;
   snapshot.last_zero_velocity_ns = state.stamp_ns;
+  snapshot.unproven_covariance = unproven_covariance;
   if (from_vision) {
     snapshot.at_last_vision = state;
   }
@@ -480,12 +519,20 @@ void InertialNavigator::tryInitialiseFromSensors() {
 }
 
 InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
-                                                        const VisionPayload& vision) {
+                                                        const VisionPayload& vision) const {
+  const Eigen::Isometry3d& T_world_camera = vision.T_world_camera.pose;
+  return {stamp_ns, T_world_camera * config_.T_body_camera.inverse(),
+          bodyCovarianceOf(T_world_camera,
+                           vision.T_world_camera.covariance - vision.unproven_covariance),
+          bodyCovarianceOf(T_world_camera, vision.unproven_covariance)};
+}
+
+Matrix6d InertialNavigator::bodyCovarianceOf(const Eigen::Isometry3d& T_world_camera,
+                                             const Matrix6d& camera_covariance) const {
   // The camera's pose moved by the exact camera -> body transform: the inverse
   // of the lever-arm Jacobian of cameraPoseOf().
-  const PoseWithCovariance T_world_body =
-      composeExactMotion(vision.T_world_camera, vision.T_body_camera.inverse());
-  return {stamp_ns, T_world_body.pose, T_world_body.covariance};
+  return composeExactMotion({T_world_camera, camera_covariance}, config_.T_body_camera.inverse())
+      .covariance;
 }
 
 std::optional<InertialNavigator::StartVelocity> InertialNavigator::startVelocity(
@@ -533,7 +580,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   covariance.block<3, 3>(kAccelBias, kAccelBias)
       .diagonal()
       .setConstant(config_.accel_turn_on_bias_sigma_mps2 * config_.accel_turn_on_bias_sigma_mps2);
-  startAt(state, covariance, *imu, true);
+  startAt(state, covariance, *imu, true, fix.unproven_covariance);
   return MeasurementOutcome::kAccepted;
 }
 
@@ -677,7 +724,7 @@ void InertialNavigator::restartHeadingIfCompassKeepsBeingGated() {
   covariance.col(kAttitude + 2).setZero();
   covariance(kAttitude + 2, kAttitude + 2) =
       config_.initial_yaw_sigma_rad * config_.initial_yaw_sigma_rad;
-  startAt(state, covariance, latest.imu, false);
+  startAt(state, covariance, latest.imu, false, latest.unproven_covariance);
   ++counters_.heading_restarts;
 }
 
@@ -712,7 +759,9 @@ std::optional<NavigatorEstimate> InertialNavigator::state() const {
   if (snapshots_.empty()) {
     return std::nullopt;
   }
-  return NavigatorEstimate{snapshots_.back().state, snapshots_.back().covariance};
+  const Snapshot& latest = snapshots_.back();
+  return NavigatorEstimate{latest.state,
+                           withUnproven(latest.covariance, latest.unproven_covariance)};
 }
 
 NavigatorHealth InertialNavigator::health() const {
@@ -727,11 +776,12 @@ NavigatorHealth InertialNavigator::health() const {
   if (latest.at_last_vision) {
     health.since_vision_fix_ns = latest.state.stamp_ns - latest.at_last_vision->stamp_ns;
   }
-  health.position_sigma_m = std::sqrt(latest.covariance.block<3, 3>(kPosition, kPosition)
+  const ErrorCovariance covariance = withUnproven(latest.covariance, latest.unproven_covariance);
+  health.position_sigma_m = std::sqrt(covariance.block<3, 3>(kPosition, kPosition)
                                           .selfadjointView<Eigen::Lower>()
                                           .eigenvalues()
                                           .maxCoeff());
-  health.yaw_sigma_rad = std::sqrt(latest.covariance(kAttitude + 2, kAttitude + 2));
+  health.yaw_sigma_rad = std::sqrt(covariance(kAttitude + 2, kAttitude + 2));
   if (health.position_sigma_m > config_.lost_position_sigma_m) {
     health.mode = NavigatorMode::kLost;
   } else if (health.since_vision_fix_ns &&

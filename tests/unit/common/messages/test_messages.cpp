@@ -181,5 +181,29 @@ TEST(Validator, PoseFixAndRobotState) {
   EXPECT_TRUE(findRobotStateError(state).has_value());
 }
 
+TEST(Validator, PoseFixUnprovenPartLiesWithinItsCovariance) {
+  PoseFixData fix;
+  fix.robot_id = "r1";
+  fix.T_world_camera.covariance = diagonalPoseCovariance(0.2, 0.01);
+  fix.unproven_position_sigma_m = 0.15;
+  fix.unproven_rotation_sigma_rad = 0.005;
+  EXPECT_EQ(fromMessage(toMessage(fix)).unproven_position_sigma_m, 0.15);
+  EXPECT_EQ(fromMessage(toMessage(fix)).unproven_rotation_sigma_rad, 0.005);
+  lineloc_msg_PoseFix raw = toMessage(fix);
+  EXPECT_EQ(findPoseFixError(raw), std::nullopt);
+  raw.unproven_position_sigma_m = std::nan("");
+  const auto not_finite = findPoseFixError(raw);
+  ASSERT_TRUE(not_finite.has_value());
+  EXPECT_NE(not_finite->find("unproven_position_sigma_m"), std::string::npos);
+  raw = toMessage(fix);
+  raw.unproven_rotation_sigma_rad = -0.001;
+  EXPECT_TRUE(findPoseFixError(raw).has_value());
+  raw = toMessage(fix);
+  raw.T_world_camera.covariance[2 * 6 + 2] = 0.01;
+  const auto too_wide = findPoseFixError(raw);
+  ASSERT_TRUE(too_wide.has_value());
+  EXPECT_NE(too_wide->find("axis 2"), std::string::npos) << *too_wide;
+}
+
 }  // namespace
 }  // namespace lineloc

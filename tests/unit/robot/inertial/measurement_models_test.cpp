@@ -97,29 +97,43 @@ TEST(MeasurementModels, WrapAngle) {
   EXPECT_NEAR(wrapAngle(3 * M_PI + 0.5), -M_PI + 0.5, 1e-12);
 }
 
-// An inflated update equals one with the noise c R; its gate is the one of R.
-TEST(ErrorStateUpdate, InflatedNoiseUpdatesWithCRAndGatesWithR) {
+// An update with its own noise R_u equals one whose R is R_u; its gate is the
+// one of R.
+TEST(ErrorStateUpdate, UpdatesWithItsUpdateNoiseAndGatesWithR) {
   LinearisedMeasurement<3> z;
   z.jacobian.block<3, 3>(0, kPosition).setIdentity();
   z.noise = 0.01 * Eigen::Matrix3d::Identity();
   z.residual = Eigen::Vector3d(0.1, -0.05, 0.02);
   const ErrorCovariance prior = 0.04 * ErrorCovariance::Identity();
+  for (const double update_scale : {4.0, 0.25}) {
+    const Eigen::Matrix3d update_noise = update_scale * z.noise;
+    NavigationState updated_state;
+    ErrorCovariance updated = prior;
+    ASSERT_EQ(applyUpdate(z, 100.0, updated_state, updated, update_noise).status,
+              UpdateStatus::kAccepted);
+    LinearisedMeasurement<3> as_noise = z;
+    as_noise.noise = update_noise;
+    NavigationState expected_state;
+    ErrorCovariance expected = prior;
+    ASSERT_EQ(applyUpdate(as_noise, 100.0, expected_state, expected).status,
+              UpdateStatus::kAccepted);
+    EXPECT_TRUE(updated.isApprox(expected, 1e-12)) << update_scale;
+    EXPECT_TRUE(updated_state.p_world_body.isApprox(expected_state.p_world_body, 1e-12));
+  }
 
-  NavigationState inflated_state;
-  ErrorCovariance inflated = prior;
-  ASSERT_EQ(applyUpdate(z, 100.0, inflated_state, inflated, 4.0).status, UpdateStatus::kAccepted);
-  LinearisedMeasurement<3> wider = z;
-  wider.noise *= 4.0;
-  NavigationState wider_state;
-  ErrorCovariance expected = prior;
-  ASSERT_EQ(applyUpdate(wider, 100.0, wider_state, expected).status, UpdateStatus::kAccepted);
-  EXPECT_TRUE(inflated.isApprox(expected, 1e-12));
-  EXPECT_TRUE(inflated_state.p_world_body.isApprox(wider_state.p_world_body, 1e-12));
-
-  // NIS 0.258 with R (S = 0.05 I), 0.161 with 4 R: a gate of 0.2 separates them.
+  // NIS 0.258 with R (S = 0.05 I), whatever R_u (0.161 with 4 R, 0.36 with
+  // R / 4): gated at 0.2, passed at 0.3.
+  for (const auto& [update_scale, gate] : {std::pair{4.0, 0.2}, std::pair{0.25, 0.2}}) {
+    NavigationState state;
+    ErrorCovariance covariance = prior;
+    EXPECT_EQ(
+        applyUpdate(z, gate, state, covariance, Eigen::Matrix3d(update_scale * z.noise)).status,
+        UpdateStatus::kGated);
+  }
   NavigationState state;
   ErrorCovariance covariance = prior;
-  EXPECT_EQ(applyUpdate(z, 0.2, state, covariance, 4.0).status, UpdateStatus::kGated);
+  EXPECT_EQ(applyUpdate(z, 0.3, state, covariance, Eigen::Matrix3d(0.25 * z.noise)).status,
+            UpdateStatus::kAccepted);
 }
 
 }  // namespace

@@ -25,6 +25,13 @@ struct ScenarioConfig {
   int64_t outage_start_ns = -1;  // relative to the drive's start; -1: none
   int64_t outage_length_ns = 0;
   int64_t record_period_ns = 1'000'000'000;
+  // An offset drawn once from N(0, diag(sp^2, sr^2)) that every fix shares,
+  // as fixes tracked from a search the backbone has not proven do; their
+  // covariance includes it, stated as their unproven part when
+  // `unproven_stated`, else left as noise on each.
+  double unproven_position_sigma_m = 0.0;
+  double unproven_rotation_sigma_rad = 0.0;
+  bool unproven_stated = true;
 };
 
 struct Record {
@@ -44,6 +51,7 @@ struct ScenarioResult {
   std::vector<double> fix_nis;
   std::optional<NavigatorEstimate> final_estimate;
   NavigatorHealth final_health;
+  Eigen::Vector3d unproven_position_offset_m = Eigen::Vector3d::Zero();
 };
 
 inline ErrorCovariance initialCovariance() {
@@ -102,10 +110,26 @@ inline ScenarioResult runScenario(
     PoseWithCovariance pose;
   };
   std::vector<PendingFix> pending;
+  ScenarioResult result;
+  const Matrix6d unproven = diagonalPoseCovariance(scenario.unproven_position_sigma_m,
+                                                   scenario.unproven_rotation_sigma_rad);
+  std::mt19937_64 offset_random(scenario.seed + 3000);
+  const auto unitNormal3 = [&] {
+    return Eigen::Vector3d(normal(offset_random), normal(offset_random), normal(offset_random));
+  };
+  result.unproven_position_offset_m = scenario.unproven_position_sigma_m * unitNormal3();
+  const Eigen::Vector3d unproven_rotation_rad =
+      scenario.unproven_rotation_sigma_rad * unitNormal3();
+  const auto withUnprovenOffset = [&](PoseWithCovariance fix) {
+    fix.pose.translation() += result.unproven_position_offset_m;
+    fix.pose.linear() =
+        (expSO3(unproven_rotation_rad) * Eigen::Quaterniond(fix.pose.linear())).toRotationMatrix();
+    fix.covariance += unproven;
+    return fix;
+  };
   const int64_t t0 = imu.front().stamp_ns;
   int64_t next_frame = t0 + scenario.fix_phase_ns;
   int64_t next_record = t0 + scenario.record_period_ns;
-  ScenarioResult result;
   for (size_t i = 1; i < imu.size(); ++i) {
     const int64_t now = imu[i].stamp_ns;
     while (next_frame <= now) {
@@ -114,9 +138,10 @@ inline ScenarioResult runScenario(
                              since_start >= scenario.outage_start_ns &&
                              since_start < scenario.outage_start_ns + scenario.outage_length_ns;
       if (!in_outage) {
-        pending.push_back({next_frame, noisyCameraFix(trajectory, next_frame, config.T_body_camera,
-                                                      scenario.fix_position_sigma_m,
-                                                      scenario.fix_rotation_sigma_rad, random)});
+        pending.push_back({next_frame, withUnprovenOffset(noisyCameraFix(
+                                           trajectory, next_frame, config.T_body_camera,
+                                           scenario.fix_position_sigma_m,
+                                           scenario.fix_rotation_sigma_rad, random))});
       }
       next_frame += scenario.fix_period_ns;
     }
@@ -126,7 +151,8 @@ inline ScenarioResult runScenario(
       if (predicted.status == PredictionStatus::kOk) {
         result.fix_nis.push_back(poseFixNis(predicted.T_world_camera, pending.front().pose));
       }
-      navigator.applyVisionFix(pending.front().stamp_ns, pending.front().pose);
+      navigator.applyVisionFix(pending.front().stamp_ns, pending.front().pose,
+                               scenario.unproven_stated ? unproven : Matrix6d::Zero());
       pending.erase(pending.begin());
     }
     navigator.addImu(toImuSample(imu[i]));

@@ -113,7 +113,7 @@ void LineSetHandler::forgetUnheardRobots() {
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     eraseRobots(last_search_, unheard);
-    eraseRobots(confirmed_search_, unheard);
+    eraseRobots(tracking_start_, unheard);
     eraseRobots(searching_again_, unheard);
   }
   const std::lock_guard<std::mutex> lock(ahead_mutex_);
@@ -242,19 +242,19 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
   countSearch();
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
-    const auto confirmed = confirmed_search_.find(line_set.robot_id);
-    if (confirmed == confirmed_search_.end()) {
+    const auto start = tracking_start_.find(line_set.robot_id);
+    if (start == tracking_start_.end()) {
       return;
     }
     switch (verdict.proof) {
       case Proof::kAgrees:
-        ++confirmed->second.agreeing_proofs;
+        ++start->second.agreeing_proofs;
         [[fallthrough]];
       case Proof::kUndecided:
-        confirmed->second.proof_due_m += options_.proof_retry_m;
+        start->second.proof_due_m += options_.proof_retry_m;
         break;
       case Proof::kContradicts:
-        confirmed_search_.erase(confirmed);
+        tracking_start_.erase(start);
         searching_again_.insert(line_set.robot_id);
         break;
     }
@@ -340,8 +340,8 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   if (!agrees(moved->pose, acquired.pose)) {
     return Confirmation::kDisagrees;
   }
-  confirmed_search_.insert_or_assign(
-      line_set.robot_id, ConfirmedSearch{current, 0, options_.acquisition_proven_after_m});
+  tracking_start_.insert_or_assign(
+      line_set.robot_id, TrackingStart{current, true, 0, options_.acquisition_proven_after_m});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }
@@ -356,11 +356,11 @@ bool LineSetHandler::agrees(const Eigen::Isometry3d& expected,
 std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set,
                                                                 const OdometryPose& odometry) {
   const std::lock_guard<std::mutex> lock(searches_mutex_);
-  const auto confirmed = confirmed_search_.find(line_set.robot_id);
-  if (confirmed == confirmed_search_.end()) {
+  const auto start = tracking_start_.find(line_set.robot_id);
+  if (start == tracking_start_.end() || !start->second.searched) {
     return std::nullopt;
   }
-  const SearchResult& search = confirmed->second.search;
+  const SearchResult& search = start->second.origin;
   const double age_s = (line_set.stamp_ns - search.stamp_ns) * 1e-9;
   if (!(age_s > 0.0 && age_s <= options_.carry_search_s)) {
     return std::nullopt;
@@ -377,16 +377,25 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
   bool proof_due = false;
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
-    const auto confirmed = confirmed_search_.find(line_set.robot_id);
-    if (confirmed == confirmed_search_.end() ||
-        confirmed->second.agreeing_proofs >= options_.agreeing_proofs_needed ||
-        confirmed->second.search.odometry.epoch != odometry.epoch) {
+    const auto [start, from_prediction] = tracking_start_.try_emplace(
+        line_set.robot_id,
+        TrackingStart{SearchResult{line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0,
+                      options_.acquisition_proven_after_m});
+    if (from_prediction) {
+      spdlog::info(
+          "tracking {} from #{} on from its own prediction, which no search here found: its "
+          "fixes stay widened until proof searches agree",
+          line_set.robot_id, line_set.sequence_number);
+    }
+    const TrackingStart& tracking = start->second;
+    if (tracking.agreeing_proofs >= options_.agreeing_proofs_needed ||
+        tracking.origin.odometry.epoch != odometry.epoch) {
       return;
     }
     const double moved_m = (odometry.T_odom_camera.translation() -
-                            confirmed->second.search.odometry.T_odom_camera.translation())
+                            tracking.origin.odometry.T_odom_camera.translation())
                                .norm();
-    proof_due = moved_m >= confirmed->second.proof_due_m;
+    proof_due = moved_m >= tracking.proof_due_m;
   }
   if (proof_due) {
     submitSearch("proof search", line_set,

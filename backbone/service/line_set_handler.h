@@ -65,6 +65,13 @@
 // (17.1 to 14.1, 8.1 to 8.0). One that finds nothing, an ambiguous view, or a pose the tracked
 // one nearly matches, is tried again after proof_retry_m more.
 //
+// A robot tracked from its own prediction, without a search of this backbone
+// (one restarted mid-drive, a robot forgotten and back, a robot started from
+// a known pose), is proven alike from its first tracked frame: its prediction
+// stands on fixes whose proof this backbone never saw, or on none, and
+// tracking keeps whichever basin it starts in. Its fixes state the same
+// unproven part until proof searches from its tracking start agree.
+//
 // A tracked answer's covariance is raised to the sample covariance of the
 // robot's answers of the last second and it, each moved to its frame by the
 // robot's motion (fix_scatter.h): a view whose lines fit two alignments flips
@@ -95,7 +102,7 @@
 // that a backbone serving robots that come and go holds only the ones it
 // serves (a forgotten notice held a prepared map of its own). One that comes
 // back after that long is served as after a backbone restart: tracked from
-// its own prediction, or searched for when that is poor. The sweep runs on
+// its own prediction and proven, or searched for when that is poor. The sweep runs on
 // the LineSets' thread, at most every forget_robot_after_s / 2, at each
 // LineSet and, while none comes, each time the serving loop wakes without
 // one (forgetSilentRobotsWhenDue): a robot is forgotten between one and one
@@ -284,7 +291,7 @@ class LineSetHandler {
   // pose_acquisition.h) to an OK fix's covariance until proof searches have
   // agreed with tracking, stating it as the fix's unproven part (one offset
   // the robot's fixes share until then), and submits the next proof search
-  // when it is due.
+  // when it is due. A robot with no tracking start has it set at `fix`.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };
@@ -346,17 +353,20 @@ class LineSetHandler {
   // nullopt when the two are of different epochs.
   static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
                                                            const OdometryPose& odometry);
-  // A confirmed search result, and the proof searches that agreed with
-  // tracking from it (proven at agreeing_proofs_needed).
-  struct ConfirmedSearch {
-    SearchResult search;
+  // Where a robot's tracking started: a confirmed search result, or its
+  // first frame tracked from its own prediction; and the proof searches that
+  // agreed with tracking since (proven at agreeing_proofs_needed).
+  struct TrackingStart {
+    SearchResult origin;
+    // Found by a search, and so carried (carriedSearch).
+    bool searched = false;
     int agreeing_proofs = 0;
-    // Motion from the search's viewpoint (m) at which a proof search is due.
+    // Motion from the origin's viewpoint (m) at which a proof search is due.
     double proof_due_m = 0.0;
   };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;
-  std::map<std::string, ConfirmedSearch> confirmed_search_;
+  std::map<std::string, TrackingStart> tracking_start_;
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;
   // Each robot's hidden-line removal started at its last frame's exposure.

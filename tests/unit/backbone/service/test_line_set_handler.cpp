@@ -339,23 +339,20 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
   expectTrackedAfterSearches(handler, database_.conninfo(), start.truth, corrected);
 }
 
-// A robot that stands still searches the same view twice, and both searches
-// can settle in the same wrong basin: its fixes keep the acquired pose's
-// resolution term until, once it has moved acquisition_proven_after_m, a
-// proof search from there agrees with tracking, and a second one
-// proof_retry_m further on does too.
-TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhereAgree) {
-  MapTileCache cache = makeCache(database_.conninfo());
-  const PipelineOptions options;
-  LineSetHandler handler(cache, MessageLimits{}, options);
-  const PoorStart start;
-  confirmPoorStart(handler, database_.conninfo(), start);
-  const double acquired_variance =
-      std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2);
-  const auto expectFix = [&](const PoseWithCovariance& truth, const PoseWithCovariance& predicted,
-                             uint32_t sequence, bool widened) {
+// Frames `first_sequence` on of a robot at `truth`, its prediction moving
+// alike, tracked from there without a search: widened by the search's
+// resolution, and stating it as their unproven part, until, once the robot
+// has moved acquisition_proven_after_m, a proof search from there agrees with
+// tracking, and a second one proof_retry_m further on does too.
+void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::string& conninfo,
+                                         const PipelineOptions& options, PoseWithCovariance truth,
+                                         PoseWithCovariance predicted, uint32_t first_sequence) {
+  const AcquisitionOptions& acquisition = options.localizer.acquisition;
+  const double acquired_variance = std::pow(acquisition.acquired_position_sigma_m, 2);
+  uint32_t sequence = first_sequence;
+  const auto expectFix = [&](bool widened) {
     const auto fix = handler.handle(
-        lineSetMessage(observedEdges(database_.conninfo(), truth), predicted, sequence)->message());
+        lineSetMessage(observedEdges(conninfo, truth), predicted, sequence)->message());
     ASSERT_TRUE(fix.has_value());
     ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
     expectWithinThreeSigma(fix->T_world_camera, truth);
@@ -363,30 +360,62 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhe
       EXPECT_EQ(fix->T_world_camera.covariance(axis, axis) >= acquired_variance, widened)
           << "frame " << sequence << ", axis " << axis;
     }
+    EXPECT_EQ(fix->unproven_position_sigma_m, widened ? acquisition.acquired_position_sigma_m : 0.0)
+        << "frame " << sequence;
+    EXPECT_EQ(fix->unproven_rotation_sigma_rad,
+              widened ? acquisition.acquired_rotation_sigma_rad : 0.0)
+        << "frame " << sequence;
+    ++sequence;
   };
-
-  expectFix(start.truth, start.predicted, 4, true);
-  // 1.5 m further north, its prediction moved alike: the first proof search
-  // is due; agreeing, it leaves the fixes widened.
-  PoseWithCovariance truth = start.truth;
-  PoseWithCovariance predicted = start.predicted;
   const auto driveNorth = [&](double distance_m) {
     truth.pose.translation().y() += distance_m;
     predicted.pose.translation().y() += distance_m;
   };
+  const uint64_t searches = handler.counters().searches;
+
+  expectFix(true);
+  // 1.5 m further north: the first proof search is due; agreeing, it leaves
+  // the fixes widened.
   driveNorth(1.5);
-  expectFix(truth, predicted, 5, true);
+  expectFix(true);
   handler.waitForSearches();
-  EXPECT_EQ(handler.counters().searches, 3u);
-  expectFix(truth, predicted, 6, true);
-  EXPECT_EQ(handler.counters().searches, 3u);
+  EXPECT_EQ(handler.counters().searches, searches + 1);
+  expectFix(true);
+  EXPECT_EQ(handler.counters().searches, searches + 1);
   // A metre further on, the second one is due; agreeing too, it proves tracking.
   driveNorth(options.proof_retry_m);
-  expectFix(truth, predicted, 7, true);
+  expectFix(true);
   handler.waitForSearches();
-  EXPECT_EQ(handler.counters().searches, 4u);
-  expectFix(truth, predicted, 8, false);
-  EXPECT_EQ(handler.counters().searches, 4u);
+  EXPECT_EQ(handler.counters().searches, searches + 2);
+  expectFix(false);
+  EXPECT_EQ(handler.counters().searches, searches + 2);
+}
+
+// A robot that stands still searches the same view twice, and both searches
+// can settle in the same wrong basin: its fixes stay unproven until searches
+// from elsewhere agree.
+TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhereAgree) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  const PipelineOptions options;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  const PoorStart start;
+  confirmPoorStart(handler, database_.conninfo(), start);
+  expectProvenBySearchesFromElsewhere(handler, database_.conninfo(), options, start.truth,
+                                      start.predicted, 4);
+}
+
+// A robot that this backbone tracks from its own prediction (as after a
+// restart of the backbone) stands on fixes whose proof the backbone never
+// saw: its fixes are proven as those of a searched robot are.
+TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearchedOne) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  const PipelineOptions options;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  expectProvenBySearchesFromElsewhere(handler, database_.conninfo(), options,
+                                      lookingNorth({13, -30, 1.5}),
+                                      lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003), 3);
+  EXPECT_EQ(handler.counters().searches, 2u);
 }
 
 // The same start, then the robot drives 1.5 m north, but its odometry says

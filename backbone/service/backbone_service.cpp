@@ -14,7 +14,7 @@
 #include "backbone/map/database_tile_fetcher.h"
 #include "common/messages/topics.h"
 #include "common/parallel/periodic_task.h"
-#include "common/parallel/thread_priority.h"
+#include "common/parallel/realtime_thread.h"
 #include "common/time/clock.h"
 #include "common/time/percentile.h"
 #include "db/site.h"
@@ -23,22 +23,6 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
-
-// Raises the calling thread, named `thread` in the log, to SCHED_FIFO at
-// `priority` (0: leaves it time-shared); the threads it starts inherit it.
-void runAnsweringThreadRealtime(int priority, const char* thread) {
-  if (priority == 0) {
-    return;
-  }
-  if (!runThreadRealtime(priority)) {
-    spdlog::warn(
-        "realtime_priority {}: SCHED_FIFO refused (needs CAP_SYS_NICE or ulimit -r {}); the {} "
-        "runs time-shared",
-        priority, priority, thread);
-    return;
-  }
-  spdlog::info("the {} runs under SCHED_FIFO at priority {}", thread, priority);
-}
 
 // The sun over the configured site by the clock, when asked for.
 std::optional<SiteSun> clockSun(const BackboneConfig& config) {
@@ -165,7 +149,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     // Exposure notices on a thread of their own: a robot's frame is exposed
     // while the backbone may still answer another robot's LineSet.
     const std::jthread exposure_thread([&] {
-      runAnsweringThreadRealtime(config.realtime_priority, "exposure notices' thread");
+      runThreadRealtimeLogged(config.realtime_priority, "exposure notices' thread");
       while (!stop) {
         if (exposures.waitForData(kWaitNs)) {
           exposures.takeEach(
@@ -174,7 +158,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       }
     });
     // After every background thread has started: they stay time-shared.
-    runAnsweringThreadRealtime(config.realtime_priority, "LineSets' thread");
+    runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
     while (!stop) {
       if (!reader.waitForData(kWaitNs)) {
         handler.forgetSilentRobotsWhenDue(steadyClockNs());

@@ -17,7 +17,7 @@
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/messages/topics.h"
-#include "common/parallel/thread_priority.h"
+#include "common/parallel/realtime_thread.h"
 #include "common/time/clock.h"
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
@@ -280,21 +280,11 @@ class Playback {
 // Not for a replay as fast as possible, which never sleeps: it would keep a
 // core from every time-shared thread, the robot's own receive thread too.
 void runFrontEndRealtime(int priority, bool paced) {
-  if (priority == 0) {
-    return;
-  }
-  if (!paced) {
+  if (priority != 0 && !paced) {
     spdlog::warn("realtime_priority {}: ignored for a replay as fast as possible", priority);
     return;
   }
-  if (!runThreadRealtime(priority)) {
-    spdlog::warn(
-        "realtime_priority {}: SCHED_FIFO refused (needs CAP_SYS_NICE or ulimit -r {}); the "
-        "front end runs time-shared",
-        priority, priority);
-    return;
-  }
-  spdlog::info("front end runs under SCHED_FIFO at priority {}", priority);
+  runThreadRealtimeLogged(priority, "front end");
 }
 
 }  // namespace

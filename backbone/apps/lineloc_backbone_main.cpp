@@ -66,10 +66,11 @@ int main(int argc, char** argv) {
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(
         "lineloc-backbone: {} received, {} answered ({} with a pose, {} searched from a poor "
-        "prediction, {} tracked with the hidden lines removed at exposure), {} dropped as "
-        "invalid, {} map errors\n",
+        "prediction, {} tracked with the hidden lines removed at exposure, {} exposure notices "
+        "skipped as they came after their LineSet), {} dropped as invalid, {} map errors\n",
         counters.received, counters.answered, counters.fixes_ok, counters.searches,
-        counters.visibility_ahead, counters.dropped_invalid, counters.map_errors);
+        counters.visibility_ahead, counters.notices_after_line_set, counters.dropped_invalid,
+        counters.map_errors);
     std::string stages;
     for (const lineloc::StagePercentiles& stage : lineloc::stagePercentiles(counters)) {
       stages += fmt::format(" {} {:.2f}/{:.2f}/{:.1f}", stage.stage, stage.median_ms, stage.p99_ms,

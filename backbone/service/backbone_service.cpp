@@ -98,6 +98,7 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"map_errors", counters.map_errors},
                                {"searches", counters.searches},
                                {"visibility_ahead", counters.visibility_ahead},
+                               {"notices_after_line_set", counters.notices_after_line_set},
                                {"robots", counters.robots},
                                {"robots_forgotten", counters.robots_forgotten},
                                {"last_drop_reason", counters.last_drop_reason},

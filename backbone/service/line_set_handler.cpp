@@ -118,6 +118,7 @@ void LineSetHandler::forgetUnheardRobots() {
   }
   const std::lock_guard<std::mutex> lock(ahead_mutex_);
   eraseRobots(ahead_, unheard);
+  eraseRobots(last_line_set_, unheard);
 }
 
 void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
@@ -486,6 +487,11 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   }
   const LineSetData line_set = fromMessage(message);
   hearFrom(line_set.robot_id, start_ns);
+  {
+    const std::lock_guard<std::mutex> lock(ahead_mutex_);
+    last_line_set_.insert_or_assign(line_set.robot_id,
+                                    FrameId{line_set.sequence_number, line_set.stamp_ns});
+  }
   const OdometryPose odometry =
       motion_.try_emplace(line_set.robot_id, options_.motion)
           .first->second.add(line_set.stamp_ns, line_set.predicted_T_world_camera);
@@ -564,11 +570,10 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
     if (needsAcquisition(prior, options_.localizer)) {
       return;
     }
-    {
-      const std::lock_guard<std::mutex> lock(ahead_mutex_);
-      ahead_.insert_or_assign(exposure.robot_id,
-                              VisibilityAhead{exposure.sequence_number, map, prior, exposure.camera,
-                                              visible.get_future().share()});
+    if (!aheadOfLineSet(exposure, map, prior, visible.get_future().share())) {
+      const std::lock_guard<std::mutex> lock(counters_mutex_);
+      ++counters_.notices_after_line_set;
+      return;
     }
     LocalizerOptions options = localizerOptions(exposure);
     options.threads = options_.exposure_visibility_threads;
@@ -578,6 +583,21 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
                   exposure.sequence_number, error.what());
     visible.set_exception(std::current_exception());
   }
+}
+
+bool LineSetHandler::aheadOfLineSet(const LineSetData& exposure,
+                                    const std::shared_ptr<const PreparedMap>& map,
+                                    const PoseWithCovariance& prior,
+                                    std::shared_future<std::vector<VisibleSegment>> visible) {
+  const std::lock_guard<std::mutex> lock(ahead_mutex_);
+  const auto last = last_line_set_.find(exposure.robot_id);
+  if (last != last_line_set_.end() &&
+      last->second == FrameId{exposure.sequence_number, exposure.stamp_ns}) {
+    return false;
+  }
+  ahead_.insert_or_assign(exposure.robot_id, VisibilityAhead{exposure.sequence_number, map, prior,
+                                                             exposure.camera, std::move(visible)});
+  return true;
 }
 
 std::optional<std::vector<VisibleSegment>> LineSetHandler::visibilityAhead(

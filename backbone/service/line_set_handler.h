@@ -95,7 +95,10 @@
 // backbone's median answer went from 3.1-4.4 ms to 1.6-3.2 ms and exposure ->
 // fix median from 6.0-7.3 ms to 5.0-6.6 ms; p99 did not move beyond the
 // machine's noise, as the removal then competes with the robot's line
-// extraction for the cores.
+// extraction for the cores. A notice that comes after its LineSet (the
+// notices' thread held up on a loaded machine) is skipped and counted: its
+// frame has been answered, and the removal would only take a core from the
+// next one.
 //
 // A robot not heard from for forget_robot_after_s is forgotten: its motion,
 // recent answers, searches, proofs, notice and frame cadence are dropped, so
@@ -148,6 +151,8 @@ struct BackboneCounters {
   uint64_t searches = 0;
   // Tracked frames whose hidden lines were removed from their exposure notice.
   uint64_t visibility_ahead = 0;
+  // Exposure notices skipped because their LineSet came first.
+  uint64_t notices_after_line_set = 0;
   // Robots heard from within forget_robot_after_s, and those forgotten since start.
   uint64_t robots = 0;
   uint64_t robots_forgotten = 0;
@@ -266,6 +271,11 @@ class LineSetHandler {
   // confirmed search is carried: the prediction grounded and, for a robot
   // searched for again, widened (searchPrior).
   PoseWithCovariance trackingPrior(const LineSetData& line_set, const PreparedMap& map);
+  // Stores `visible`, the hidden-line removal `exposure`'s notice starts, for
+  // its LineSet; false, storing nothing, when that LineSet has come already.
+  bool aheadOfLineSet(const LineSetData& exposure, const std::shared_ptr<const PreparedMap>& map,
+                      const PoseWithCovariance& prior,
+                      std::shared_future<std::vector<VisibleSegment>> visible);
   // The hidden-line removal the robot's exposure notice started for
   // `line_set`, when it was for this prior, map and camera; forgets it either way.
   std::optional<std::vector<VisibleSegment>> visibilityAhead(
@@ -377,8 +387,16 @@ class LineSetHandler {
     PinholeCamera camera;
     std::shared_future<std::vector<VisibleSegment>> visible;
   };
+  // Each robot's last LineSet taken for answering: a notice for that frame
+  // that comes after it is skipped.
+  struct FrameId {
+    uint32_t sequence_number = 0;
+    int64_t stamp_ns = 0;
+    bool operator==(const FrameId&) const = default;
+  };
   std::mutex ahead_mutex_;
   std::map<std::string, VisibilityAhead> ahead_;
+  std::map<std::string, FrameId> last_line_set_;
   // Open while a LineSet is handled; the workers below are its background.
   ForegroundGate foreground_;
   FrameCadence cadence_;

@@ -167,16 +167,22 @@ int64_t onceSilentFor(const PipelineOptions& options) {
   return steadyClockNs() + static_cast<int64_t>(options.forget_robot_after_s * 1e9) + 1;
 }
 
+// The map around the camera north of the cubes prepared: what the camera
+// there sees, and a prediction 6 cm off to track it from.
+std::pair<std::vector<ImageSegment>, PoseWithCovariance> trackableView(
+    LineSetHandler& handler, const std::string& conninfo) {
+  prepareMapAt(handler, {13, -30, 1.5});
+  return {observedEdges(conninfo, lookingNorth({13, -30, 1.5})),
+          lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003)};
+}
+
 // A notice for another frame, one whose prediction the LineSet does not
 // carry, or one its robot left before it was forgotten (the notice held a
 // prepared map), is not taken: the frame's hidden lines are removed again.
 TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPredictionOrForgottenRobot) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
-  prepareMapAt(handler, {13, -30, 1.5});
-  const std::vector<ImageSegment> seen =
-      observedEdges(database_.conninfo(), lookingNorth({13, -30, 1.5}));
-  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  const auto [seen, predicted] = trackableView(handler, database_.conninfo());
   handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
   EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
             lineloc_msg_FIX_OK);
@@ -190,6 +196,24 @@ TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPredictionO
             lineloc_msg_FIX_OK);
   EXPECT_EQ(handler.counters().visibility_ahead, 0u);
   EXPECT_EQ(handler.counters().fixes_ok, 3u);
+}
+
+// A notice that comes after its LineSet (its thread held up on a loaded
+// machine) is skipped and counted; the next frame's, on time, is taken.
+TEST_F(LineSetHandlerTest, SkipsANoticeThatComesAfterItsLineSet) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const auto [seen, predicted] = trackableView(handler, database_.conninfo());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 3)->message())->status,
+            lineloc_msg_FIX_OK);
+  handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
+  EXPECT_EQ(handler.counters().notices_after_line_set, 1u);
+
+  handler.handleExposure(lineSetMessage({}, predicted, 4)->message());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 1u);
+  EXPECT_EQ(handler.counters().notices_after_line_set, 1u);
 }
 
 // A malformed notice is dropped and counted; the frame is answered all the same.

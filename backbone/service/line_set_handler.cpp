@@ -378,19 +378,22 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
   bool proof_due = false;
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
-    const auto [start, from_prediction] = tracking_start_.try_emplace(
-        line_set.robot_id,
-        TrackingStart{SearchResult{line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0,
-                      options_.acquisition_proven_after_m});
-    if (from_prediction) {
+    auto start = tracking_start_.find(line_set.robot_id);
+    if (start == tracking_start_.end() || start->second.origin.odometry.epoch != odometry.epoch) {
+      start = tracking_start_
+                  .insert_or_assign(line_set.robot_id,
+                                    TrackingStart{{line_set.stamp_ns, fix.T_world_camera, odometry},
+                                                  false,
+                                                  0,
+                                                  options_.acquisition_proven_after_m})
+                  .first;
       spdlog::info(
           "tracking {} from #{} on from its own prediction, which no search here found: its "
           "fixes stay widened until proof searches agree",
           line_set.robot_id, line_set.sequence_number);
     }
     const TrackingStart& tracking = start->second;
-    if (tracking.agreeing_proofs >= options_.agreeing_proofs_needed ||
-        tracking.origin.odometry.epoch != odometry.epoch) {
+    if (tracking.agreeing_proofs >= options_.agreeing_proofs_needed) {
       return;
     }
     const double moved_m = (odometry.T_odom_camera.translation() -

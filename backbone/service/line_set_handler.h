@@ -70,7 +70,10 @@
 // a known pose), is proven alike from its first tracked frame: its prediction
 // stands on fixes whose proof this backbone never saw, or on none, and
 // tracking keeps whichever basin it starts in. Its fixes state the same
-// unproven part until proof searches from its tracking start agree.
+// unproven part until proof searches from its tracking start agree. So is a
+// robot whose odometry starts a new chain (predicted_motion.h: the robot
+// restarted, or its frames came out of order): its motion since its tracking
+// start is unknown.
 //
 // A tracked answer's covariance is raised to the sample covariance of the
 // robot's answers of the last second and it, each moved to its frame by the
@@ -301,7 +304,8 @@ class LineSetHandler {
   // pose_acquisition.h) to an OK fix's covariance until proof searches have
   // agreed with tracking, stating it as the fix's unproven part (one offset
   // the robot's fixes share until then), and submits the next proof search
-  // when it is due. A robot with no tracking start has it set at `fix`.
+  // when it is due. A robot with no tracking start, or one of another
+  // odometry epoch, has it set at `fix`.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };

@@ -430,7 +430,8 @@ TEST_F(LineSetHandlerTest, FixesKeepTheSearchsResolutionUntilSearchesFromElsewhe
 
 // A robot that this backbone tracks from its own prediction (as after a
 // restart of the backbone) stands on fixes whose proof the backbone never
-// saw: its fixes are proven as those of a searched robot are.
+// saw: its fixes are proven as those of a searched robot are, and again once
+// its odometry starts anew.
 TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearchedOne) {
   MapTileCache cache = makeCache(database_.conninfo());
   const PipelineOptions options;
@@ -440,6 +441,18 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
                                       lookingNorth({13, -30, 1.5}),
                                       lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003), 3);
   EXPECT_EQ(handler.counters().searches, 2u);
+
+  // A frame older than the last (the robot restarted): its odometry starts a
+  // new chain, and its motion since the tracking start is unknown.
+  const PoseWithCovariance truth = lookingNorth({13, -27.5, 1.5});
+  const auto fix = handler.handle(lineSetMessage(observedEdges(database_.conninfo(), truth),
+                                                 lookingNorth({13.05, -27.54, 1.5}, 0.1, 0.003), 2)
+                                      ->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  expectWithinThreeSigma(fix->T_world_camera, truth);
+  EXPECT_EQ(fix->unproven_position_sigma_m,
+            options.localizer.acquisition.acquired_position_sigma_m);
 }
 
 // The same start, then the robot drives 1.5 m north, but its odometry says

@@ -251,17 +251,26 @@ TEST_F(DelftDrive, TheRobotKnowsItsPoseToCentimetresSoonAfterADgpsStart) {
   backbone->signal(SIGTERM);
   backbone->wait(10'000);
   expectLocalized();
-  // Tracked frames take the hidden-line removal their exposure notice started;
-  // some may not, when a LineSet overtakes its notice or a search ends between
-  // the two and changes the prior. How many overtake depends on the machine's
-  // load, which wakes the notices' thread late: beside other tests (ctest -j2 on two
-  // cores), 478 of 550 tracked frames took theirs. Most must.
+  // Tracked frames take the hidden-line removal their exposure notice started,
+  // unless the notice came after its LineSet (skipped and counted) or a
+  // search ended between the two and changed the prior. How many come late
+  // depends on the machine's load, which wakes the notices' thread late:
+  // beside other tests (ctest -j2 on two cores), 518 of 549 tracked frames
+  // took theirs and 35 notices came late. Most must take theirs, and nine in
+  // ten must take theirs or have come late.
   const std::string backbone_log = readFile(work_ / "backbone.log");
   const int with_a_pose = countIn(backbone_log, R"(\(([0-9]+) with a pose)");
-  const int searches = countIn(backbone_log, R"(([0-9]+) searched from a poor prediction)");
-  EXPECT_GE(countIn(backbone_log, R"(([0-9]+) tracked with the hidden lines removed at exposure)"),
-            0.5 * (with_a_pose - searches))
-      << backbone_log;
+  const int tracked =
+      with_a_pose - countIn(backbone_log, R"(([0-9]+) searched from a poor prediction)");
+  const int ahead =
+      countIn(backbone_log, R"(([0-9]+) tracked with the hidden lines removed at exposure)");
+  const int late = countIn(backbone_log, R"(([0-9]+) exposure notices skipped)");
+  fmt::print(
+      "{} of {} tracked frames took their exposure notice's hidden-line removal, {} notices came "
+      "after their LineSet\n",
+      ahead, tracked, late);
+  EXPECT_GE(ahead, 0.5 * tracked) << backbone_log;
+  EXPECT_GE(ahead + late, 0.9 * tracked) << backbone_log;
 }
 
 // One backbone serves a second robot on another drive (seed 8) at the same

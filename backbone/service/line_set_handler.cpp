@@ -116,9 +116,8 @@ void LineSetHandler::forgetUnheardRobots() {
     eraseRobots(tracking_start_, unheard);
     eraseRobots(searching_again_, unheard);
   }
-  const std::lock_guard<std::mutex> lock(ahead_mutex_);
-  eraseRobots(ahead_, unheard);
-  eraseRobots(last_line_set_, unheard);
+  const std::lock_guard<std::mutex> lock(notices_mutex_);
+  eraseRobots(notices_, unheard);
 }
 
 void LineSetHandler::prefetchAlongMotion(const LineSetData& line_set) {
@@ -490,11 +489,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   }
   const LineSetData line_set = fromMessage(message);
   hearFrom(line_set.robot_id, start_ns);
-  {
-    const std::lock_guard<std::mutex> lock(ahead_mutex_);
-    last_line_set_.insert_or_assign(line_set.robot_id,
-                                    FrameId{line_set.sequence_number, line_set.stamp_ns});
-  }
+  std::optional<Notice> notice = takeNotice(line_set);
   const OdometryPose odometry =
       motion_.try_emplace(line_set.robot_id, options_.motion)
           .first->second.add(line_set.stamp_ns, line_set.predicted_T_world_camera);
@@ -521,7 +516,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     if (!needsAcquisition(prior, options_.localizer)) {
       const int64_t waiting_start_ns = steadyClockNs();
       const std::optional<std::vector<VisibleSegment>> ahead =
-          visibilityAhead(line_set, map, prior);
+          visibilityAhead(line_set, std::move(notice), map, prior);
       fix.timings.visibility = ahead ? steadyClockNs() - waiting_start_ns : 0;
       track(line_set, odometry, map, prior, localizerOptions(line_set), fix,
             ahead ? &*ahead : nullptr);
@@ -573,7 +568,12 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
     if (needsAcquisition(prior, options_.localizer)) {
       return;
     }
-    if (!aheadOfLineSet(exposure, map, prior, visible.get_future().share())) {
+    Notice notice{{exposure.sequence_number, exposure.stamp_ns},
+                  map,
+                  prior,
+                  exposure.camera,
+                  visible.get_future().share()};
+    if (!aheadOfLineSet(exposure.robot_id, std::move(notice))) {
       const std::lock_guard<std::mutex> lock(counters_mutex_);
       ++counters_.notices_after_line_set;
       return;
@@ -588,43 +588,45 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
   }
 }
 
-bool LineSetHandler::aheadOfLineSet(const LineSetData& exposure,
-                                    const std::shared_ptr<const PreparedMap>& map,
-                                    const PoseWithCovariance& prior,
-                                    std::shared_future<std::vector<VisibleSegment>> visible) {
-  const std::lock_guard<std::mutex> lock(ahead_mutex_);
-  const auto last = last_line_set_.find(exposure.robot_id);
-  if (last != last_line_set_.end() &&
-      last->second == FrameId{exposure.sequence_number, exposure.stamp_ns}) {
+bool LineSetHandler::aheadOfLineSet(const std::string& robot_id, Notice notice) {
+  const std::lock_guard<std::mutex> lock(notices_mutex_);
+  RobotNotices& robot = notices_[robot_id];
+  if (notice.frame.stamp_ns <= robot.last_line_set.stamp_ns) {
     return false;
   }
-  ahead_.insert_or_assign(exposure.robot_id, VisibilityAhead{exposure.sequence_number, map, prior,
-                                                             exposure.camera, std::move(visible)});
+  if (robot.waiting.size() == kMaxWaitingNotices) {
+    robot.waiting.pop_front();
+  }
+  robot.waiting.push_back(std::move(notice));
   return true;
 }
 
-std::optional<std::vector<VisibleSegment>> LineSetHandler::visibilityAhead(
-    const LineSetData& line_set, const std::shared_ptr<const PreparedMap>& map,
-    const PoseWithCovariance& prior) {
-  VisibilityAhead ahead;
-  {
-    const std::lock_guard<std::mutex> lock(ahead_mutex_);
-    const auto found = ahead_.find(line_set.robot_id);
-    if (found == ahead_.end()) {
-      return std::nullopt;
-    }
-    ahead = std::move(found->second);
-    ahead_.erase(found);
+std::optional<LineSetHandler::Notice> LineSetHandler::takeNotice(const LineSetData& line_set) {
+  const FrameId frame{line_set.sequence_number, line_set.stamp_ns};
+  const std::lock_guard<std::mutex> lock(notices_mutex_);
+  RobotNotices& robot = notices_[line_set.robot_id];
+  robot.last_line_set = frame;
+  std::optional<Notice> taken;
+  if (const auto found = std::ranges::find(robot.waiting, frame, &Notice::frame);
+      found != robot.waiting.end()) {
+    taken = std::move(*found);
   }
-  const bool same_view = ahead.sequence_number == line_set.sequence_number && ahead.map == map &&
-                         ahead.prior.pose.matrix() == prior.pose.matrix() &&
-                         ahead.prior.covariance == prior.covariance &&
-                         ahead.camera == line_set.camera;
+  std::erase_if(robot.waiting,
+                [&](const Notice& waiting) { return waiting.frame.stamp_ns <= frame.stamp_ns; });
+  return taken;
+}
+
+std::optional<std::vector<VisibleSegment>> LineSetHandler::visibilityAhead(
+    const LineSetData& line_set, std::optional<Notice> notice,
+    const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior) {
+  const bool same_view =
+      notice && notice->map == map && notice->prior.pose.matrix() == prior.pose.matrix() &&
+      notice->prior.covariance == prior.covariance && notice->camera == line_set.camera;
   if (!same_view) {
     return std::nullopt;
   }
   try {
-    std::vector<VisibleSegment> visible = ahead.visible.get();
+    std::vector<VisibleSegment> visible = notice->visible.get();
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.visibility_ahead;
     return visible;

@@ -98,10 +98,12 @@
 // backbone's median answer went from 3.1-4.4 ms to 1.6-3.2 ms and exposure ->
 // fix median from 6.0-7.3 ms to 5.0-6.6 ms; p99 did not move beyond the
 // machine's noise, as the removal then competes with the robot's line
-// extraction for the cores. A notice that comes after its LineSet (the
-// notices' thread held up on a loaded machine) is skipped and counted: its
-// frame has been answered, and the removal would only take a core from the
-// next one.
+// extraction for the cores. A notice that comes after its LineSet, or after
+// a later one (the notices' thread held up on a loaded machine), is skipped
+// and counted: its frame has been answered, and the removal would only take
+// a core from the next one. Notices wait for their LineSets in order, up to
+// kMaxWaitingNotices per robot: a LineSets' thread a frame behind still
+// finds its frame's notice, and leaves the next frame's for it.
 //
 // A robot not heard from for forget_robot_after_s is forgotten: its motion,
 // recent answers, searches, proofs, notice and frame cadence are dropped, so
@@ -121,6 +123,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <future>
 #include <map>
@@ -154,7 +157,7 @@ struct BackboneCounters {
   uint64_t searches = 0;
   // Tracked frames whose hidden lines were removed from their exposure notice.
   uint64_t visibility_ahead = 0;
-  // Exposure notices skipped because their LineSet came first.
+  // Exposure notices skipped because their LineSet, or a later one, came first.
   uint64_t notices_after_line_set = 0;
   // Robots heard from within forget_robot_after_s, and those forgotten since start.
   uint64_t robots = 0;
@@ -274,16 +277,30 @@ class LineSetHandler {
   // confirmed search is carried: the prediction grounded and, for a robot
   // searched for again, widened (searchPrior).
   PoseWithCovariance trackingPrior(const LineSetData& line_set, const PreparedMap& map);
-  // Stores `visible`, the hidden-line removal `exposure`'s notice starts, for
-  // its LineSet; false, storing nothing, when that LineSet has come already.
-  bool aheadOfLineSet(const LineSetData& exposure, const std::shared_ptr<const PreparedMap>& map,
-                      const PoseWithCovariance& prior,
-                      std::shared_future<std::vector<VisibleSegment>> visible);
-  // The hidden-line removal the robot's exposure notice started for
-  // `line_set`, when it was for this prior, map and camera; forgets it either way.
+  // Each robot's hidden-line removal started at a frame's exposure.
+  struct FrameId {
+    uint32_t sequence_number = 0;
+    int64_t stamp_ns = 0;
+    bool operator==(const FrameId&) const = default;
+  };
+  struct Notice {
+    FrameId frame;
+    std::shared_ptr<const PreparedMap> map;
+    PoseWithCovariance prior;
+    PinholeCamera camera;
+    std::shared_future<std::vector<VisibleSegment>> visible;
+  };
+  // Queues `notice` for its LineSet; false, queueing nothing, when that
+  // LineSet or a later one has come already.
+  bool aheadOfLineSet(const std::string& robot_id, Notice notice);
+  // Takes `line_set`'s notice out of its robot's queue, with those of older
+  // frames, whose LineSets will not come; later frames' notices stay.
+  std::optional<Notice> takeNotice(const LineSetData& line_set);
+  // The hidden-line removal `notice` started, when it was for this frame's
+  // prior, map and camera.
   std::optional<std::vector<VisibleSegment>> visibilityAhead(
-      const LineSetData& line_set, const std::shared_ptr<const PreparedMap>& map,
-      const PoseWithCovariance& prior);
+      const LineSetData& line_set, std::optional<Notice> notice,
+      const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior);
   // Counts a malformed message and logs `kind`'s drop.
   void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
   enum class Confirmation { kConfirmed, kFirst, kDisagrees };
@@ -383,24 +400,15 @@ class LineSetHandler {
   std::map<std::string, TrackingStart> tracking_start_;
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;
-  // Each robot's hidden-line removal started at its last frame's exposure.
-  struct VisibilityAhead {
-    uint32_t sequence_number = 0;
-    std::shared_ptr<const PreparedMap> map;
-    PoseWithCovariance prior;
-    PinholeCamera camera;
-    std::shared_future<std::vector<VisibleSegment>> visible;
+  // A robot's notices waiting for their LineSets, oldest first, and its last
+  // LineSet taken for answering.
+  struct RobotNotices {
+    std::deque<Notice> waiting;
+    FrameId last_line_set;
   };
-  // Each robot's last LineSet taken for answering: a notice for that frame
-  // that comes after it is skipped.
-  struct FrameId {
-    uint32_t sequence_number = 0;
-    int64_t stamp_ns = 0;
-    bool operator==(const FrameId&) const = default;
-  };
-  std::mutex ahead_mutex_;
-  std::map<std::string, VisibilityAhead> ahead_;
-  std::map<std::string, FrameId> last_line_set_;
+  static constexpr size_t kMaxWaitingNotices = 4;
+  std::mutex notices_mutex_;
+  std::map<std::string, RobotNotices> notices_;
   // Open while a LineSet is handled; the workers below are its background.
   ForegroundGate foreground_;
   FrameCadence cadence_;

@@ -198,8 +198,9 @@ TEST_F(LineSetHandlerTest, TakesNoHiddenLinesRemovedForAnotherFrameOrPredictionO
   EXPECT_EQ(handler.counters().fixes_ok, 3u);
 }
 
-// A notice that comes after its LineSet (its thread held up on a loaded
-// machine) is skipped and counted; the next frame's, on time, is taken.
+// A notice that comes after its LineSet, or after a later one (its thread
+// held up on a loaded machine), is skipped and counted; the next frame's, on
+// time, is taken.
 TEST_F(LineSetHandlerTest, SkipsANoticeThatComesAfterItsLineSet) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
@@ -207,13 +208,35 @@ TEST_F(LineSetHandlerTest, SkipsANoticeThatComesAfterItsLineSet) {
   EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 3)->message())->status,
             lineloc_msg_FIX_OK);
   handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
-  EXPECT_EQ(handler.counters().notices_after_line_set, 1u);
+  handler.handleExposure(lineSetMessage({}, predicted, 2)->message());
+  EXPECT_EQ(handler.counters().notices_after_line_set, 2u);
 
   handler.handleExposure(lineSetMessage({}, predicted, 4)->message());
   EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
             lineloc_msg_FIX_OK);
   EXPECT_EQ(handler.counters().visibility_ahead, 1u);
-  EXPECT_EQ(handler.counters().notices_after_line_set, 1u);
+  EXPECT_EQ(handler.counters().notices_after_line_set, 2u);
+}
+
+// A LineSets' thread a frame behind its robot's notices takes its frame's
+// notice and leaves the next frame's to that frame; a notice whose LineSet
+// never came is dropped by the next LineSet, not taken by it.
+TEST_F(LineSetHandlerTest, KeepsTheNoticesOfFramesStillToCome) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});
+  const auto [seen, predicted] = trackableView(handler, database_.conninfo());
+  handler.handleExposure(lineSetMessage({}, predicted, 3)->message());
+  handler.handleExposure(lineSetMessage({}, predicted, 4)->message());
+  handler.handleExposure(lineSetMessage({}, predicted, 5)->message());
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 4)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 5)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 2u);
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, 3)->message())->status,
+            lineloc_msg_FIX_OK);
+  EXPECT_EQ(handler.counters().visibility_ahead, 2u);
+  EXPECT_EQ(handler.counters().notices_after_line_set, 0u);
 }
 
 // A malformed notice is dropped and counted; the frame is answered all the same.

@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kTumFields = 8;
 constexpr int kCovarianceFields = 21;
-constexpr int kFieldCount = kTumFields + 5 + kCovarianceFields;
+constexpr int kFieldCount = kTumFields + 9 + kCovarianceFields;
 
 std::vector<std::string> splitFields(const std::string& line) {
   std::istringstream stream(line);
@@ -66,7 +66,8 @@ FixLogWriter::FixLogWriter(const std::string& path) : stream_(path) {
     throw std::runtime_error(fmt::format("cannot open fix log '{}' for writing", path));
   }
   stream_ << "# t tx ty tz qx qy qz qw status inliers model_lines residual_rms_px latency_ms "
-             "covariance upper triangle c00 c01 .. c55 (m, rad; e = [dp; dtheta])\n";
+             "front_end_ms to_backbone_ms backbone_ms back_ms covariance upper triangle c00 c01 "
+             ".. c55 (m, rad; e = [dp; dtheta])\n";
 }
 
 void FixLogWriter::write(const LoggedFix& fix) {
@@ -76,8 +77,9 @@ void FixLogWriter::write(const LoggedFix& fix) {
 
 std::string formatFixLogLine(const LoggedFix& fix) {
   std::string line = formatTumLine({fix.stamp_ns, fix.T_world_camera.pose});
-  line += fmt::format(" {} {} {} {:.3f} {:.3f}", fix.status, fix.inliers, fix.model_lines,
-                      fix.residual_rms_px, fix.latency_ms);
+  line += fmt::format(" {} {} {} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f}", fix.status,
+                      fix.inliers, fix.model_lines, fix.residual_rms_px, fix.latency_ms,
+                      fix.front_end_ms, fix.to_backbone_ms, fix.backbone_ms, fix.back_ms);
   for (int row = 0; row < 6; ++row) {
     for (int col = row; col < 6; ++col) {
       line += fmt::format(" {:.9g}", fix.T_world_camera.covariance(row, col));
@@ -91,7 +93,7 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
   if (static_cast<int>(fields.size()) != kFieldCount) {
     throw std::runtime_error(fmt::format(
         "{}: expected {} fields (a TUM pose, status, inliers, model_lines, residual_rms_px, "
-        "latency_ms and 21 covariance entries), got {}",
+        "latency_ms, its four legs and 21 covariance entries), got {}",
         where, kFieldCount, fields.size()));
   }
   std::string tum_line;
@@ -111,7 +113,11 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
   fix.model_lines = parseCount(fields[kTumFields + 2], "model_lines", where);
   fix.residual_rms_px = parseNonNegative(fields[kTumFields + 3], "residual_rms_px", where);
   fix.latency_ms = parseNonNegative(fields[kTumFields + 4], "latency_ms", where);
-  int field = kTumFields + 5;
+  fix.front_end_ms = parseNonNegative(fields[kTumFields + 5], "front_end_ms", where);
+  fix.to_backbone_ms = parseFinite(fields[kTumFields + 6], "to_backbone_ms", where);
+  fix.backbone_ms = parseNonNegative(fields[kTumFields + 7], "backbone_ms", where);
+  fix.back_ms = parseFinite(fields[kTumFields + 8], "back_ms", where);
+  int field = kTumFields + 9;
   for (int row = 0; row < 6; ++row) {
     for (int col = row; col < 6; ++col) {
       const double value = parseFinite(fields[field++], "covariance entry", where);

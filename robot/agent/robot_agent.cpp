@@ -103,17 +103,22 @@ class FixReceiver {
     const PoseFixData fix = fromMessage(message);
     const int64_t received_wall_ns = wallClockNs();
     const int64_t latency_ns = received_wall_ns - frame->exposure_wall_ns;
+    const int64_t front_end_ns = frame->sent_wall_ns - frame->exposure_wall_ns;
+    const int64_t to_backbone_ns = written_wall_ns - frame->sent_wall_ns - fix.timings.total;
+    const int64_t back_ns = received_wall_ns - written_wall_ns;
     summary_.latency_ns.push_back(latency_ns);
-    summary_.front_end_ns.push_back(frame->sent_wall_ns - frame->exposure_wall_ns);
-    summary_.to_backbone_ns.push_back(written_wall_ns - frame->sent_wall_ns - fix.timings.total);
+    summary_.front_end_ns.push_back(front_end_ns);
+    summary_.to_backbone_ns.push_back(to_backbone_ns);
     summary_.backbone_ns.push_back(fix.timings.total);
-    summary_.from_backbone_ns.push_back(received_wall_ns - written_wall_ns);
+    summary_.from_backbone_ns.push_back(back_ns);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
+      constexpr double kMsPerNs = 1e-6;
       fix_log_->write({fix.stamp_ns, fix.T_world_camera, toString(fix.status), fix.inliers,
-                       fix.model_lines, fix.residual_rms_px,
-                       1e-6 * static_cast<double>(latency_ns)});
+                       fix.model_lines, fix.residual_rms_px, kMsPerNs * latency_ns,
+                       kMsPerNs * front_end_ns, kMsPerNs * to_backbone_ns,
+                       kMsPerNs * fix.timings.total, kMsPerNs * back_ns});
     }
     if (fix.status == lineloc_msg_FIX_OK) {
       summary_.pose_latency_ns.push_back(latency_ns);

@@ -29,6 +29,10 @@ LoggedFix sampleFix() {
   fix.model_lines = 412;
   fix.residual_rms_px = 1.25;
   fix.latency_ms = 4.75;
+  fix.front_end_ms = 1.5;
+  fix.to_backbone_ms = -0.25;
+  fix.backbone_ms = 2.25;
+  fix.back_ms = 1.25;
   return fix;
 }
 
@@ -52,6 +56,10 @@ TEST(FixLog, WriteThenReadKeepsPoseCovarianceAndCounts) {
   EXPECT_EQ(fixes[0].model_lines, 412u);
   EXPECT_DOUBLE_EQ(fixes[0].residual_rms_px, 1.25);
   EXPECT_DOUBLE_EQ(fixes[0].latency_ms, 4.75);
+  EXPECT_DOUBLE_EQ(fixes[0].front_end_ms, 1.5);
+  EXPECT_DOUBLE_EQ(fixes[0].to_backbone_ms, -0.25);
+  EXPECT_DOUBLE_EQ(fixes[0].backbone_ms, 2.25);
+  EXPECT_DOUBLE_EQ(fixes[0].back_ms, 1.25);
   EXPECT_EQ(fixes[1].status, "too_few_matches");
   std::filesystem::remove(path);
 }
@@ -85,8 +93,8 @@ void expectError(const std::string& line, const std::string& expected) {
 }
 
 TEST(FixLog, MalformedLinesNameTheLineAndTheField) {
-  expectError("", "expected 34 fields");
-  expectError(formatFixLogLine(sampleFix()) + " 0.5", "got 35");
+  expectError("", "expected 38 fields");
+  expectError(formatFixLogLine(sampleFix()) + " 0.5", "got 39");
   expectError(withField(4, "2.0"), "quaternion norm");
   expectError(withField(8, "OK"), "status 'OK'");
   expectError(withField(9, "-3"), "inliers '-3'");
@@ -95,8 +103,12 @@ TEST(FixLog, MalformedLinesNameTheLineAndTheField) {
   expectError(withField(11, "nan"), "residual_rms_px 'nan'");
   expectError(withField(12, "-0.5"), "latency_ms is negative");
   expectError(withField(12, "soon"), "latency_ms 'soon'");
-  expectError(withField(13, "inf"), "covariance entry 'inf'");
-  expectError(withField(13, "-1e-4"), "not positive definite");
+  expectError(withField(13, "-0.1"), "front_end_ms is negative");
+  expectError(withField(14, "nan"), "to_backbone_ms 'nan'");
+  expectError(withField(15, "-2"), "backbone_ms is negative");
+  expectError(withField(16, "later"), "back_ms 'later'");
+  expectError(withField(17, "inf"), "covariance entry 'inf'");
+  expectError(withField(17, "-1e-4"), "not positive definite");
 }
 
 TEST(FixLog, MissingFileIsNamed) {

@@ -1,10 +1,13 @@
 #include "backbone/service/prepared_maps.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <utility>
 
 #include "backbone/map/ground_level.h"
 #include "backbone/service/map_geometry.h"
+#include "common/time/clock.h"
 
 namespace lineloc {
 namespace {
@@ -69,6 +72,7 @@ void PreparedMaps::waitUntilIdle() {
 
 void PreparedMaps::prepare(const Eigen::Vector3d& position_world) {
   try {
+    const int64_t start_ns = steadyClockNs();
     const std::shared_ptr<const MapView> view = tiles_.around(position_world, query_radius_m_);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -76,7 +80,14 @@ void PreparedMaps::prepare(const Eigen::Vector3d& position_world) {
         return;
       }
     }
+    const int64_t loaded_ns = steadyClockNs();
     auto prepared = std::make_shared<const PreparedMap>(view, position_world);
+    spdlog::info(
+        "prepared the map around ({:.1f}, {:.1f}) m: {} model lines, {} faces; tiles {:.1f} ms, "
+        "preparation {:.1f} ms",
+        position_world.x(), position_world.y(), view->lines.size(), view->faces.size(),
+        1e-6 * static_cast<double>(loaded_ns - start_ns),
+        1e-6 * static_cast<double>(steadyClockNs() - loaded_ns));
     const std::lock_guard<std::mutex> lock(mutex_);
     prepared_.push_front(std::move(prepared));
     if (prepared_.size() > kPreparedMaps) {

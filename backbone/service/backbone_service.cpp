@@ -79,8 +79,9 @@ std::vector<StagePercentiles> stagePercentiles(const BackboneCounters& counters)
     for (const StageTimingsNs& timings : counters.recent_timings) {
       times_ns.push_back(timings.*member);
     }
-    result.push_back({stage, percentile(times_ns, 50) * 1e-6, percentile(times_ns, 99) * 1e-6,
-                      percentile(times_ns, 100) * 1e-6});
+    result.push_back({stage, toMilliseconds(percentile(times_ns, 50)),
+                      toMilliseconds(percentile(times_ns, 99)),
+                      toMilliseconds(percentile(times_ns, 100))});
   }
   return result;
 }

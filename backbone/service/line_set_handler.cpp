@@ -34,9 +34,9 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       limits_(limits),
       options_(options),
       silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
-      foreground_(static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
-      cadence_(static_cast<int64_t>(options.quiet_before_frame_ms * 1e6),
-               static_cast<int64_t>(options.max_background_yield_ms * 1e6)),
+      foreground_(fromMilliseconds(options.max_background_yield_ms)),
+      cadence_(fromMilliseconds(options.quiet_before_frame_ms),
+               fromMilliseconds(options.max_background_yield_ms)),
       maps_(map, options.query_radius_m, options.map_reuse_distance_m, &foreground_),
       search_worker_(&foreground_) {}
 
@@ -289,8 +289,8 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
       "best / {:.1f} rival, {} inliers, best at {}{}, {:.0f} ms (grid search {:.0f} ms)",
       kind, line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)),
       outcome, summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
-      alignment.inliers, describePose(alignment.T_world_camera.pose), rival, search_ns * 1e-6,
-      summary.search_ns * 1e-6);
+      alignment.inliers, describePose(alignment.T_world_camera.pose), rival,
+      toMilliseconds(search_ns), toMilliseconds(summary.search_ns));
 }
 
 std::string LineSetHandler::describe(Confirmation confirmation,
@@ -457,12 +457,13 @@ PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   announceNextFrame(fix, start_ns);
   fix.timings.total = steadyClockNs() - start_ns;
   const StageTimingsNs& timings = fix.timings;
-  if (timings.total > options_.slow_answer_ms * 1e6) {
+  if (timings.total > fromMilliseconds(options_.slow_answer_ms)) {
     spdlog::warn(
         "LineSet for {} #{} answered in {:.1f} ms: map {:.1f}, visibility {:.1f}, matching "
         "{:.1f}, pose {:.1f} ms",
-        fix.robot_id, fix.sequence_number, timings.total * 1e-6, timings.map * 1e-6,
-        timings.visibility * 1e-6, timings.matching * 1e-6, timings.pose * 1e-6);
+        fix.robot_id, fix.sequence_number, toMilliseconds(timings.total),
+        toMilliseconds(timings.map), toMilliseconds(timings.visibility),
+        toMilliseconds(timings.matching), toMilliseconds(timings.pose));
   }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.answered;

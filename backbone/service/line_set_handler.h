@@ -277,12 +277,13 @@ class LineSetHandler {
   // confirmed search is carried: the prediction grounded and, for a robot
   // searched for again, widened (searchPrior).
   PoseWithCovariance trackingPrior(const LineSetData& line_set, const PreparedMap& map);
-  // Each robot's hidden-line removal started at a frame's exposure.
+  // A frame of one robot: its sequence number and exposure stamp.
   struct FrameId {
     uint32_t sequence_number = 0;
     int64_t stamp_ns = 0;
     bool operator==(const FrameId&) const = default;
   };
+  // The hidden-line removal started at a frame's exposure, for its LineSet.
   struct Notice {
     FrameId frame;
     std::shared_ptr<const PreparedMap> map;

@@ -86,8 +86,8 @@ void PreparedMaps::prepare(const Eigen::Vector3d& position_world) {
         "prepared the map around ({:.1f}, {:.1f}) m: {} model lines, {} faces; tiles {:.1f} ms, "
         "preparation {:.1f} ms",
         position_world.x(), position_world.y(), view->lines.size(), view->faces.size(),
-        1e-6 * static_cast<double>(loaded_ns - start_ns),
-        1e-6 * static_cast<double>(steadyClockNs() - loaded_ns));
+        toMilliseconds(static_cast<double>(loaded_ns - start_ns)),
+        toMilliseconds(static_cast<double>(steadyClockNs() - loaded_ns)));
     const std::lock_guard<std::mutex> lock(mutex_);
     prepared_.push_front(std::move(prepared));
     if (prepared_.size() > kPreparedMaps) {

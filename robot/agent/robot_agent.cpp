@@ -114,11 +114,10 @@ class FixReceiver {
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
-      constexpr double kMsPerNs = 1e-6;
       fix_log_->write({fix.stamp_ns, fix.T_world_camera, toString(fix.status), fix.inliers,
-                       fix.model_lines, fix.residual_rms_px, kMsPerNs * latency_ns,
-                       kMsPerNs * front_end_ns, kMsPerNs * to_backbone_ns,
-                       kMsPerNs * fix.timings.total, kMsPerNs * back_ns});
+                       fix.model_lines, fix.residual_rms_px, toMilliseconds(latency_ns),
+                       toMilliseconds(front_end_ns), toMilliseconds(to_backbone_ns),
+                       toMilliseconds(fix.timings.total), toMilliseconds(back_ns)});
     }
     if (fix.status == lineloc_msg_FIX_OK) {
       summary_.pose_latency_ns.push_back(latency_ns);

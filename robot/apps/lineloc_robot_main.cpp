@@ -10,6 +10,7 @@
 
 #include "common/config/program_options.h"
 #include "common/parallel/resident_heap.h"
+#include "common/time/clock.h"
 #include "common/time/percentile.h"
 #include "robot/agent/robot_agent.h"
 
@@ -21,9 +22,10 @@ void requestStop(int) {
 
 // "median/p99/max" of durations, in ms.
 std::string describeLatency(const std::vector<int64_t>& durations_ns) {
-  return fmt::format("{:.2f}/{:.2f}/{:.1f}", lineloc::percentile(durations_ns, 50) * 1e-6,
-                     lineloc::percentile(durations_ns, 99) * 1e-6,
-                     lineloc::percentile(durations_ns, 100) * 1e-6);
+  return fmt::format("{:.2f}/{:.2f}/{:.1f}",
+                     lineloc::toMilliseconds(lineloc::percentile(durations_ns, 50)),
+                     lineloc::toMilliseconds(lineloc::percentile(durations_ns, 99)),
+                     lineloc::toMilliseconds(lineloc::percentile(durations_ns, 100)));
 }
 }  // namespace
 
@@ -93,10 +95,10 @@ int main(int argc, char** argv) {
         "lineloc-robot: {} states published; {} sensor lines dropped; {}\n",
         summary.frames_sent, summary.frames_before_start, summary.fixes_received,
         summary.fixes_dropped, summary.fixes_applied, summary.fixes_rejected,
-        lineloc::percentile(summary.latency_ns, 50) * 1e-6,
-        lineloc::percentile(summary.latency_ns, 99) * 1e-6,
-        lineloc::percentile(summary.pose_latency_ns, 50) * 1e-6,
-        lineloc::percentile(summary.pose_latency_ns, 99) * 1e-6,
+        lineloc::toMilliseconds(lineloc::percentile(summary.latency_ns, 50)),
+        lineloc::toMilliseconds(lineloc::percentile(summary.latency_ns, 99)),
+        lineloc::toMilliseconds(lineloc::percentile(summary.pose_latency_ns, 50)),
+        lineloc::toMilliseconds(lineloc::percentile(summary.pose_latency_ns, 99)),
         lineloc::percentile(summary.line_set_bytes, 50),
         lineloc::percentile(summary.line_set_bytes, 99), summary.states_published,
         summary.sensor_lines_dropped, summary.health);

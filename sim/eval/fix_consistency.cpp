@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "common/time/clock.h"
 #include "common/time/percentile.h"
 #include "sim/eval/trajectory_evaluation.h"
 
@@ -19,7 +20,7 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
   for (const LoggedFix& fix : fixes) {
     if (!first_ok_stamp_ns && fix.status == "ok") {
       first_ok_stamp_ns = fix.stamp_ns;
-      consistency.first_ok_received_ns = fix.stamp_ns + std::llround(fix.latency_ms * 1e6);
+      consistency.first_ok_received_ns = fix.stamp_ns + fromMilliseconds(fix.latency_ms);
     }
     consistency.answers_from_first_ok +=
         first_ok_stamp_ns && fix.stamp_ns >= *first_ok_stamp_ns ? 1 : 0;

@@ -26,6 +26,7 @@
 #include "backbone/matching/localizer.h"
 #include "backbone/tracker/model_file.h"
 #include "common/messages/messages.h"
+#include "common/time/clock.h"
 #include "robot/vision/features/feature_extractor.h"
 #include "tests/support/delft_drive.h"
 
@@ -156,8 +157,8 @@ void BM_BackboneMatchingAndPose(benchmark::State& state) {
     const Alignment alignment =
         alignModel(frame.segments, visible, prior, drive().calibration.camera, {});
     ok += alignment.status == AlignmentStatus::kOk ? 1 : 0;
-    matching_ms += alignment.matching_ns * 1e-6;
-    pose_ms += alignment.pose_ns * 1e-6;
+    matching_ms += toMilliseconds(alignment.matching_ns);
+    pose_ms += toMilliseconds(alignment.pose_ns);
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / iteration;
   state.counters["matching_ms"] = matching_ms / iteration;
@@ -182,7 +183,7 @@ void localizeFrames(benchmark::State& state, double position_sigma_m, double rot
     const Localization localization = localize(frame.segments, drive().model.lines, *drive().scene,
                                                prior, drive().calibration.camera, options);
     ok += localization.alignment.status == AlignmentStatus::kOk ? 1 : 0;
-    search_ms += localization.search ? localization.search->search_ns * 1e-6 : 0.0;
+    search_ms += localization.search ? toMilliseconds(localization.search->search_ns) : 0.0;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / iteration;
   state.counters["grid_search_ms"] = search_ms / iteration;

@@ -104,14 +104,29 @@ Matrix6d levelFrameOffset(Matrix6d unproven) {
   return unproven;
 }
 
+// The body pose block [dp; dtheta] of the filter's error covariance.
+Matrix6d poseBlock(const ErrorCovariance& covariance) {
+  Matrix6d pose;
+  pose << covariance.block<3, 3>(kPosition, kPosition),
+      covariance.block<3, 3>(kPosition, kAttitude), covariance.block<3, 3>(kAttitude, kPosition),
+      covariance.block<3, 3>(kAttitude, kAttitude);
+  return pose;
+}
+
 // The covariance the filter reports: its own, of the pose relative to the
-// fixes' frame, plus the unproven offset of that frame (body pose error
-// [dp; dtheta]).
-ErrorCovariance withUnproven(ErrorCovariance covariance, const Matrix6d& unproven_body) {
-  covariance.block<3, 3>(kPosition, kPosition) += unproven_body.topLeftCorner<3, 3>();
-  covariance.block<3, 3>(kPosition, kAttitude) += unproven_body.topRightCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kPosition) += unproven_body.bottomLeftCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kAttitude) += unproven_body.bottomRightCorner<3, 3>();
+// fixes' frame, plus the unproven offset of that frame, covering the share of
+// the last applied fix's covariance its error keeps over metres (body pose
+// error [dp; dtheta], both; see the header). Raising a principal block by a
+// positive semi-definite amount keeps the whole positive semi-definite.
+ErrorCovariance reportedCovariance(ErrorCovariance covariance, const Matrix6d& unproven_body,
+                                   const Matrix6d& fix_offset_body) {
+  const Matrix6d pose = poseBlock(covariance) + unproven_body;
+  const Matrix6d covering = coveringCovariance(pose, fix_offset_body);
+  const Matrix6d reported = covering.allFinite() ? covering : pose;
+  covariance.block<3, 3>(kPosition, kPosition) = reported.topLeftCorner<3, 3>();
+  covariance.block<3, 3>(kPosition, kAttitude) = reported.topRightCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kPosition) = reported.bottomLeftCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kAttitude) = reported.bottomRightCorner<3, 3>();
   return covariance;
 }
 
@@ -162,6 +177,11 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   }
   if (!config.R_body_imu.isUnitary(1e-6) || config.R_body_imu.determinant() < 0.0) {
     throw std::invalid_argument("inertial navigator: R_body_imu is not a rotation");
+  }
+  if (!(config.shared_fix_error_fraction >= 0.0 && config.shared_fix_error_fraction <= 1.0)) {
+    throw std::invalid_argument(
+        fmt::format("inertial navigator: shared_fix_error_fraction must be in [0, 1], got {}",
+                    config.shared_fix_error_fraction));
   }
   if (!(config.gate_probability > 0.0 && config.gate_probability < 1.0)) {
     throw std::invalid_argument(fmt::format(
@@ -342,6 +362,10 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
       snapshot.at_last_vision = state;
       snapshot.unproven_covariance =
           bodyCovarianceOf(vision->T_world_camera.pose, vision->unproven_covariance);
+      snapshot.fix_offset_covariance =
+          config_.shared_fix_error_fraction *
+          levelFrameOffset(
+              bodyCovarianceOf(vision->T_world_camera.pose, vision->T_world_camera.covariance));
     }
     return fromUpdate(outcome.status);
   }
@@ -761,7 +785,8 @@ std::optional<NavigatorEstimate> InertialNavigator::state() const {
   }
   const Snapshot& latest = snapshots_.back();
   return NavigatorEstimate{latest.state,
-                           withUnproven(latest.covariance, latest.unproven_covariance)};
+                           reportedCovariance(latest.covariance, latest.unproven_covariance,
+                                              latest.fix_offset_covariance)};
 }
 
 NavigatorHealth InertialNavigator::health() const {
@@ -776,7 +801,8 @@ NavigatorHealth InertialNavigator::health() const {
   if (latest.at_last_vision) {
     health.since_vision_fix_ns = latest.state.stamp_ns - latest.at_last_vision->stamp_ns;
   }
-  const ErrorCovariance covariance = withUnproven(latest.covariance, latest.unproven_covariance);
+  const ErrorCovariance covariance = reportedCovariance(
+      latest.covariance, latest.unproven_covariance, latest.fix_offset_covariance);
   health.position_sigma_m = std::sqrt(covariance.block<3, 3>(kPosition, kPosition)
                                           .selfadjointView<Eigen::Lower>()
                                           .eigenvalues()

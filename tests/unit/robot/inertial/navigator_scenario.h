@@ -76,6 +76,7 @@ inline double poseFixNis(const PoseWithCovariance& predicted, const PoseWithCova
 inline InertialNavigatorConfig independentFixesConfig() {
   InertialNavigatorConfig config;
   config.vision_error_correlation_m = 0.0;
+  config.shared_fix_error_fraction = 0.0;
   return config;
 }
 

@@ -75,7 +75,8 @@ echo "demo: robot and backbone running in real time over DDS"
   --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
   --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
   --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
-  --fix-log-out "$OUT/fixes.txt" --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
+  --fix-log-out "$OUT/fixes.txt" --state-log-out "$OUT/states.txt" \
+  --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 
 kill -TERM "$BACKBONE_PID" && wait "$BACKBONE_PID" || true
 trap - EXIT
@@ -83,6 +84,6 @@ grep -v "^\[" "$OUT/backbone.log" || true
 
 echo "demo: the robot's pose at each frame (what it knew then) against the ground truth"
 "$BIN/lineloc-eval" --ground-truth "$OUT/dataset/groundtruth_cam0.tum" --estimate "$OUT/fused.tum" \
-  --fix-log "$OUT/fixes.txt" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
+  --fix-log "$OUT/fixes.txt" --state-log "$OUT/states.txt" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
   --plot "$OUT/evaluation.png"
 echo "demo: plot in $OUT/evaluation.png; fixes in $OUT/fixes.tum, backbone counters in $OUT/backbone-stats.json"

@@ -6,8 +6,9 @@
 # once the robot has been found), fixes beyond chi2_6(0.9973) of their own
 # covariance (precise wrong poses, which the system must never give), when the
 # robot received its first OK fix, the position and attitude RMSE from then on,
-# and the exposure -> fix latency's 99th percentile over all answers and over
-# those with a pose.
+# the exposure -> fix latency's 99th percentile over all answers and over
+# those with a pose, and the robot's reported states beyond chi2_6(0.9973) of
+# their own covariance from its first OK fix on (the robot sure of a wrong pose).
 # Exits 1 when any seed gave a precise wrong pose, 2 when a run failed.
 #
 # Usage: deploy/seeds.sh [N=50] [FIRST=1]   (about 45 s per 20 s drive)
@@ -34,19 +35,24 @@ summarise() {
       if (match($0, /the [0-9]+ from the first/)) from_first = substr($0, RSTART + 4, RLENGTH - 19) + 0
       if (match($0, /; [0-9]+ beyond/)) beyond = substr($0, RSTART + 2, RLENGTH - 9) + 0
     }
+    /^robot states: / {
+      if (match($0, /; [0-9]+ beyond/)) states_beyond = substr($0, RSTART + 2, RLENGTH - 9) + 0
+    }
     /^after the first OK fix/ { after = 1; first_fix = $7 }
     after && /^position / { position_rmse = $2 }
     after && /^attitude / { attitude_rmse = $2 }
     END {
       if (answers == "") { exit 1 }
       if (first_fix == "") { first_fix = "-"; position_rmse = "-"; attitude_rmse = "-" }
-      printf "%5d %8d %6d %10d %7d %10s %9s %10s %8s %9s\n", seed, answers, ok, from_first,
-             beyond, first_fix, position_rmse, attitude_rmse, latency_p99[1], latency_p99[2]
+      if (states_beyond == "") { states_beyond = "-" }
+      printf "%5d %8d %6d %10d %7d %10s %9s %10s %8s %9s %13s\n", seed, answers, ok, from_first,
+             beyond, first_fix, position_rmse, attitude_rmse, latency_p99[1], latency_p99[2],
+             states_beyond
     }' "$2"
 }
 
-header="$(printf "%5s %8s %6s %10s %7s %10s %9s %10s %8s %9s" seed answers ok from_first \
-  beyond first_ok_s pos_rmse_m att_rmse_deg p99_ms ok_p99_ms)"
+header="$(printf "%5s %8s %6s %10s %7s %10s %9s %10s %8s %9s %13s" seed answers ok from_first \
+  beyond first_ok_s pos_rmse_m att_rmse_deg p99_ms ok_p99_ms states_beyond)"
 rows=""
 failed=0
 for ((seed = FIRST_SEED; seed < FIRST_SEED + SEEDS; ++seed)); do
@@ -64,12 +70,13 @@ done
 echo "$header"
 printf "%s" "$rows"
 printf "%s" "$rows" | awk '
-  { answers += $2; ok += $3; from_first += $4; beyond += $5; ++runs; if ($6 == "-") ++never }
+  { answers += $2; ok += $3; from_first += $4; beyond += $5; states_beyond += $11; ++runs
+    if ($6 == "-") ++never }
   END {
     printf "total: %d runs, %d answers, %d OK (%.1f %%; %.1f %% of the %d from each first OK fix on), " \
-           "%d beyond 3 sigma, %d never fixed\n", runs, answers, ok,
+           "%d beyond 3 sigma, %d never fixed, %d robot states beyond 3 sigma\n", runs, answers, ok,
            answers ? 100.0 * ok / answers : 0, from_first ? 100.0 * ok / from_first : 0, from_first,
-           beyond, never
+           beyond, never, states_beyond
     exit beyond > 0
   }' || exit 1
 exit $((failed * 2))

@@ -2,13 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
 #include <charconv>
-#include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "common/trajectory/line_records.h"
+#include "common/trajectory/pose_covariance_log.h"
 #include "common/trajectory/tum_trajectory.h"
 
 namespace lineloc {
@@ -18,30 +16,12 @@ constexpr int kTumFields = 8;
 constexpr int kCovarianceFields = 21;
 constexpr int kFieldCount = kTumFields + 9 + kCovarianceFields;
 
-std::vector<std::string> splitFields(const std::string& line) {
-  std::istringstream stream(line);
-  std::vector<std::string> fields;
-  for (std::string field; stream >> field;) {
-    fields.push_back(field);
-  }
-  return fields;
-}
-
 uint32_t parseCount(const std::string& text, const char* name, const std::string& where) {
   uint32_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size()) {
     throw std::runtime_error(
         fmt::format("{}: {} '{}' is not an unsigned integer", where, name, text));
-  }
-  return value;
-}
-
-double parseFinite(const std::string& text, const char* name, const std::string& where) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw std::runtime_error(fmt::format("{}: {} '{}' is not a finite number", where, name, text));
   }
   return value;
 }
@@ -80,12 +60,7 @@ std::string formatFixLogLine(const LoggedFix& fix) {
   line += fmt::format(" {} {} {} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f}", fix.status,
                       fix.inliers, fix.model_lines, fix.residual_rms_px, fix.latency_ms,
                       fix.front_end_ms, fix.to_backbone_ms, fix.backbone_ms, fix.back_ms);
-  for (int row = 0; row < 6; ++row) {
-    for (int col = row; col < 6; ++col) {
-      line += fmt::format(" {:.9g}", fix.T_world_camera.covariance(row, col));
-    }
-  }
-  return line;
+  return line + formatCovarianceFields(fix.T_world_camera.covariance);
 }
 
 LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
@@ -96,11 +71,7 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
         "latency_ms, its four legs and 21 covariance entries), got {}",
         where, kFieldCount, fields.size()));
   }
-  std::string tum_line;
-  for (int i = 0; i < kTumFields; ++i) {
-    tum_line += fields[i] + ' ';
-  }
-  const StampedPose stamped = parseTumLine(tum_line, where);
+  const StampedPose stamped = parseTumFields(fields, where);
   LoggedFix fix;
   fix.stamp_ns = stamped.stamp_ns;
   fix.T_world_camera.pose = stamped.pose;
@@ -117,17 +88,7 @@ LoggedFix parseFixLogLine(const std::string& line, const std::string& where) {
   fix.to_backbone_ms = parseFinite(fields[kTumFields + 6], "to_backbone_ms", where);
   fix.backbone_ms = parseNonNegative(fields[kTumFields + 7], "backbone_ms", where);
   fix.back_ms = parseFinite(fields[kTumFields + 8], "back_ms", where);
-  int field = kTumFields + 9;
-  for (int row = 0; row < 6; ++row) {
-    for (int col = row; col < 6; ++col) {
-      const double value = parseFinite(fields[field++], "covariance entry", where);
-      fix.T_world_camera.covariance(row, col) = value;
-      fix.T_world_camera.covariance(col, row) = value;
-    }
-  }
-  if (fix.T_world_camera.covariance.llt().info() != Eigen::Success) {
-    throw std::runtime_error(fmt::format("{}: covariance is not positive definite", where));
-  }
+  fix.T_world_camera.covariance = parseCovarianceFields(fields, kTumFields + 9, where);
   return fix;
 }
 

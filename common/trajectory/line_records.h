@@ -5,12 +5,35 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace lineloc {
+
+// The whitespace-separated fields of one line.
+inline std::vector<std::string> splitFields(const std::string& line) {
+  std::istringstream stream(line);
+  std::vector<std::string> fields;
+  for (std::string field; stream >> field;) {
+    fields.push_back(field);
+  }
+  return fields;
+}
+
+// Field `name` as a finite number; throws std::runtime_error naming `where`.
+inline double parseFinite(const std::string& text, const char* name, const std::string& where) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    throw std::runtime_error(fmt::format("{}: {} '{}' is not a finite number", where, name, text));
+  }
+  return value;
+}
 
 // Throws std::runtime_error naming `what` and the path when the file cannot be
 // opened; parse errors propagate.

@@ -90,6 +90,14 @@ StampedPose parseTumLine(const std::string& line, const std::string& where) {
   return stamped;
 }
 
+StampedPose parseTumFields(const std::vector<std::string>& fields, const std::string& where) {
+  std::string line;
+  for (int i = 0; i < kFieldCount; ++i) {
+    line += fields.at(static_cast<size_t>(i)) + ' ';
+  }
+  return parseTumLine(line, where);
+}
+
 std::vector<StampedPose> readTumFile(const std::string& path) {
   return readLineRecords<StampedPose>(path, "trajectory file", parseTumLine);
 }

@@ -40,4 +40,9 @@ std::vector<StampedPose> readTumFile(const std::string& path);
 // Parses one TUM line; `where` names it in error messages.
 StampedPose parseTumLine(const std::string& line, const std::string& where);
 
+// Parses the first eight of `fields` (at least eight) as a TUM line: the pose
+// that starts the lines of the logs that extend it (fix_log.h,
+// pose_covariance_log.h).
+StampedPose parseTumFields(const std::vector<std::string>& fields, const std::string& where);
+
 }  // namespace lineloc

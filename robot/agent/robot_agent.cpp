@@ -20,6 +20,7 @@
 #include "common/parallel/realtime_thread.h"
 #include "common/time/clock.h"
 #include "common/trajectory/fix_log.h"
+#include "common/trajectory/pose_covariance_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/agent/outstanding_frames.h"
 #include "robot/agent/sensor_streams.h"
@@ -338,6 +339,10 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       participant, dds::Qos(dds::kHistoryDepth));
   dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(dds::kHistoryDepth));
   TumWriter fused(config.fused_trajectory_out);
+  std::optional<PoseCovarianceLogWriter> state_log;
+  if (!config.state_log_out.empty()) {
+    state_log.emplace(config.state_log_out);
+  }
   waitForBackbone(writer, receiver.reader(), config.wait_for_backbone_s, stop);
 
   const bool stamped = !streams.frames.empty() && streams.frames.front().stamp_ns.has_value();
@@ -422,6 +427,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       if (const auto state = robotState(*navigator, config.robot_id)) {
         state_writer.write(*state);
         ++summary.states_published;
+        if (state_log) {
+          state_log->write({state->stamp_ns, *navigator->reportedCameraPose()});
+        }
       }
       next_state_ns = steadyClockNs() + state_period_ns;
     }

@@ -46,6 +46,9 @@ struct RobotConfig {
   std::string fused_trajectory_out = "fused.tum";
   // Every PoseFix received, with its status and covariance (fix_log.h); empty: none.
   std::string fix_log_out;
+  // The camera pose and covariance the robot reports with each RobotState it
+  // publishes (pose_covariance_log.h); empty: none.
+  std::string state_log_out;
   double state_rate_hz = 20.0;
   // Send each frame's prediction at its exposure, before its lines
   // (ExposureTopic): the backbone then removes the hidden model lines while

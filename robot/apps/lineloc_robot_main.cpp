@@ -67,6 +67,9 @@ int main(int argc, char** argv) {
   options.add("fix_log_out", config.fix_log_out,
               "file every PoseFix received goes to: TUM pose, status, counts, covariance (empty: "
               "none)");
+  options.add("state_log_out", config.state_log_out,
+              "file the camera pose and covariance reported with each RobotState go to: TUM "
+              "pose, covariance (empty: none)");
   options.add("state_rate_hz", config.state_rate_hz, "RobotState publication rate");
   options.add("exposure_notices", config.exposure_notices,
               "send each frame's prediction at its exposure, so the backbone removes the hidden "

@@ -789,6 +789,14 @@ std::optional<NavigatorEstimate> InertialNavigator::state() const {
                                               latest.fix_offset_covariance)};
 }
 
+std::optional<PoseWithCovariance> InertialNavigator::reportedCameraPose() const {
+  const std::optional<NavigatorEstimate> estimate = state();
+  if (!estimate) {
+    return std::nullopt;
+  }
+  return cameraPoseOf(estimate->state, estimate->covariance, config_.T_body_camera);
+}
+
 NavigatorHealth InertialNavigator::health() const {
   NavigatorHealth health = counters_;
   if (snapshots_.empty()) {

@@ -297,6 +297,10 @@ class InertialNavigator {
   // rates are held. The covariance leaves the fixes' unproven part out (see
   // above).
   PosePrediction predictAt(int64_t stamp_ns) const;
+  // The camera's pose at the latest state, with the covariance the filter
+  // reports (state(): the unproven offset and the fixes' shared error in it);
+  // nullopt before it starts.
+  std::optional<PoseWithCovariance> reportedCameraPose() const;
 
   // The state after the last IMU sample; nullopt before initialisation.
   std::optional<NavigatorEstimate> state() const;

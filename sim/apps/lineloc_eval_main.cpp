@@ -1,6 +1,7 @@
 // lineloc-eval: compares an estimated TUM trajectory with ground truth in the
 // map frame, prints the error table and writes the evaluation plot; with the
-// robot's fix log, also how consistent the backbone's fixes were.
+// robot's fix log, also how consistent the backbone's fixes were, and with its
+// state log how consistent the robot's own reported states were.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -20,6 +21,7 @@ struct EvalConfig {
   std::string ground_truth;
   std::string estimate;
   std::string fix_log;
+  std::string state_log;
   std::string plot = "evaluation.png";
   std::string city_model;
   std::vector<double> site_origin;
@@ -45,8 +47,9 @@ std::optional<lineloc::SceneMesh> loadFootprints(const EvalConfig& config) {
   return lineloc::buildCityMesh(model, origin).mesh;
 }
 
-// How consistent the backbone's fixes were, and the trajectory's error from
-// the first OK fix on (the accuracy bounds hold "after the first fix").
+// How consistent the backbone's fixes and the robot's reported states were,
+// and the trajectory's error from the first OK fix on (the accuracy bounds
+// hold "after the first fix").
 void printFixReport(const EvalConfig& config, const std::vector<lineloc::StampedPose>& ground_truth,
                     const std::vector<lineloc::StampedPose>& estimate,
                     lineloc::EvaluationOptions evaluation_options) {
@@ -56,6 +59,13 @@ void printFixReport(const EvalConfig& config, const std::vector<lineloc::Stamped
   std::cout << lineloc::formatFixConsistency(consistency, consistency_options);
   if (!consistency.first_ok_received_ns || ground_truth.empty()) {
     return;
+  }
+  if (!config.state_log.empty()) {
+    std::cout << lineloc::formatStateConsistency(
+        lineloc::evaluateStateConsistency(ground_truth,
+                                          lineloc::readPoseCovarianceLog(config.state_log),
+                                          *consistency.first_ok_received_ns, consistency_options),
+        consistency_options);
   }
   evaluation_options.evaluate_from_ns = *consistency.first_ok_received_ns;
   std::cout << fmt::format(
@@ -77,6 +87,10 @@ int main(int argc, char** argv) {
   options.add("fix_log", config.fix_log,
               "the robot's fix log (lineloc-robot --fix-log-out): each OK fix's error in its own "
               "covariance, and the fixes beyond 3 sigma (empty: none)");
+  options.add("state_log", config.state_log,
+              "the robot's state log (lineloc-robot --state-log-out), with --fix-log: each "
+              "reported state's error in its own covariance from the first OK fix on, and the "
+              "states beyond 3 sigma (empty: none)");
   options.add("plot", config.plot, "PNG written with the top view and errors over time");
   options.add("city_model", config.city_model,
               "city model whose footprints the plot shows (CityJSON / .jsonl; empty: none)");

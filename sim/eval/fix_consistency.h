@@ -2,7 +2,9 @@
 // OK fix's normalized estimation error squared (NEES, common/geometry/pose.h)
 // and the fixes beyond chi^2_6(0.9973), the 6-D equivalent of three sigma.
 // Those are precise wrong poses, which the system must not give (paper §3.2):
-// a consistent estimator exceeds the bound in 0.27 % of fixes.
+// a consistent estimator exceeds the bound in 0.27 % of fixes. The robot's
+// reported states (lineloc-eval --state-log) are checked alike: beyond the
+// bound, the robot is sure of a wrong pose.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "common/trajectory/fix_log.h"
+#include "common/trajectory/pose_covariance_log.h"
 #include "common/trajectory/tum_trajectory.h"
 
 namespace lineloc {
@@ -45,5 +48,22 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
 // OK fix on), NEES median and p99, fixes beyond the bound.
 std::string formatFixConsistency(const FixConsistency& consistency,
                                  const FixConsistencyOptions& options);
+
+struct StateConsistency {
+  int states = 0;
+  // NEES of each state with ground truth at its stamp, in log order.
+  std::vector<double> nees;
+  int beyond_bound = 0;
+};
+
+// The states stamped at or after `from_ns` (the first OK fix's arrival: before
+// it the robot knows its pose from DGPS and compass alone).
+StateConsistency evaluateStateConsistency(const std::vector<StampedPose>& ground_truth,
+                                          const std::vector<StampedPoseWithCovariance>& states,
+                                          int64_t from_ns, const FixConsistencyOptions& options);
+
+// One line: states, NEES median and p99, states beyond the bound.
+std::string formatStateConsistency(const StateConsistency& consistency,
+                                   const FixConsistencyOptions& options);
 
 }  // namespace lineloc

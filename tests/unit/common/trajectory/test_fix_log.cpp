@@ -1,19 +1,14 @@
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
+#include "tests/unit/common/trajectory/log_line_checks.h"
 
 namespace lineloc {
 namespace {
-
-std::string temporaryPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()))).string();
-}
 
 LoggedFix sampleFix() {
   LoggedFix fix;
@@ -37,7 +32,7 @@ LoggedFix sampleFix() {
 }
 
 TEST(FixLog, WriteThenReadKeepsPoseCovarianceAndCounts) {
-  const std::string path = temporaryPath("fix_log_roundtrip");
+  const std::string path = testing::temporaryPath("fix_log_roundtrip");
   const LoggedFix written = sampleFix();
   LoggedFix not_ok = written;
   not_ok.status = "too_few_matches";
@@ -70,26 +65,13 @@ TEST(FixLog, TheFirstEightFieldsAreATumLine) {
             0u);
 }
 
-// Replaces field `index` (0-based) of a good line.
+// A good line with field `index` (0-based) replaced.
 std::string withField(int index, const std::string& value) {
-  std::istringstream stream(formatFixLogLine(sampleFix()));
-  std::string line;
-  int i = 0;
-  for (std::string field; stream >> field; ++i) {
-    line += (i == index ? value : field) + ' ';
-  }
-  return line;
+  return testing::withField(formatFixLogLine(sampleFix()), index, value);
 }
 
 void expectError(const std::string& line, const std::string& expected) {
-  try {
-    parseFixLogLine(line, "log.txt:3");
-    FAIL() << "accepted: " << line;
-  } catch (const std::runtime_error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("log.txt:3"), std::string::npos) << message;
-    EXPECT_NE(message.find(expected), std::string::npos) << message;
-  }
+  testing::expectParseError(parseFixLogLine, line, expected);
 }
 
 TEST(FixLog, MalformedLinesNameTheLineAndTheField) {

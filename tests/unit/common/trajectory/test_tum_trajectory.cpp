@@ -4,16 +4,13 @@
 #include <fstream>
 
 #include "common/trajectory/tum_trajectory.h"
+#include "tests/unit/common/trajectory/log_line_checks.h"
 
 namespace lineloc {
 namespace {
 
-std::string temporaryPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()))).string();
-}
-
 TEST(TumTrajectory, WriteThenReadKeepsNanosecondStampsAndPoses) {
-  const std::string path = temporaryPath("tum_roundtrip");
+  const std::string path = testing::temporaryPath("tum_roundtrip");
   StampedPose a;
   a.stamp_ns = 1'403'636'579'763'555'584;  // EuRoC-sized stamp: beyond double precision in ns
   a.pose.translation() = Eigen::Vector3d(1.25, -2.5, 3.0);
@@ -64,7 +61,7 @@ TEST(TumTrajectory, MalformedLinesNameTheLine) {
 }
 
 TEST(TumTrajectory, ReadReportsFileAndLineNumber) {
-  const std::string path = temporaryPath("tum_bad");
+  const std::string path = testing::temporaryPath("tum_bad");
   std::ofstream(path) << "# comment\n\n1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0\n";
   try {
     readTumFile(path);

@@ -75,5 +75,35 @@ TEST(FixConsistency, WithoutAnOkFixNoAnswerCountsFromTheFirst) {
             "fixes: 1 answers, 0 ok, none with ground truth\n");
 }
 
+// The robot's reported states from the first OK fix on: each one's NEES
+// against the interpolated truth, the ones beyond the bound counted.
+TEST(StateConsistency, CountsStatesBeyondThreeSigmaFromTheFirstFix) {
+  const auto stateOff = [](int64_t stamp_ns, double sigmas) {
+    const LoggedFix fix = fixOff(stamp_ns, sigmas);
+    return StampedPoseWithCovariance{fix.stamp_ns, fix.T_world_camera};
+  };
+  const std::vector<StampedPoseWithCovariance> states = {
+      stateOff(1'000'000'000, 50.0),  // before the first fix: from DGPS alone
+      stateOff(2'050'000'000, 1.0),   // NEES 1
+      stateOff(3'050'000'000, 6.0),   // NEES 36: the robot sure of a wrong pose
+      stateOff(20'000'000'000, 0.0),  // after the ground truth ends
+  };
+  const FixConsistencyOptions options;
+  const StateConsistency consistency =
+      evaluateStateConsistency(straightDrive(), states, 2'000'000'000, options);
+  EXPECT_EQ(consistency.states, 3);
+  ASSERT_EQ(consistency.nees.size(), 2u);
+  EXPECT_NEAR(consistency.nees[0], 1.0, 1e-6);
+  EXPECT_NEAR(consistency.nees[1], 36.0, 1e-6);
+  EXPECT_EQ(consistency.beyond_bound, 1);
+  const std::string line = formatStateConsistency(consistency, options);
+  EXPECT_NE(line.find("robot states: 3 from the first OK fix on; "), std::string::npos) << line;
+  EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;
+  EXPECT_EQ(
+      formatStateConsistency(
+          evaluateStateConsistency(straightDrive(), states, 10'000'000'000, options), options),
+      "robot states: 1, none with ground truth\n");
+}
+
 }  // namespace
 }  // namespace lineloc

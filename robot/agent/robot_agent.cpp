@@ -150,27 +150,19 @@ lineloc_msg_Health toHealth(NavigatorMode mode) {
   return lineloc_msg_HEALTH_LOST;
 }
 
-// The fused state as a RobotState message; nullopt before the filter starts.
-std::optional<lineloc_msg_RobotState> robotState(const InertialNavigator& navigator,
-                                                 const std::string& robot_id) {
-  const std::optional<NavigatorEstimate> estimate = navigator.state();
-  if (!estimate) {
-    return std::nullopt;
-  }
-  const NavigatorHealth health = navigator.health();
-  PoseWithCovariance T_world_body;
-  T_world_body.pose = makePose(estimate->state.p_world_body, estimate->state.q_world_body);
-  const auto& P = estimate->covariance;
-  T_world_body.covariance << P.block<3, 3>(kPosition, kPosition),
-      P.block<3, 3>(kPosition, kAttitude), P.block<3, 3>(kAttitude, kPosition),
-      P.block<3, 3>(kAttitude, kAttitude);
+// The fused state and the navigator's health as a RobotState message.
+lineloc_msg_RobotState robotState(const NavigatorEstimate& estimate, const NavigatorHealth& health,
+                                  const std::string& robot_id) {
+  const PoseWithCovariance T_world_body{
+      makePose(estimate.state.p_world_body, estimate.state.q_world_body),
+      poseBlock(estimate.covariance)};
   lineloc_msg_RobotState message{};
   copyRobotId(robot_id, message.robot_id);
-  message.stamp_ns = estimate->state.stamp_ns;
+  message.stamp_ns = estimate.state.stamp_ns;
   message.T_world_body = toMessage(T_world_body);
-  Eigen::Map<Eigen::Vector3d>(message.velocity_world) = estimate->state.v_world_body;
+  Eigen::Map<Eigen::Vector3d>(message.velocity_world) = estimate.state.v_world_body;
   Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(message.velocity_covariance) =
-      P.block<3, 3>(kVelocity, kVelocity);
+      estimate.covariance.block<3, 3>(kVelocity, kVelocity);
   message.health = toHealth(health.mode);
   message.since_last_fix_ns = health.since_vision_fix_ns.value_or(-1);
   message.rejected_fixes = static_cast<uint32_t>(health.vision.rejected());
@@ -424,11 +416,11 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       }
     }
     if (navigator && steadyClockNs() >= next_state_ns) {
-      if (const auto state = robotState(*navigator, config.robot_id)) {
-        state_writer.write(*state);
+      if (const std::optional<NavigatorEstimate> estimate = navigator->state()) {
+        state_writer.write(robotState(*estimate, navigator->health(), config.robot_id));
         ++summary.states_published;
         if (state_log) {
-          state_log->write({state->stamp_ns, *navigator->reportedCameraPose()});
+          state_log->write({estimate->state.stamp_ns, navigator->cameraPose(*estimate)});
         }
       }
       next_state_ns = steadyClockNs() + state_period_ns;

@@ -104,25 +104,18 @@ Matrix6d levelFrameOffset(Matrix6d unproven) {
   return unproven;
 }
 
-// The body pose block [dp; dtheta] of the filter's error covariance.
-Matrix6d poseBlock(const ErrorCovariance& covariance) {
-  Matrix6d pose;
-  pose << covariance.block<3, 3>(kPosition, kPosition),
-      covariance.block<3, 3>(kPosition, kAttitude), covariance.block<3, 3>(kAttitude, kPosition),
-      covariance.block<3, 3>(kAttitude, kAttitude);
-  return pose;
-}
-
 // The covariance the filter reports: its own, of the pose relative to the
 // fixes' frame, plus the unproven offset of that frame, covering the share of
 // the last applied fix's covariance its error keeps over metres (body pose
 // error [dp; dtheta], both; see the header). Raising a principal block by a
-// positive semi-definite amount keeps the whole positive semi-definite.
+// positive semi-definite amount keeps the whole positive semi-definite. A
+// singular pose block (a state started as exactly known) has no covering; the
+// sum, though looser, covers both.
 ErrorCovariance reportedCovariance(ErrorCovariance covariance, const Matrix6d& unproven_body,
                                    const Matrix6d& fix_offset_body) {
   const Matrix6d pose = poseBlock(covariance) + unproven_body;
   const Matrix6d covering = coveringCovariance(pose, fix_offset_body);
-  const Matrix6d reported = covering.allFinite() ? covering : pose;
+  const Matrix6d reported = covering.allFinite() ? covering : pose + fix_offset_body;
   covariance.block<3, 3>(kPosition, kPosition) = reported.topLeftCorner<3, 3>();
   covariance.block<3, 3>(kPosition, kAttitude) = reported.topRightCorner<3, 3>();
   covariance.block<3, 3>(kAttitude, kPosition) = reported.bottomLeftCorner<3, 3>();
@@ -364,8 +357,7 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
           bodyCovarianceOf(vision->T_world_camera.pose, vision->unproven_covariance);
       snapshot.fix_offset_covariance =
           config_.shared_fix_error_fraction *
-          levelFrameOffset(
-              bodyCovarianceOf(vision->T_world_camera.pose, vision->T_world_camera.covariance));
+          bodyCovarianceOf(vision->T_world_camera.pose, vision->T_world_camera.covariance);
     }
     return fromUpdate(outcome.status);
   }
@@ -789,12 +781,8 @@ std::optional<NavigatorEstimate> InertialNavigator::state() const {
                                               latest.fix_offset_covariance)};
 }
 
-std::optional<PoseWithCovariance> InertialNavigator::reportedCameraPose() const {
-  const std::optional<NavigatorEstimate> estimate = state();
-  if (!estimate) {
-    return std::nullopt;
-  }
-  return cameraPoseOf(estimate->state, estimate->covariance, config_.T_body_camera);
+PoseWithCovariance InertialNavigator::cameraPose(const NavigatorEstimate& estimate) const {
+  return cameraPoseOf(estimate.state, estimate.covariance, config_.T_body_camera);
 }
 
 NavigatorHealth InertialNavigator::health() const {

@@ -30,6 +30,14 @@ Eigen::Vector3d logSO3(const Eigen::Quaterniond& rotation) {
   return (2.0 * std::atan2(sin_half, q.w()) / sin_half) * q.vec();
 }
 
+Matrix6d poseBlock(const ErrorCovariance& covariance) {
+  Matrix6d pose;
+  pose << covariance.block<3, 3>(kPosition, kPosition),
+      covariance.block<3, 3>(kPosition, kAttitude), covariance.block<3, 3>(kAttitude, kPosition),
+      covariance.block<3, 3>(kAttitude, kAttitude);
+  return pose;
+}
+
 void injectError(const ErrorVector& dx, NavigationState& state) {
   state.p_world_body += dx.segment<3>(kPosition);
   state.v_world_body += dx.segment<3>(kVelocity);

@@ -12,6 +12,8 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
+#include "common/geometry/pose.h"
+
 namespace lineloc {
 
 inline constexpr int kErrorStateSize = 15;
@@ -35,6 +37,9 @@ struct NavigationState {
   Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
 };
+
+// The covariance of the body's pose error [dp; dtheta] inside `covariance`.
+Matrix6d poseBlock(const ErrorCovariance& covariance);
 
 // Applies an error-state correction: p += dp, v += dv, R = Exp(dtheta) R, b += db.
 void injectError(const ErrorVector& dx, NavigationState& state);

@@ -661,10 +661,11 @@ TEST(InertialNavigator, FixesOfAnUnchangedViewCountOnce) {
 }
 
 struct UnprovenFixesOutcome {
-  int tracked = 0;              // 1 s checks while tracking
-  int inside_relative = 0;      // of the fixes' frame, in the covariance less U
-  int inside_absolute = 0;      // of the truth, in the reported covariance
-  double relative_rms_m = 0.0;  // position error less the offset
+  int tracked = 0;               // 1 s checks while tracking
+  int inside_relative = 0;       // of the fixes' frame, in the covariance less U
+  int inside_absolute = 0;       // of the truth, in the reported covariance
+  int tilt_inside_absolute = 0;  // likewise, of the tilt
+  double relative_rms_m = 0.0;   // position error less the offset
   double min_position_sigma_m = std::numeric_limits<double>::infinity();
 };
 
@@ -678,6 +679,7 @@ UnprovenFixesOutcome fuseUnprovenFixes(
   const Eigen::Matrix3d unproven_position =
       kUnprovenPosition_m * kUnprovenPosition_m * Eigen::Matrix3d::Identity();
   const double bound = chiSquareQuantile(0.999, 3);
+  const double tilt_bound = chiSquareQuantile(0.999, 2);
   UnprovenFixesOutcome outcome;
   double relative_sum_m2 = 0.0;
   for (uint64_t seed = 200; seed < 210; ++seed) {
@@ -700,6 +702,7 @@ UnprovenFixesOutcome fuseUnprovenFixes(
       relative_sum_m2 += relative.squaredNorm();
       outcome.inside_relative += relative.dot(relative_covariance.ldlt().solve(relative)) < bound;
       outcome.inside_absolute += record.positionNees() < bound;
+      outcome.tilt_inside_absolute += record.tiltNees() < tilt_bound;
       outcome.min_position_sigma_m =
           std::min(outcome.min_position_sigma_m, record.health.position_sigma_m);
     }
@@ -746,6 +749,8 @@ TEST(InertialNavigatorConsistency, ReportsTheShareOfFixErrorsNoRunOfFixesAverage
   ASSERT_GE(shared.tracked, 280);
   EXPECT_GE(shared.inside_absolute, static_cast<int>(0.85 * shared.tracked))
       << shared.inside_absolute << " of " << shared.tracked;
+  EXPECT_GE(shared.tilt_inside_absolute, static_cast<int>(0.85 * shared.tracked))
+      << shared.tilt_inside_absolute << " of " << shared.tracked;
   EXPECT_GE(shared.min_position_sigma_m, std::sqrt(0.5) * kUnprovenPosition_m);
 
   for (const double fraction : {-0.1, 1.5, std::nan("")}) {
@@ -754,12 +759,25 @@ TEST(InertialNavigatorConsistency, ReportsTheShareOfFixErrorsNoRunOfFixesAverage
   }
 }
 
+// A state started as exactly known (a zero covariance) is reported as such,
+// not as the infinite covering of a singular pose block.
+TEST(InertialNavigator, ReportsAStateStartedAsExactlyKnownAsExact) {
+  const Drive drive(8, 5.0);
+  InertialNavigator navigator(InertialNavigatorConfig{});
+  navigator.addImu(toImuSample(drive.imu.front()));
+  ASSERT_TRUE(navigator.initialise(truthState(drive.trajectory, drive.imu.front().stamp_ns),
+                                   ErrorCovariance::Zero()));
+  const std::optional<NavigatorEstimate> estimate = navigator.state();
+  ASSERT_TRUE(estimate);
+  EXPECT_TRUE(estimate->covariance.isZero());
+  EXPECT_EQ(navigator.health().position_sigma_m, 0.0);
+}
+
 TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {
   const Drive drive(8, 10.0);
   InertialNavigator navigator(InertialNavigatorConfig{});
   EXPECT_EQ(navigator.predictAt(drive.imu.front().stamp_ns).status,
             PredictionStatus::kNotInitialised);
-  EXPECT_FALSE(navigator.reportedCameraPose());
   navigator = drive.startedNavigator();
   for (size_t i = 1; i < drive.imu.size(); ++i) {
     navigator.addImu(toImuSample(drive.imu[i]));
@@ -773,10 +791,9 @@ TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {
   EXPECT_TRUE(at_last.T_world_camera.pose.isApprox(expected.pose, 1e-12));
   EXPECT_TRUE(at_last.T_world_camera.covariance.isApprox(expected.covariance, 1e-12));
   // No fix yet: the state reported is the one predicted for the backbone.
-  const std::optional<PoseWithCovariance> reported = navigator.reportedCameraPose();
-  ASSERT_TRUE(reported);
-  EXPECT_TRUE(reported->pose.isApprox(expected.pose, 1e-12));
-  EXPECT_TRUE(reported->covariance.isApprox(expected.covariance, 1e-12));
+  const PoseWithCovariance reported = navigator.cameraPose(*estimate);
+  EXPECT_TRUE(reported.pose.isApprox(expected.pose, 1e-12));
+  EXPECT_TRUE(reported.covariance.isApprox(expected.covariance, 1e-12));
   // Between two samples, the pose lies between theirs; 20 ms beyond the last
   // it is extrapolated with the estimated velocity: p + v dt to within
   // |a| dt^2 / 2 < 1 mm (|a| < 2 m/s^2; the default camera sits at the body origin).

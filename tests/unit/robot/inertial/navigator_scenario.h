@@ -44,6 +44,11 @@ struct Record {
     const Eigen::Vector3d e = error.segment<3>(kPosition);
     return e.dot(covariance.block<3, 3>(kPosition, kPosition).ldlt().solve(e));
   }
+  // Of the tilt: the attitude error about the world's horizontal axes.
+  double tiltNees() const {
+    const Eigen::Vector2d e = error.segment<2>(kAttitude);
+    return e.dot(covariance.block<2, 2>(kAttitude, kAttitude).ldlt().solve(e));
+  }
 };
 
 struct ScenarioResult {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <string_view>
 
 #include "common/time/clock.h"
 #include "common/time/percentile.h"
@@ -11,23 +12,31 @@
 namespace lineloc {
 namespace {
 
-// NEES of `estimate` against the ground truth at `stamp_ns`; nullopt without it.
-std::optional<double> neesAgainstTruth(const std::vector<StampedPose>& ground_truth,
-                                       int64_t stamp_ns, const PoseWithCovariance& estimate,
-                                       const FixConsistencyOptions& options) {
+// Adds the NEES of `estimate` against the ground truth at `stamp_ns`, when
+// there is ground truth there, to `tally`.
+void addToTally(const std::vector<StampedPose>& ground_truth, int64_t stamp_ns,
+                const PoseWithCovariance& estimate, const FixConsistencyOptions& options,
+                NeesTally& tally) {
   const auto max_gap_ns = static_cast<int64_t>(options.max_ground_truth_gap_s * 1e9);
   const auto truth = interpolateGroundTruth(ground_truth, stamp_ns, max_gap_ns);
   if (!truth) {
-    return std::nullopt;
+    return;
   }
-  return normalizedErrorSquared(estimate, *truth);
+  const double nees = normalizedErrorSquared(estimate, *truth);
+  tally.nees.push_back(nees);
+  tally.beyond_bound += nees > options.nees_bound ? 1 : 0;
 }
 
-// "NEES median x, p99 y; K beyond chi2_6(0.9973) = b" over non-empty `nees`.
-std::string formatNees(const std::vector<double>& nees, int beyond_bound,
-                       const FixConsistencyOptions& options) {
-  return fmt::format("NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = {:.2f}",
-                     percentile(nees, 50), percentile(nees, 99), beyond_bound, options.nees_bound);
+// "NEES median x, p99 y; K beyond chi2_6(0.9973) = b (MEANING, z % of N with
+// ground truth)" over a non-empty tally.
+std::string formatTally(const NeesTally& tally, const FixConsistencyOptions& options,
+                        std::string_view meaning) {
+  return fmt::format(
+      "NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = {:.2f} ({}, {:.2f} % of {} "
+      "with ground truth)",
+      percentile(tally.nees, 50), percentile(tally.nees, 99), tally.beyond_bound,
+      options.nees_bound, meaning,
+      100.0 * tally.beyond_bound / static_cast<double>(tally.nees.size()), tally.nees.size());
 }
 
 }  // namespace
@@ -49,13 +58,7 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
       continue;
     }
     ++consistency.ok;
-    const std::optional<double> nees =
-        neesAgainstTruth(ground_truth, fix.stamp_ns, fix.T_world_camera, options);
-    if (!nees) {
-      continue;
-    }
-    consistency.nees.push_back(*nees);
-    consistency.beyond_bound += *nees > options.nees_bound ? 1 : 0;
+    addToTally(ground_truth, fix.stamp_ns, fix.T_world_camera, options, consistency.tally);
   }
   return consistency;
 }
@@ -78,14 +81,11 @@ std::string formatAnswers(const FixConsistency& consistency) {
 
 std::string formatFixConsistency(const FixConsistency& consistency,
                                  const FixConsistencyOptions& options) {
-  if (consistency.nees.empty()) {
+  if (consistency.tally.nees.empty()) {
     return fmt::format("fixes: {}, none with ground truth\n", formatAnswers(consistency));
   }
-  return fmt::format(
-      "fixes: {}; {} (precise wrong poses, {:.2f} % of {} with ground truth)\n",
-      formatAnswers(consistency), formatNees(consistency.nees, consistency.beyond_bound, options),
-      100.0 * consistency.beyond_bound / static_cast<double>(consistency.nees.size()),
-      consistency.nees.size());
+  return fmt::format("fixes: {}; {}\n", formatAnswers(consistency),
+                     formatTally(consistency.tally, options, "precise wrong poses"));
 }
 
 StateConsistency evaluateStateConsistency(const std::vector<StampedPose>& ground_truth,
@@ -97,28 +97,18 @@ StateConsistency evaluateStateConsistency(const std::vector<StampedPose>& ground
       continue;
     }
     ++consistency.states;
-    const std::optional<double> nees =
-        neesAgainstTruth(ground_truth, state.stamp_ns, state.pose, options);
-    if (!nees) {
-      continue;
-    }
-    consistency.nees.push_back(*nees);
-    consistency.beyond_bound += *nees > options.nees_bound ? 1 : 0;
+    addToTally(ground_truth, state.stamp_ns, state.pose, options, consistency.tally);
   }
   return consistency;
 }
 
 std::string formatStateConsistency(const StateConsistency& consistency,
                                    const FixConsistencyOptions& options) {
-  if (consistency.nees.empty()) {
+  if (consistency.tally.nees.empty()) {
     return fmt::format("robot states: {}, none with ground truth\n", consistency.states);
   }
-  return fmt::format(
-      "robot states: {} from the first OK fix on; {} (the robot sure of a wrong pose, {:.2f} % "
-      "of {} with ground truth)\n",
-      consistency.states, formatNees(consistency.nees, consistency.beyond_bound, options),
-      100.0 * consistency.beyond_bound / static_cast<double>(consistency.nees.size()),
-      consistency.nees.size());
+  return fmt::format("robot states: {} from the first OK fix on; {}\n", consistency.states,
+                     formatTally(consistency.tally, options, "the robot sure of a wrong pose"));
 }
 
 }  // namespace lineloc

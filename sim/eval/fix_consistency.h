@@ -25,6 +25,13 @@ struct FixConsistencyOptions {
   double nees_bound = 20.06;
 };
 
+// The NEES of estimates against ground truth, in log order (those without
+// ground truth at their stamp left out), and how many lie beyond the bound.
+struct NeesTally {
+  std::vector<double> nees;
+  int beyond_bound = 0;
+};
+
 struct FixConsistency {
   int answers = 0;
   int ok = 0;
@@ -35,9 +42,8 @@ struct FixConsistency {
   // whether or not ground truth covers it: its estimate includes a fix from
   // the next frame stamped at or after this on.
   std::optional<int64_t> first_ok_received_ns;
-  // NEES of each OK fix with ground truth at its stamp, in log order.
-  std::vector<double> nees;
-  int beyond_bound = 0;
+  // Of the OK fixes.
+  NeesTally tally;
 };
 
 FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_truth,
@@ -51,9 +57,7 @@ std::string formatFixConsistency(const FixConsistency& consistency,
 
 struct StateConsistency {
   int states = 0;
-  // NEES of each state with ground truth at its stamp, in log order.
-  std::vector<double> nees;
-  int beyond_bound = 0;
+  NeesTally tally;
 };
 
 // The states stamped at or after `from_ns` (the first OK fix's arrival: before

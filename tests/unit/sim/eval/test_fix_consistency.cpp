@@ -42,10 +42,10 @@ TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
   const FixConsistency consistency = evaluateFixConsistency(straightDrive(), fixes, options);
   EXPECT_EQ(consistency.answers, 5);
   EXPECT_EQ(consistency.ok, 3);
-  ASSERT_EQ(consistency.nees.size(), 2u);
-  EXPECT_NEAR(consistency.nees[0], 4.0, 1e-6);
-  EXPECT_NEAR(consistency.nees[1], 25.0, 1e-6);
-  EXPECT_EQ(consistency.beyond_bound, 1);
+  ASSERT_EQ(consistency.tally.nees.size(), 2u);
+  EXPECT_NEAR(consistency.tally.nees[0], 4.0, 1e-6);
+  EXPECT_NEAR(consistency.tally.nees[1], 25.0, 1e-6);
+  EXPECT_EQ(consistency.tally.beyond_bound, 1);
   EXPECT_EQ(consistency.first_ok_received_ns, 2'050'000'000 + 4'500'000);
   // The frames from the first OK one on: 3 of 4 OK.
   EXPECT_EQ(consistency.answers_from_first_ok, 4);
@@ -59,7 +59,7 @@ TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
 TEST(FixConsistency, SaysSoWhenNoFixHasGroundTruth) {
   const FixConsistency consistency =
       evaluateFixConsistency(straightDrive(), {fixOff(20'000'000'000, 0.0)}, {});
-  EXPECT_TRUE(consistency.nees.empty());
+  EXPECT_TRUE(consistency.tally.nees.empty());
   EXPECT_EQ(formatFixConsistency(consistency, {}),
             "fixes: 1 answers, 1 ok (100.0 % of the 1 from the first on), none with ground "
             "truth\n");
@@ -92,10 +92,10 @@ TEST(StateConsistency, CountsStatesBeyondThreeSigmaFromTheFirstFix) {
   const StateConsistency consistency =
       evaluateStateConsistency(straightDrive(), states, 2'000'000'000, options);
   EXPECT_EQ(consistency.states, 3);
-  ASSERT_EQ(consistency.nees.size(), 2u);
-  EXPECT_NEAR(consistency.nees[0], 1.0, 1e-6);
-  EXPECT_NEAR(consistency.nees[1], 36.0, 1e-6);
-  EXPECT_EQ(consistency.beyond_bound, 1);
+  ASSERT_EQ(consistency.tally.nees.size(), 2u);
+  EXPECT_NEAR(consistency.tally.nees[0], 1.0, 1e-6);
+  EXPECT_NEAR(consistency.tally.nees[1], 36.0, 1e-6);
+  EXPECT_EQ(consistency.tally.beyond_bound, 1);
   const std::string line = formatStateConsistency(consistency, options);
   EXPECT_NE(line.find("robot states: 3 from the first OK fix on; "), std::string::npos) << line;
   EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;

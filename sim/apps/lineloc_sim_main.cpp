@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
   options.add("motion_blur_samples", config.motion_blur_samples,
               "renders averaged over the exposure (1: no motion blur)");
   options.add("exposure_time_s", config.exposure_time_s, "exposure time for motion blur (s)");
+  options.add("edge_pixel_samples", config.edge_pixel_samples,
+              "rays averaged over each pixel a geometric edge crosses (1: one per pixel)");
   options.add("sun_azimuth_deg", config.sun_azimuth_deg, "sun bearing from grid north (deg)");
   options.add("sun_elevation_deg", config.sun_elevation_deg, "sun elevation (deg)");
   std::string start_utc;

@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "common/geodesy/site_projection.h"
 #include "common/time/clock.h"
@@ -24,6 +28,11 @@ namespace lineloc {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
+
+struct RenderedFrame {
+  cv::Mat image;
+  double cpu_s = 0.0;
+};
 
 double threadCpuSeconds() {
   return 1e-9 * static_cast<double>(threadCpuClockNs());
@@ -65,6 +74,7 @@ RenderOptions renderOptions(const DriveSimulationConfig& config, const Sunlight&
   options.shadows = config.shadows;
   options.noise_sigma = static_cast<float>(config.noise_sigma);
   options.motion_blur_samples = config.motion_blur_samples;
+  options.edge_pixel_samples = config.edge_pixel_samples;
   return options;
 }
 
@@ -225,19 +235,41 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   const int64_t period_ns = seconds_to_ns(1.0 / config.camera_rate_hz);
   const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
   const int64_t camera_offset_ns = seconds_to_ns(config.camera_time_offset_s);
+  std::vector<int64_t> stamps_ns;
   for (int64_t stamp_ns = trajectory.startStamp_ns(); stamp_ns <= trajectory.endStamp_ns();
        stamp_ns += period_ns) {
-    const Eigen::Isometry3d T_world_camera = bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera;
+    stamps_ns.push_back(stamp_ns);
+  }
+  // Image i, its CPU time and its noise drawn from seed * 1000003 + i, so
+  // the bytes do not depend on how many frames render at once.
+  const auto renderFrame = [&](size_t i) {
     const double start_s = threadCpuSeconds();
-    const cv::Mat image = renderer.renderImage(
+    const int64_t stamp_ns = stamps_ns[i];
+    RenderedFrame frame;
+    frame.image = renderer.renderImage(
         bodyPose(trajectory.at(stamp_ns - half_exposure_ns)) * spec.T_body_camera,
         bodyPose(trajectory.at(stamp_ns + half_exposure_ns)) * spec.T_body_camera,
-        config.seed * 1'000'003 + static_cast<uint64_t>(summary.images));
-    summary.render_cpu_s += threadCpuSeconds() - start_s;
-    writer.writeImage(stamp_ns + camera_offset_ns, image);
-    writer.writeCameraGroundTruth({stamp_ns, T_world_camera});
-    if (++summary.images % 200 == 0) {
-      spdlog::info("{} images rendered", summary.images);
+        config.seed * 1'000'003 + static_cast<uint64_t>(i));
+    frame.cpu_s = threadCpuSeconds() - start_s;
+    return frame;
+  };
+  // Frames render one per core at a time and are written in order.
+  const size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  for (size_t first = 0; first < stamps_ns.size(); first += cores) {
+    std::vector<std::future<RenderedFrame>> batch;
+    for (size_t i = first; i < std::min(first + cores, stamps_ns.size()); ++i) {
+      batch.push_back(std::async(std::launch::async, renderFrame, i));
+    }
+    for (std::future<RenderedFrame>& rendered : batch) {
+      const RenderedFrame frame = rendered.get();
+      const int64_t stamp_ns = stamps_ns[summary.images];
+      summary.render_cpu_s += frame.cpu_s;
+      writer.writeImage(stamp_ns + camera_offset_ns, frame.image);
+      writer.writeCameraGroundTruth(
+          {stamp_ns, bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera});
+      if (++summary.images % 200 == 0) {
+        spdlog::info("{} images rendered", summary.images);
+      }
     }
   }
   return summary;

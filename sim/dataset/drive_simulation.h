@@ -13,6 +13,7 @@
 
 #include "common/geodesy/site_sun.h"
 #include "common/geometry/sunlight.h"
+#include "sim/render/city_renderer.h"
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
 #include "sim/world/street_clutter.h"
@@ -49,6 +50,7 @@ struct DriveSimulationConfig {
   bool shadows = true;
   double noise_sigma = 2.0;
   int motion_blur_samples = 1;
+  int edge_pixel_samples = RenderOptions{}.edge_pixel_samples;
   double exposure_time_s = 0.008;
   double sun_azimuth_deg = 135.0;  // clockwise from grid north
   double sun_elevation_deg = 40.0;

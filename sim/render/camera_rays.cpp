@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -31,6 +32,26 @@ CameraRays::CameraRays(const CameraCalibration& calibration)
           Eigen::Vector3d(undistorted->x(), undistorted->y(), 1.0).normalized().cast<float>();
     }
   }
+}
+
+Eigen::Vector3f CameraRays::directionAt(float u, float v) const {
+  // The cell's top-left pixel centre, kept inside the image so that points in
+  // the outermost half pixel extrapolate from the last two centres.
+  const int u0 = std::clamp(static_cast<int>(std::floor(u)), 0, std::max(width_ - 2, 0));
+  const int v0 = std::clamp(static_cast<int>(std::floor(v)), 0, std::max(height_ - 2, 0));
+  const int u1 = std::min(u0 + 1, width_ - 1);
+  const int v1 = std::min(v0 + 1, height_ - 1);
+  const Eigen::Vector3f& d00 = direction(u0, v0);
+  const Eigen::Vector3f& d10 = direction(u1, v0);
+  const Eigen::Vector3f& d01 = direction(u0, v1);
+  const Eigen::Vector3f& d11 = direction(u1, v1);
+  if (d00.isZero() || d10.isZero() || d01.isZero() || d11.isZero()) {
+    return Eigen::Vector3f::Zero();
+  }
+  const float a = u - static_cast<float>(u0);
+  const float b = v - static_cast<float>(v0);
+  return ((1.0f - b) * ((1.0f - a) * d00 + a * d10) + b * ((1.0f - a) * d01 + a * d11))
+      .normalized();
 }
 
 }  // namespace lineloc

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace lineloc {
@@ -16,14 +17,23 @@ static_assert(kTileSize * kTileSize == kRayPacketSize);
 constexpr float kShadowRayOffset_m = 2e-3f;
 // Grazing views stretch the footprint by 1 / cos; capped at this cosine.
 constexpr float kMinFootprintCosine = 0.2f;
+// Faces of one object meet at a crease when their normals part by more than
+// about 2.5 degrees.
+constexpr float kCreaseCosine = 0.999f;
+// Neighbouring pixels on one object and face orientation are a step, not one
+// surface, when their distances differ by more than this fraction (a wall
+// seen at 85 degrees from its normal changes by 2 % per pixel at f = 536 px).
+constexpr float kDepthStepFraction = 0.1f;
 
 const RenderOptions& validated(const RenderOptions& options) {
   if (!(options.exposure > 0.0f) || !(options.noise_sigma >= 0.0f) ||
-      options.motion_blur_samples < 1) {
+      options.motion_blur_samples < 1 || options.edge_pixel_samples < 1 ||
+      options.edge_pixel_samples > kRayPacketSize) {
     throw std::invalid_argument(
         fmt::format("CityRenderer: exposure must be > 0 ({}), noise_sigma >= 0 ({}), "
-                    "motion_blur_samples >= 1 ({})",
-                    options.exposure, options.noise_sigma, options.motion_blur_samples));
+                    "motion_blur_samples >= 1 ({}), edge_pixel_samples 1 to {} ({})",
+                    options.exposure, options.noise_sigma, options.motion_blur_samples,
+                    kRayPacketSize, options.edge_pixel_samples));
   }
   return options;
 }
@@ -38,6 +48,48 @@ Eigen::Isometry3d interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
   return pose;
 }
 
+// Every pixel seeing the sky, at infinity.
+PixelHits noHits(int width, int height) {
+  PixelHits pixels;
+  pixels.width = width;
+  pixels.height = height;
+  pixels.triangle.assign(static_cast<size_t>(width) * height, kNoTriangle);
+  pixels.distance_m.assign(pixels.triangle.size(), std::numeric_limits<float>::infinity());
+  return pixels;
+}
+
+// The n points of the rank-1 lattice (k / n, frac(k g / n)), shifted by half a
+// cell and centred on the pixel, whose generator g (coprime to n) keeps its
+// nearest two points farthest apart on the torus; the lattice is a group, so
+// that distance is the nearest point's to point 0.
+std::vector<Eigen::Vector2f> rankOneLatticeOffsets(int n) {
+  const auto torusDistance = [n](int k, int g) {
+    const double x = static_cast<double>(k) / n;
+    const double y = static_cast<double>(k * g % n) / n;
+    return std::hypot(std::min(x, 1.0 - x), std::min(y, 1.0 - y));
+  };
+  int best_generator = 1;
+  double best_distance = 0.0;
+  for (int g = 1; g < n; ++g) {
+    if (std::gcd(g, n) != 1) {
+      continue;
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 1; k < n; ++k) {
+      nearest = std::min(nearest, torusDistance(k, g));
+    }
+    if (nearest > best_distance) {
+      best_distance = nearest;
+      best_generator = g;
+    }
+  }
+  std::vector<Eigen::Vector2f> offsets_px;
+  for (int k = 0; k < n; ++k) {
+    offsets_px.emplace_back((k + 0.5f) / n - 0.5f, (k * best_generator % n + 0.5f) / n - 0.5f);
+  }
+  return offsets_px;
+}
+
 }  // namespace
 
 CityRenderer::CityRenderer(const SceneMesh& mesh, const CameraCalibration& calibration,
@@ -47,29 +99,26 @@ CityRenderer::CityRenderer(const SceneMesh& mesh, const CameraCalibration& calib
       rays_(calibration),
       caster_(mesh_),
       shader_(options.shading),
-      pixel_angle_rad_(static_cast<float>(1.0 / calibration.camera.fx)) {}
+      pixel_angle_rad_(static_cast<float>(1.0 / calibration.camera.fx)),
+      edge_sample_offsets_px_(rankOneLatticeOffsets(options.edge_pixel_samples)) {}
 
-void CityRenderer::castTile(const Eigen::Matrix3f& R_world_camera, const Eigen::Vector3f& origin,
-                            int u0, int v0, RayPacket& rays, PacketHits& hits) const {
+void CityRenderer::setRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& d, int i,
+                          RayPacket& rays) const {
   const float ground_z = options_.ground_z_m;
-  for (int i = 0; i < kRayPacketSize; ++i) {
-    const int u = u0 + i % kTileSize;
-    const int v = v0 + i / kTileSize;
-    const bool inside = u < rays_.width() && v < rays_.height();
-    const Eigen::Vector3f d =
-        inside ? Eigen::Vector3f(R_world_camera * rays_.direction(u, v)) : Eigen::Vector3f::Zero();
-    rays.origin_x[i] = origin.x();
-    rays.origin_y[i] = origin.y();
-    rays.origin_z[i] = origin.z();
-    rays.direction_x[i] = d.x();
-    rays.direction_y[i] = d.y();
-    rays.direction_z[i] = d.z();
-    rays.t_near[i] = 0.0f;
-    // The ground plane z = ground_z ends every downward ray: t = (ground_z - o_z) / d_z.
-    rays.t_far[i] = d.z() < 0.0f && origin.z() > ground_z ? (ground_z - origin.z()) / d.z()
-                                                          : std::numeric_limits<float>::infinity();
-    rays.active[i] = inside && d.squaredNorm() > 0.0f;
-  }
+  rays.origin_x[i] = origin.x();
+  rays.origin_y[i] = origin.y();
+  rays.origin_z[i] = origin.z();
+  rays.direction_x[i] = d.x();
+  rays.direction_y[i] = d.y();
+  rays.direction_z[i] = d.z();
+  rays.t_near[i] = 0.0f;
+  // The ground plane z = ground_z ends every downward ray: t = (ground_z - o_z) / d_z.
+  rays.t_far[i] = d.z() < 0.0f && origin.z() > ground_z ? (ground_z - origin.z()) / d.z()
+                                                        : std::numeric_limits<float>::infinity();
+  rays.active[i] = d.squaredNorm() > 0.0f;
+}
+
+void CityRenderer::intersect(const RayPacket& rays, PacketHits& hits) const {
   caster_.intersect(rays, hits);
   for (int i = 0; i < kRayPacketSize; ++i) {
     if (rays.active[i] && hits.triangle[i] == kNoTriangle && std::isfinite(rays.t_far[i])) {
@@ -79,12 +128,33 @@ void CityRenderer::castTile(const Eigen::Matrix3f& R_world_camera, const Eigen::
   }
 }
 
+void CityRenderer::castTile(const Eigen::Matrix3f& R_world_camera, const Eigen::Vector3f& origin,
+                            int u0, int v0, RayPacket& rays, PacketHits& hits) const {
+  for (int i = 0; i < kRayPacketSize; ++i) {
+    const int u = u0 + i % kTileSize;
+    const int v = v0 + i / kTileSize;
+    const bool inside = u < rays_.width() && v < rays_.height();
+    setRay(
+        origin,
+        inside ? Eigen::Vector3f(R_world_camera * rays_.direction(u, v)) : Eigen::Vector3f::Zero(),
+        i, rays);
+  }
+  intersect(rays, hits);
+}
+
+void CityRenderer::storeTile(const RayPacket& rays, const PacketHits& hits, int u0, int v0,
+                             PixelHits& pixels) const {
+  for (int i = 0; i < kRayPacketSize; ++i) {
+    if (rays.active[i]) {
+      const size_t index = (v0 + i / kTileSize) * pixels.width + u0 + i % kTileSize;
+      pixels.triangle[index] = hits.triangle[i];
+      pixels.distance_m[index] = hits.t[i];
+    }
+  }
+}
+
 PixelHits CityRenderer::castPrimaryRays(const Eigen::Isometry3d& T_world_camera) const {
-  PixelHits pixels;
-  pixels.width = rays_.width();
-  pixels.height = rays_.height();
-  pixels.triangle.assign(static_cast<size_t>(pixels.width) * pixels.height, kNoTriangle);
-  pixels.distance_m.assign(pixels.triangle.size(), std::numeric_limits<float>::infinity());
+  PixelHits pixels = noHits(rays_.width(), rays_.height());
   const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
   const Eigen::Vector3f origin = T_world_camera.translation().cast<float>();
   RayPacket rays;
@@ -92,20 +162,14 @@ PixelHits CityRenderer::castPrimaryRays(const Eigen::Isometry3d& T_world_camera)
   for (int v0 = 0; v0 < pixels.height; v0 += kTileSize) {
     for (int u0 = 0; u0 < pixels.width; u0 += kTileSize) {
       castTile(R, origin, u0, v0, rays, hits);
-      for (int i = 0; i < kRayPacketSize; ++i) {
-        if (rays.active[i]) {
-          const size_t index = (v0 + i / kTileSize) * pixels.width + u0 + i % kTileSize;
-          pixels.triangle[index] = hits.triangle[i];
-          pixels.distance_m[index] = hits.t[i];
-        }
-      }
+      storeTile(rays, hits, u0, v0, pixels);
     }
   }
   return pixels;
 }
 
-void CityRenderer::shadeTile(const RayPacket& rays, const PacketHits& hits, int u0, int v0,
-                             cv::Mat& radiance) const {
+void CityRenderer::shadePacket(const RayPacket& rays, const PacketHits& hits,
+                               std::array<float, kRayPacketSize>& radiance) const {
   RayPacket shadow_rays;
   std::array<Eigen::Vector3f, kRayPacketSize> normals;
   std::array<float, kRayPacketSize> albedo{};
@@ -149,9 +213,83 @@ void CityRenderer::shadeTile(const RayPacket& rays, const PacketHits& hits, int 
       continue;
     }
     const Eigen::Vector3f d(rays.direction_x[i], rays.direction_y[i], rays.direction_z[i]);
-    radiance.at<float>(v0 + i / kTileSize, u0 + i % kTileSize) =
-        hits.triangle[i] == kNoTriangle ? shader_.skyRadiance(d)
-                                        : albedo[i] * shader_.irradiance(normals[i], in_shadow[i]);
+    radiance[i] = hits.triangle[i] == kNoTriangle
+                      ? shader_.skyRadiance(d)
+                      : albedo[i] * shader_.irradiance(normals[i], in_shadow[i]);
+  }
+}
+
+bool CityRenderer::surfacesDiffer(uint32_t triangle_a, float distance_a_m, uint32_t triangle_b,
+                                  float distance_b_m) const {
+  if (triangle_a == triangle_b) {
+    return false;
+  }
+  if (triangle_a >= kGroundTriangle || triangle_b >= kGroundTriangle) {
+    return true;  // the sky or the ground beside anything else
+  }
+  const SurfaceTag& a = mesh_.tag(triangle_a);
+  const SurfaceTag& b = mesh_.tag(triangle_b);
+  if (a.object_id != b.object_id || a.kind != b.kind ||
+      mesh_.normal(triangle_a).dot(mesh_.normal(triangle_b)) < kCreaseCosine) {
+    return true;
+  }
+  return std::abs(distance_a_m - distance_b_m) >
+         kDepthStepFraction * std::min(distance_a_m, distance_b_m);
+}
+
+void CityRenderer::integrateEdgePixels(const Eigen::Matrix3f& R_world_camera,
+                                       const Eigen::Vector3f& origin, const PixelHits& pixels,
+                                       cv::Mat& radiance) const {
+  const int width = pixels.width;
+  const int height = pixels.height;
+  std::vector<uint8_t> on_edge(pixels.triangle.size(), 0);
+  const auto compare = [&](size_t a, size_t b) {
+    if (surfacesDiffer(pixels.triangle[a], pixels.distance_m[a], pixels.triangle[b],
+                       pixels.distance_m[b])) {
+      on_edge[a] = on_edge[b] = 1;
+    }
+  };
+  for (int v = 0; v < height; ++v) {
+    for (int u = 0; u < width; ++u) {
+      const size_t index = static_cast<size_t>(v) * width + u;
+      if (u + 1 < width) {
+        compare(index, index + 1);
+      }
+      if (v + 1 < height) {
+        compare(index, index + width);
+      }
+    }
+  }
+  RayPacket rays;
+  PacketHits hits;
+  std::array<float, kRayPacketSize> sample_radiance{};
+  const int samples = static_cast<int>(edge_sample_offsets_px_.size());
+  for (int i = samples; i < kRayPacketSize; ++i) {
+    rays.active[i] = false;
+  }
+  for (size_t index = 0; index < on_edge.size(); ++index) {
+    if (!on_edge[index]) {
+      continue;
+    }
+    const float u = static_cast<float>(index % width);
+    const float v = static_cast<float>(index / width);
+    for (int k = 0; k < samples; ++k) {
+      const Eigen::Vector2f& offset = edge_sample_offsets_px_[k];
+      setRay(origin, R_world_camera * rays_.directionAt(u + offset.x(), v + offset.y()), k, rays);
+    }
+    intersect(rays, hits);
+    shadePacket(rays, hits, sample_radiance);
+    float sum = 0.0f;
+    int active = 0;
+    for (int k = 0; k < samples; ++k) {
+      if (rays.active[k]) {
+        sum += sample_radiance[k];
+        ++active;
+      }
+    }
+    if (active > 0) {
+      radiance.at<float>(static_cast<int>(v), static_cast<int>(u)) = sum / active;
+    }
   }
 }
 
@@ -159,13 +297,24 @@ cv::Mat CityRenderer::renderRadiance(const Eigen::Isometry3d& T_world_camera) co
   cv::Mat radiance(rays_.height(), rays_.width(), CV_32FC1, cv::Scalar(0.0f));
   const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
   const Eigen::Vector3f origin = T_world_camera.translation().cast<float>();
+  PixelHits pixels = noHits(rays_.width(), rays_.height());
   RayPacket rays;
   PacketHits hits;
+  std::array<float, kRayPacketSize> tile_radiance{};
   for (int v0 = 0; v0 < rays_.height(); v0 += kTileSize) {
     for (int u0 = 0; u0 < rays_.width(); u0 += kTileSize) {
       castTile(R, origin, u0, v0, rays, hits);
-      shadeTile(rays, hits, u0, v0, radiance);
+      storeTile(rays, hits, u0, v0, pixels);
+      shadePacket(rays, hits, tile_radiance);
+      for (int i = 0; i < kRayPacketSize; ++i) {
+        if (rays.active[i]) {
+          radiance.at<float>(v0 + i / kTileSize, u0 + i % kTileSize) = tile_radiance[i];
+        }
+      }
     }
+  }
+  if (edge_sample_offsets_px_.size() > 1) {
+    integrateEdgePixels(R, origin, pixels, radiance);
   }
   return radiance;
 }

@@ -46,6 +46,23 @@ TEST(CameraRays, PinholeRaysAreInverseIntrinsics) {
   EXPECT_NEAR(pixel.y(), 30.0, 1e-3);
 }
 
+TEST(CameraRays, SubPixelRaysProjectBackToTheirPointWithOpenCv) {
+  const CameraCalibration calibration = opencvSampleCamera();
+  const CameraRays rays(calibration);
+  // Inside the image and in its outermost half pixel, where the ray is
+  // extrapolated from the last two pixel centres.
+  const std::vector<Eigen::Vector2f> points = {
+      {0.37f, 0.81f}, {-0.45f, 100.25f}, {320.5f, 240.5f}, {639.45f, 479.3f}, {17.9f, 452.12f}};
+  for (const Eigen::Vector2f& point : points) {
+    const Eigen::Vector3d d = rays.directionAt(point.x(), point.y()).cast<double>();
+    ASSERT_NEAR(d.norm(), 1.0, 1e-6);
+    const cv::Point2d pixel = projectWithOpenCv(calibration, d);
+    // Bilinear across one pixel of this lens's strongest bend (its corners).
+    EXPECT_NEAR(pixel.x, point.x(), 2e-3) << point.transpose();
+    EXPECT_NEAR(pixel.y, point.y(), 2e-3) << point.transpose();
+  }
+}
+
 TEST(CameraRays, RejectsInvalidCamera) {
   CameraCalibration calibration = opencvSampleCamera();
   calibration.camera.fx = 0.0;

@@ -223,9 +223,55 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
 }
 
+// A wall straight ahead whose left vertical edge falls at `edge_u` in the
+// pinhole sample camera: the edge pixel's radiance tells the share c of it
+// that the wall covers, (I - sky) / (wall - sky) from its neighbours, and a
+// pixel integrating its area gives c = edge_u's distance to the pixel's right
+// border, to 1 / 32 with 16 lattice rays (16 distinct columns).
+double coverageError(int edge_pixel_samples, double edge_u) {
+  CameraCalibration calibration = opencvSampleCamera();
+  calibration.distortion.clear();
+  const PinholeCamera& camera = calibration.camera;
+  RenderOptions options = noiselessOptions();
+  options.shadows = false;
+  options.edge_pixel_samples = edge_pixel_samples;
+  // The camera looks along world +x with image u along world -y: the edge at
+  // depth 10 m sits at world y = (cx - edge_u) 10 / fx.
+  constexpr double kDepth_m = 10.0;
+  const double edge_y = (camera.cx - edge_u) * kDepth_m / camera.fx;
+  constexpr double kHalfWidth_m = 2.0;
+  Eigen::Isometry3d T_world_wall = Eigen::Isometry3d::Identity();
+  T_world_wall.translation() = Eigen::Vector3d(kDepth_m + 0.5, edge_y - kHalfWidth_m, 2.0);
+  SceneMesh mesh;
+  mesh.addBox(T_world_wall, Eigen::Vector3d(0.5, kHalfWidth_m, 2.0),
+              SurfaceTag{SurfaceKind::kPole, 1, 0.0f, 4.0f});
+  const CityRenderer renderer(mesh, calibration, options);
+  const cv::Mat radiance = renderer.renderRadiance(forwardLookingCamera());
+  const int v = static_cast<int>(std::lround(camera.cy)) - 20;  // sky beside the wall
+  const int u = static_cast<int>(std::lround(edge_u));
+  const float sky = radiance.at<float>(v, u - 2);
+  const float wall = radiance.at<float>(v, u + 2);
+  const double covered = (radiance.at<float>(v, u) - sky) / (wall - sky);
+  return std::abs(covered - (u + 0.5 - edge_u));
+}
+
+TEST(CityRenderer, AnEdgePixelIsTheMeanOverItsArea) {
+  for (const double fraction : {0.1, 0.3, 0.45, 0.6, 0.85}) {
+    const double edge_u = 200.5 + fraction;
+    EXPECT_LE(coverageError(16, edge_u), 1.0 / 32.0 + 0.005) << "edge at u = " << edge_u;
+  }
+  // One ray per pixel puts the edge on a pixel border.
+  EXPECT_GT(coverageError(1, 200.8), 0.25);
+}
+
 TEST(CityRenderer, RejectsInvalidOptions) {
   RenderOptions options;
   options.motion_blur_samples = 0;
+  EXPECT_THROW(CityRenderer(SceneMesh{}, quarterCamera(), options), std::invalid_argument);
+  options = RenderOptions{};
+  options.edge_pixel_samples = 0;
+  EXPECT_THROW(CityRenderer(SceneMesh{}, quarterCamera(), options), std::invalid_argument);
+  options.edge_pixel_samples = kRayPacketSize + 1;
   EXPECT_THROW(CityRenderer(SceneMesh{}, quarterCamera(), options), std::invalid_argument);
   options = RenderOptions{};
   options.exposure = 0.0f;

@@ -115,11 +115,7 @@ ErrorCovariance reportedCovariance(ErrorCovariance covariance, const Matrix6d& u
                                    const Matrix6d& fix_offset_body) {
   const Matrix6d pose = poseBlock(covariance) + unproven_body;
   const Matrix6d covering = coveringCovariance(pose, fix_offset_body);
-  const Matrix6d reported = covering.allFinite() ? covering : pose + fix_offset_body;
-  covariance.block<3, 3>(kPosition, kPosition) = reported.topLeftCorner<3, 3>();
-  covariance.block<3, 3>(kPosition, kAttitude) = reported.topRightCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kPosition) = reported.bottomLeftCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kAttitude) = reported.bottomRightCorner<3, 3>();
+  setPoseBlock(covering.allFinite() ? covering : pose + fix_offset_body, covariance);
   return covariance;
 }
 
@@ -583,10 +579,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
   ErrorCovariance covariance = ErrorCovariance::Zero();
-  covariance.block<3, 3>(kPosition, kPosition) = fix.covariance.topLeftCorner<3, 3>();
-  covariance.block<3, 3>(kPosition, kAttitude) = fix.covariance.topRightCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kPosition) = fix.covariance.bottomLeftCorner<3, 3>();
-  covariance.block<3, 3>(kAttitude, kAttitude) = fix.covariance.bottomRightCorner<3, 3>();
+  setPoseBlock(fix.covariance, covariance);
   covariance.block<3, 3>(kVelocity, kVelocity)
       .diagonal()
       .setConstant(velocity.sigma_mps * velocity.sigma_mps);

@@ -73,8 +73,9 @@
 // the share of a fix's error no run of fixes averages away, 0.54 at 1-2 m
 // above. The tilt too: gravity bounds it only to an accelerometer bias over g
 // (0.3 degrees), and a run of fixes tilted alike pulls it (seed 12: fixes
-// 0.03-0.05 degrees off about both horizontal axes for a second, a filter
-// sure of its tilt to 0.015 degrees, 9 states beyond the bound). The
+// +0.01 to +0.05 degrees off about the world's x axis and -0.03 to -0.10
+// about its y axis for a second left the state 0.03-0.05 degrees off, sure
+// of its tilt to 0.015 degrees: 9 states beyond the bound). The
 // filter's own covariance, its updates and the predictions for the backbone
 // keep the model above.
 //

@@ -38,6 +38,13 @@ Matrix6d poseBlock(const ErrorCovariance& covariance) {
   return pose;
 }
 
+void setPoseBlock(const Matrix6d& pose, ErrorCovariance& covariance) {
+  covariance.block<3, 3>(kPosition, kPosition) = pose.topLeftCorner<3, 3>();
+  covariance.block<3, 3>(kPosition, kAttitude) = pose.topRightCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kPosition) = pose.bottomLeftCorner<3, 3>();
+  covariance.block<3, 3>(kAttitude, kAttitude) = pose.bottomRightCorner<3, 3>();
+}
+
 void injectError(const ErrorVector& dx, NavigationState& state) {
   state.p_world_body += dx.segment<3>(kPosition);
   state.v_world_body += dx.segment<3>(kVelocity);

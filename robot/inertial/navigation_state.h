@@ -40,6 +40,8 @@ struct NavigationState {
 
 // The covariance of the body's pose error [dp; dtheta] inside `covariance`.
 Matrix6d poseBlock(const ErrorCovariance& covariance);
+// Writes `pose` over that block, leaving the rest of `covariance` as it is.
+void setPoseBlock(const Matrix6d& pose, ErrorCovariance& covariance);
 
 // Applies an error-state correction: p += dp, v += dv, R = Exp(dtheta) R, b += db.
 void injectError(const ErrorVector& dx, NavigationState& state);

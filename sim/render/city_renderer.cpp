@@ -153,19 +153,34 @@ void CityRenderer::storeTile(const RayPacket& rays, const PacketHits& hits, int 
   }
 }
 
-PixelHits CityRenderer::castPrimaryRays(const Eigen::Isometry3d& T_world_camera) const {
+PixelHits CityRenderer::castPixels(const Eigen::Isometry3d& T_world_camera,
+                                   cv::Mat* radiance) const {
   PixelHits pixels = noHits(rays_.width(), rays_.height());
   const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
   const Eigen::Vector3f origin = T_world_camera.translation().cast<float>();
   RayPacket rays;
   PacketHits hits;
+  std::array<float, kRayPacketSize> tile_radiance{};
   for (int v0 = 0; v0 < pixels.height; v0 += kTileSize) {
     for (int u0 = 0; u0 < pixels.width; u0 += kTileSize) {
       castTile(R, origin, u0, v0, rays, hits);
       storeTile(rays, hits, u0, v0, pixels);
+      if (radiance == nullptr) {
+        continue;
+      }
+      shadePacket(rays, hits, tile_radiance);
+      for (int i = 0; i < kRayPacketSize; ++i) {
+        if (rays.active[i]) {
+          radiance->at<float>(v0 + i / kTileSize, u0 + i % kTileSize) = tile_radiance[i];
+        }
+      }
     }
   }
   return pixels;
+}
+
+PixelHits CityRenderer::castPrimaryRays(const Eigen::Isometry3d& T_world_camera) const {
+  return castPixels(T_world_camera, nullptr);
 }
 
 void CityRenderer::shadePacket(const RayPacket& rays, const PacketHits& hits,
@@ -295,26 +310,10 @@ void CityRenderer::integrateEdgePixels(const Eigen::Matrix3f& R_world_camera,
 
 cv::Mat CityRenderer::renderRadiance(const Eigen::Isometry3d& T_world_camera) const {
   cv::Mat radiance(rays_.height(), rays_.width(), CV_32FC1, cv::Scalar(0.0f));
-  const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
-  const Eigen::Vector3f origin = T_world_camera.translation().cast<float>();
-  PixelHits pixels = noHits(rays_.width(), rays_.height());
-  RayPacket rays;
-  PacketHits hits;
-  std::array<float, kRayPacketSize> tile_radiance{};
-  for (int v0 = 0; v0 < rays_.height(); v0 += kTileSize) {
-    for (int u0 = 0; u0 < rays_.width(); u0 += kTileSize) {
-      castTile(R, origin, u0, v0, rays, hits);
-      storeTile(rays, hits, u0, v0, pixels);
-      shadePacket(rays, hits, tile_radiance);
-      for (int i = 0; i < kRayPacketSize; ++i) {
-        if (rays.active[i]) {
-          radiance.at<float>(v0 + i / kTileSize, u0 + i % kTileSize) = tile_radiance[i];
-        }
-      }
-    }
-  }
+  const PixelHits pixels = castPixels(T_world_camera, &radiance);
   if (edge_sample_offsets_px_.size() > 1) {
-    integrateEdgePixels(R, origin, pixels, radiance);
+    integrateEdgePixels(T_world_camera.linear().cast<float>(),
+                        T_world_camera.translation().cast<float>(), pixels, radiance);
   }
   return radiance;
 }

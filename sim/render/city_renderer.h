@@ -96,6 +96,9 @@ class CityRenderer {
   // Stores a tile's hits in `pixels`.
   void storeTile(const RayPacket& rays, const PacketHits& hits, int u0, int v0,
                  PixelHits& pixels) const;
+  // Casts every pixel's primary ray, tile by tile, and shades each tile into
+  // `radiance` (CV_32FC1, the image's size) unless it is null.
+  PixelHits castPixels(const Eigen::Isometry3d& T_world_camera, cv::Mat* radiance) const;
   // Radiance along each active ray of a packet.
   void shadePacket(const RayPacket& rays, const PacketHits& hits,
                    std::array<float, kRayPacketSize>& radiance) const;

@@ -5,6 +5,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <utility>
 
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
@@ -223,45 +224,83 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
 }
 
+// What a pixel on a wall's vertical edge sees beside the wall: each is an edge
+// by another clause of the edge rule.
+enum class BesideTheEdge {
+  kSky,
+  // The box is turned 45 degrees: its corner is a crease between two faces of
+  // one object, lit differently.
+  kAnotherFaceOfTheSameObject,
+  // A wall of the same object facing the same way, 2 m behind (a depth step
+  // of 20 %), in the shadow of the near one.
+  kTheSameObjectFarther,
+};
+
 // A wall straight ahead whose left vertical edge falls at `edge_u` in the
 // pinhole sample camera: the edge pixel's radiance tells the share c of it
-// that the wall covers, (I - sky) / (wall - sky) from its neighbours, and a
-// pixel integrating its area gives c = edge_u's distance to the pixel's right
-// border, to 1 / 32 with 16 lattice rays (16 distinct columns).
-double coverageError(int edge_pixel_samples, double edge_u) {
+// that the wall covers, (I - beside) / (wall - beside) from its neighbours,
+// and a pixel integrating its area gives c = edge_u's distance to the pixel's
+// right border, to 1 / 32 with 16 lattice rays (16 distinct columns).
+double coverageError(int edge_pixel_samples, double edge_u, BesideTheEdge beside) {
   CameraCalibration calibration = opencvSampleCamera();
   calibration.distortion.clear();
   const PinholeCamera& camera = calibration.camera;
   RenderOptions options = noiselessOptions();
-  options.shadows = false;
+  options.shadows = beside == BesideTheEdge::kTheSameObjectFarther;
   options.edge_pixel_samples = edge_pixel_samples;
+  // From the camera's side: the face on the edge's right (normal -x or, turned,
+  // (-1, -1) / sqrt(2)) is lit, the one on its left is not.
+  options.shading.sun_direction = Eigen::Vector3f(-0.5f, -0.7f, 0.5f).normalized();
   // The camera looks along world +x with image u along world -y: the edge at
   // depth 10 m sits at world y = (cx - edge_u) 10 / fx.
   constexpr double kDepth_m = 10.0;
   const double edge_y = (camera.cx - edge_u) * kDepth_m / camera.fx;
   constexpr double kHalfWidth_m = 2.0;
+  const SurfaceTag tag{SurfaceKind::kPole, 1, 0.0f, 4.0f};
+  const Eigen::Vector3d half_size(0.5, kHalfWidth_m, 2.0);
   Eigen::Isometry3d T_world_wall = Eigen::Isometry3d::Identity();
-  T_world_wall.translation() = Eigen::Vector3d(kDepth_m + 0.5, edge_y - kHalfWidth_m, 2.0);
   SceneMesh mesh;
-  mesh.addBox(T_world_wall, Eigen::Vector3d(0.5, kHalfWidth_m, 2.0),
-              SurfaceTag{SurfaceKind::kPole, 1, 0.0f, 4.0f});
+  if (beside == BesideTheEdge::kAnotherFaceOfTheSameObject) {
+    // Corner (-a, a) of a box turned 45 degrees about z points at the camera:
+    // R (-a, a) = (-a sqrt(2), 0).
+    T_world_wall.linear() =
+        Eigen::AngleAxisd(std::numbers::pi / 4.0, Eigen::Vector3d::UnitZ()).matrix();
+    T_world_wall.translation() =
+        Eigen::Vector3d(kDepth_m + kHalfWidth_m * std::numbers::sqrt2, edge_y, 2.0);
+    mesh.addBox(T_world_wall, Eigen::Vector3d(kHalfWidth_m, kHalfWidth_m, 2.0), tag);
+  } else {
+    T_world_wall.translation() = Eigen::Vector3d(kDepth_m + 0.5, edge_y - kHalfWidth_m, 2.0);
+    mesh.addBox(T_world_wall, half_size, tag);
+  }
+  if (beside == BesideTheEdge::kTheSameObjectFarther) {
+    Eigen::Isometry3d T_world_far_wall = T_world_wall;
+    T_world_far_wall.translation() += Eigen::Vector3d(2.5, 2.0 * kHalfWidth_m, 0.0);
+    mesh.addBox(T_world_far_wall, Eigen::Vector3d(0.5, 3.0 * kHalfWidth_m, 2.0), tag);
+  }
   const CityRenderer renderer(mesh, calibration, options);
   const cv::Mat radiance = renderer.renderRadiance(forwardLookingCamera());
-  const int v = static_cast<int>(std::lround(camera.cy)) - 20;  // sky beside the wall
+  const int v = static_cast<int>(std::lround(camera.cy)) - 20;
   const int u = static_cast<int>(std::lround(edge_u));
-  const float sky = radiance.at<float>(v, u - 2);
+  const float beside_radiance = radiance.at<float>(v, u - 2);
   const float wall = radiance.at<float>(v, u + 2);
-  const double covered = (radiance.at<float>(v, u) - sky) / (wall - sky);
+  EXPECT_GT(std::abs(wall - beside_radiance), 0.1f) << "no contrast to measure coverage with";
+  const double covered = (radiance.at<float>(v, u) - beside_radiance) / (wall - beside_radiance);
   return std::abs(covered - (u + 0.5 - edge_u));
 }
 
 TEST(CityRenderer, AnEdgePixelIsTheMeanOverItsArea) {
-  for (const double fraction : {0.1, 0.3, 0.45, 0.6, 0.85}) {
-    const double edge_u = 200.5 + fraction;
-    EXPECT_LE(coverageError(16, edge_u), 1.0 / 32.0 + 0.005) << "edge at u = " << edge_u;
+  for (const auto& [beside, name] :
+       {std::pair{BesideTheEdge::kSky, "the sky"},
+        std::pair{BesideTheEdge::kAnotherFaceOfTheSameObject, "a crease"},
+        std::pair{BesideTheEdge::kTheSameObjectFarther, "a depth step"}}) {
+    SCOPED_TRACE(name);
+    for (const double fraction : {0.1, 0.3, 0.45, 0.6, 0.85}) {
+      const double edge_u = 200.5 + fraction;
+      EXPECT_LE(coverageError(16, edge_u, beside), 1.0 / 32.0 + 0.005) << "edge at u = " << edge_u;
+    }
+    // One ray per pixel puts the edge on a pixel border.
+    EXPECT_GT(coverageError(1, 200.8, beside), 0.25);
   }
-  // One ray per pixel puts the edge on a pixel border.
-  EXPECT_GT(coverageError(1, 200.8), 0.25);
 }
 
 TEST(CityRenderer, RejectsInvalidOptions) {

@@ -760,17 +760,38 @@ TEST(InertialNavigatorConsistency, ReportsTheShareOfFixErrorsNoRunOfFixesAverage
 }
 
 // A state started as exactly known (a zero covariance) is reported as such,
-// not as the infinite covering of a singular pose block.
+// not as the infinite covering of a singular pose block. Without process noise
+// it stays exactly known, and a fix moves it nothing (the gain is zero) and
+// leaves its pose block singular; it is then reported as uncertain by the
+// share of the fix's covariance no run of fixes averages away, f R.
 TEST(InertialNavigator, ReportsAStateStartedAsExactlyKnownAsExact) {
   const Drive drive(8, 5.0);
-  InertialNavigator navigator(InertialNavigatorConfig{});
-  navigator.addImu(toImuSample(drive.imu.front()));
-  ASSERT_TRUE(navigator.initialise(truthState(drive.trajectory, drive.imu.front().stamp_ns),
+  InertialNavigatorConfig config;
+  config.imu_noise = ImuNoiseDensities{0.0, 0.0, 0.0, 0.0};
+  InertialNavigator navigator(config);
+  navigator.addImu(toImuSample(drive.imu[0]));
+  ASSERT_TRUE(navigator.initialise(truthState(drive.trajectory, drive.imu[0].stamp_ns),
                                    ErrorCovariance::Zero()));
+  const int64_t fix_ns = drive.imu[1].stamp_ns;
+  navigator.addImu(toImuSample(drive.imu[1]));
   const std::optional<NavigatorEstimate> estimate = navigator.state();
   ASSERT_TRUE(estimate);
   EXPECT_TRUE(estimate->covariance.isZero());
   EXPECT_EQ(navigator.health().position_sigma_m, 0.0);
+
+  constexpr double kFixPosition_m = 0.03;
+  std::mt19937_64 random(1);
+  const PoseWithCovariance fix = testing::noisyCameraFix(
+      drive.trajectory, fix_ns, config.T_body_camera, kFixPosition_m, 0.002, random);
+  ASSERT_EQ(navigator.applyVisionFix(fix_ns, fix), MeasurementOutcome::kAccepted);
+  const std::optional<NavigatorEstimate> fixed = navigator.state();
+  ASSERT_TRUE(fixed);
+  EXPECT_TRUE(fixed->state.p_world_body.isApprox(estimate->state.p_world_body, 1e-12));
+  const Matrix6d reported = navigator.cameraPose(*fixed).covariance;
+  EXPECT_TRUE(reported.isApprox(config.shared_fix_error_fraction * fix.covariance, 1e-9))
+      << reported;
+  EXPECT_NEAR(navigator.health().position_sigma_m,
+              std::sqrt(config.shared_fix_error_fraction) * kFixPosition_m, 1e-9);
 }
 
 TEST(InertialNavigator, PredictsTheCameraPoseAtFrameTimes) {

@@ -129,20 +129,25 @@ struct AlignmentOptions {
   // acquisition's hypotheses keep c = 2 (pose_acquisition.h).
   //
   // What c = 0.7 leaves. Aligned frame by frame from the truth (a 5 cm, 0.2
-  // degree prior) on every fourth driving frame of simulated Delft seeds 19,
-  // 11, 23 and 47, the poses sat 5.2, 5.7, 5.2 and 4.1 cm ahead along the view
-  // on average, as those drives' online fixes did (6.2, 5.7, 5.6, 3.4): the
-  // bias is the views', not the filter's or the fixes' timing, and a pinhole
-  // render of seed 19 keeps it (4.6 cm), so not the lens either. Against the
-  // truth, about a quarter of its vertical lines' matches lay 0.5-1.5 px
-  // beside them, on the façade's side: outward from the image centre on both
-  // sides of the street, which a camera nearer the façades explains; the rest
-  // lay 0.02 px off on average. The simulator's windows sit on a grid that
-  // ignores where walls end, so a corner often cuts a window or lies beside its
-  // frame; rendered without windows, the same frames sat 0.7 cm ahead. Windows
-  // kept 0.5 m in from every wall's end took those edges away, but made a
-  // basin of their own: 35 of 83 aligned frames settled 0.3-0.7 m off, most
-  // of them ahead, each corner on the window column beside it.
+  // degree prior) on every fourth driving frame of simulated Delft seeds 19, 11,
+  // 23 and 47, the poses sat 5.2, 5.7, 5.2 and 4.1 cm ahead along the view on
+  // average, as those drives' online fixes did (6.2, 5.7, 5.6, 3.4): the bias is
+  // the views', not the filter's or the fixes' timing, and a pinhole render of
+  // seed 19 keeps it (4.8 cm), so not the lens either. Against the truth, about a
+  // quarter of its vertical lines' matches lay 0.5-1.5 px beside them, on the
+  // façade's side: outward from the image centre on both sides of the street,
+  // which a camera nearer the façades explains; the rest lay 0.02 px off on
+  // average. The simulator's windows sit on a grid that ignores where walls end,
+  // so a corner often cuts a window or lies beside its frame. Rendered without
+  // windows (pinhole), seed 19's frames sat 0.7 cm ahead, but only 52 of 107
+  // aligned, on 8-13 inliers (median 9; the rest ill-conditioned or short of
+  // matches), where with windows 101 aligned, on 10-18 (median 12), a quarter of
+  // the vertical ones such edges. Leaving out the vertical matches more than one
+  // standard deviation outward took seed 19's bias from 5.2 to 3.4 cm (4.8 cm
+  // beyond two), so those edges are not all of it. Windows kept 0.5 m in from
+  // every wall's end (pinhole) took the edges beside corners away, but made a
+  // basin of their own: 35 of 83 aligned frames settled 0.3-0.7 m off, most of
+  // them ahead, each corner on the window column beside it.
   double loss_scale_sigma = 0.7;
   // Image segments whose best candidate is not this much better (chi^2) than
   // the second, within the first round, are left out: ambiguous under the prior.

@@ -231,8 +231,8 @@ enum class BesideTheEdge {
   // The box is turned 45 degrees: its corner is a crease between two faces of
   // one object, lit differently.
   kAnotherFaceOfTheSameObject,
-  // A wall of the same object facing the same way, 2 m behind (a depth step
-  // of 20 %), in the shadow of the near one.
+  // A wall of the same object facing the same way, its front face 2.5 m
+  // behind the near one's (a depth step of 25 %), in the near one's shadow.
   kTheSameObjectFarther,
 };
 
@@ -257,7 +257,6 @@ double coverageError(int edge_pixel_samples, double edge_u, BesideTheEdge beside
   const double edge_y = (camera.cx - edge_u) * kDepth_m / camera.fx;
   constexpr double kHalfWidth_m = 2.0;
   const SurfaceTag tag{SurfaceKind::kPole, 1, 0.0f, 4.0f};
-  const Eigen::Vector3d half_size(0.5, kHalfWidth_m, 2.0);
   Eigen::Isometry3d T_world_wall = Eigen::Isometry3d::Identity();
   SceneMesh mesh;
   if (beside == BesideTheEdge::kAnotherFaceOfTheSameObject) {
@@ -270,7 +269,7 @@ double coverageError(int edge_pixel_samples, double edge_u, BesideTheEdge beside
     mesh.addBox(T_world_wall, Eigen::Vector3d(kHalfWidth_m, kHalfWidth_m, 2.0), tag);
   } else {
     T_world_wall.translation() = Eigen::Vector3d(kDepth_m + 0.5, edge_y - kHalfWidth_m, 2.0);
-    mesh.addBox(T_world_wall, half_size, tag);
+    mesh.addBox(T_world_wall, Eigen::Vector3d(0.5, kHalfWidth_m, 2.0), tag);
   }
   if (beside == BesideTheEdge::kTheSameObjectFarther) {
     Eigen::Isometry3d T_world_far_wall = T_world_wall;

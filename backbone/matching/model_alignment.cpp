@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
 #include "common/pose/pose_estimator.h"
 #include "common/stats/confidence_scale.h"
@@ -37,11 +38,31 @@ Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world, double model
   return variance * Eigen::Matrix2d::Identity();
 }
 
+// Mean over the seen segment's endpoints of their normal offset from the
+// model line projected with the pose, towards the line's façade side, in
+// standard deviations of the correspondence: n_f . (q_i - l) / sqrt(n_f^T
+// Sigma_i n_f), n_f the unit normal on the façade's side.
+double facadeSideOffsetSigma(const LineCorrespondence& correspondence, int facade_side,
+                             const Eigen::Isometry3d& T_camera_world, const PinholeCamera& camera) {
+  const Eigen::Vector2d start_px = camera.project(T_camera_world * correspondence.start_world);
+  const Eigen::Vector2d direction =
+      (camera.project(T_camera_world * correspondence.end_world) - start_px).normalized();
+  // The left normal (image, y down) of direction (dx, dy) is (dy, -dx).
+  const Eigen::Vector2d towards_facade =
+      facade_side * Eigen::Vector2d(direction.y(), -direction.x());
+  const auto offsetSigma = [&](const Eigen::Vector2d& pixel, const Eigen::Matrix2d& covariance) {
+    return towards_facade.dot(pixel - start_px) /
+           std::sqrt(towards_facade.dot(covariance * towards_facade));
+  };
+  return 0.5 * (offsetSigma(correspondence.start_pixel, correspondence.start_covariance) +
+                offsetSigma(correspondence.end_pixel, correspondence.end_covariance));
+}
+
 MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
                             const std::vector<VisibleSegment>& model,
                             const std::vector<std::vector<LineMatch>>& candidates,
                             const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
-                            const AlignmentOptions& options) {
+                            bool cut_facade_side, const AlignmentOptions& options) {
   MatchedProblem matched;
   matched.problem.camera = camera;
   const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
@@ -74,6 +95,11 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
         (seen.end_covariance.cast<double>() +
          floorCovariance(line.end_world, model_sigma_m, T_camera_world, camera, options)) /
         line.weight;
+    if (cut_facade_side && line.facade_side != 0 &&
+        facadeSideOffsetSigma(correspondence, line.facade_side, T_camera_world, camera) >
+            options.facade_side_cut_sigma) {
+      continue;
+    }
     matched.problem.lines.push_back(correspondence);
     matched.matches.push_back(best);
   }
@@ -164,11 +190,18 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
   pose_options.refinement.function_tolerance = options.function_tolerance;
   pose_options.refinement.parameter_tolerance = options.parameter_tolerance;
   pose_options.refinement.step_information_tolerance = options.step_information_tolerance;
-  for (int round = 0; round < options.max_rounds; ++round) {
+  // Once the rounds have converged, one more leaves out the matches on their
+  // façade's side: the cut presumes the gate near the answer, and from afar
+  // it drops true matches.
+  const bool cuts_facade_side = std::isfinite(options.facade_side_cut_sigma);
+  bool cut_facade_side = false;
+  int last_round_index = options.max_rounds - 1;
+  for (int round = 0; round <= last_round_index; ++round) {
     alignment.rounds = round + 1;
     const int64_t matching_start_ns = steadyClockNs();
     const auto candidates = gateCandidates(image, model, gate, camera, options.matching);
-    MatchedProblem matched = buildProblem(image, model, candidates, gate.pose, camera, options);
+    MatchedProblem matched =
+        buildProblem(image, model, candidates, gate.pose, camera, cut_facade_side, options);
     alignment.matching_ns += steadyClockNs() - matching_start_ns;
     alignment.matches = static_cast<int>(matched.matches.size());
     if (alignment.matches < options.min_inliers) {
@@ -202,8 +235,12 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
     gate = current.covariance.allFinite() ? fusePoses(predicted_T_world_camera, current)
                                           : predicted_T_world_camera;
     last_round = std::move(matched);
-    if (done) {
+    if (done && (cut_facade_side || !cuts_facade_side)) {
       break;
+    }
+    if (done) {
+      cut_facade_side = true;
+      last_round_index = round + 1;
     }
   }
   alignment.T_world_camera = current;

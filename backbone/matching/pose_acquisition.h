@@ -96,6 +96,7 @@
 // without one leaf beating the bounds of the cells still open.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -112,10 +113,14 @@ struct AcquisitionOptions {
   // and from a wrong hypothesis the narrow loss of tracking fits the lines
   // near it and ignores the rest. On the synthetic street of the unit tests, a
   // search whose alignments at the truth the height gate ruled out answered
-  // with it a pose 1.45 m off (e^T Sigma^-1 e 60).
+  // with it a pose 1.45 m off (e^T Sigma^-1 e 60). Nor does it leave out the
+  // matches on a façade's side (facade_side_cut_sigma), which needs the pose
+  // within a pixel or so: with the cut, the search on simulated Delft seed 50
+  // found no pose in 95 attempts over its 20 s drive; without, its first at 11 s.
   AlignmentOptions alignment = [] {
     AlignmentOptions wide_loss;
     wide_loss.loss_scale_sigma = 2.0;
+    wide_loss.facade_side_cut_sigma = std::numeric_limits<double>::infinity();
     return wide_loss;
   }();
   // Covariance an alignment starts from at a hypothesis: the fine grid's reach.

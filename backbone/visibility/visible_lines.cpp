@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -58,11 +59,13 @@ double visibleFraction(const OcclusionScene& scene, const Viewpoints& from,
 constexpr double kSunRayLength_m = 2000.0;
 
 // What the probes either side of a model line predict: whether it can show as
-// an edge, and which side is brighter where the model tells (see the header).
+// an edge, which side is brighter where the model tells, and which side the
+// line's own façade is on (see the header). Sides: +1 the left (image, y
+// down), -1 the right, 0 unknown or both.
 struct ProbedEdge {
   bool differ = false;
-  // +1: the left side (image, y down) is the brighter one; -1: the right; 0: unknown.
   int polarity = 0;
+  int facade_side = 0;
 };
 
 // Whether the surfaces seen through two pixels may differ (see the header):
@@ -77,6 +80,7 @@ class ContrastProbe {
         T_world_camera_(T_world_camera),
         K_inverse_(camera.K().inverse()),
         same_plane_cos_(std::cos(options.same_plane_angle_rad)),
+        facade_depth_ratio_(options.facade_depth_ratio),
         sunlight_(options.sunlight),
         min_irradiance_difference_(options.min_irradiance_difference),
         surface_clearance_m_(options.surface_clearance_m) {}
@@ -86,16 +90,17 @@ class ContrastProbe {
     const Eigen::Vector3d right_ray = rayThrough(right_px);
     const std::optional<SeenSurface> left = surfaceAlong(left_ray);
     const std::optional<SeenSurface> right = surfaceAlong(right_ray);
+    const int facade_side = nearerSide(left, right);
     if (!left || !right) {
-      return {true, skySide(left_ray, left.has_value(), right_ray, right.has_value())};
+      return {true, skySide(left_ray, left.has_value(), right_ray, right.has_value()), facade_side};
     }
     if (left->building_id != right->building_id) {
-      return {true, 0};
+      return {true, 0, facade_side};
     }
     if (std::abs(left->seen_normal.dot(right->seen_normal)) >= same_plane_cos_) {
-      return {false, 0};
+      return {false, 0, 0};
     }
-    return {!litAlike(*left, *right), 0};
+    return {!litAlike(*left, *right), 0, facade_side};
   }
 
  private:
@@ -104,6 +109,7 @@ class ContrastProbe {
     Eigen::Vector3d point_world;
     Eigen::Vector3d seen_normal;
     int64_t building_id;
+    double distance_m;
   };
 
   Eigen::Vector3d rayThrough(const Eigen::Vector2d& pixel) const {
@@ -118,7 +124,20 @@ class ContrastProbe {
     }
     const double facing = hit->unit_normal.dot(ray_world) < 0.0 ? 1.0 : -1.0;
     return SeenSurface{T_world_camera_.translation() + hit->distance_m * ray_world,
-                       facing * hit->unit_normal, hit->building_id};
+                       facing * hit->unit_normal, hit->building_id, hit->distance_m};
+  }
+
+  // The side whose ray meets a face where the other's meets none, or one
+  // farther by facade_depth_ratio: the line's own façade. 0 for two faces at
+  // about one depth (a crease) or none.
+  int nearerSide(const std::optional<SeenSurface>& left,
+                 const std::optional<SeenSurface>& right) const {
+    const double left_m = left ? left->distance_m : std::numeric_limits<double>::infinity();
+    const double right_m = right ? right->distance_m : std::numeric_limits<double>::infinity();
+    if (left_m * facade_depth_ratio_ < right_m) {
+      return 1;
+    }
+    return right_m * facade_depth_ratio_ < left_m ? -1 : 0;
   }
 
   // +1 when the left side sees the sky (a ray upwards that meets no face) and
@@ -150,6 +169,7 @@ class ContrastProbe {
   const Eigen::Isometry3d& T_world_camera_;
   Eigen::Matrix3d K_inverse_;
   double same_plane_cos_;
+  double facade_depth_ratio_;
   std::optional<Sunlight> sunlight_;
   double min_irradiance_difference_;
   double surface_clearance_m_;
@@ -209,7 +229,8 @@ class LineSampler {
     };
     int run_start = -1;
     double run_weight = 0.0;
-    PolarityVotes votes;
+    SideVotes polarity_votes;
+    SideVotes facade_side_votes;
     for (int i = 0; i <= samples; ++i) {
       const SampledPoint sampled =
           i < samples ? samplePoint(probed, at(i), static_cast<double>(i) / (samples - 1))
@@ -217,16 +238,19 @@ class LineSampler {
       if (sampled.fraction > 0.0) {
         run_start = run_start < 0 ? i : run_start;
         run_weight += sampled.fraction;
-        votes.add(sampled.polarity);
+        polarity_votes.add(sampled.polarity);
+        facade_side_votes.add(sampled.facade_side);
         continue;
       }
       if (run_start >= 0 && (i - 1 - run_start) * step_px >= options_.min_visible_length_px) {
         visible.push_back({line.id, line.kind, at(run_start), at(i - 1),
-                           run_weight / (i - run_start), votes.polarity()});
+                           run_weight / (i - run_start), polarity_votes.side(),
+                           facade_side_votes.side()});
       }
       run_start = -1;
       run_weight = 0.0;
-      votes = {};
+      polarity_votes = {};
+      facade_side_votes = {};
     }
   }
 
@@ -244,25 +268,26 @@ class LineSampler {
   struct SampledPoint {
     double fraction = 0.0;
     int polarity = 0;
+    int facade_side = 0;
   };
 
-  // A piece's polarity: the one every one of its samples predicts. A silhouette
-  // has the sky behind it above the horizon and the ground below, where it
-  // shows the other polarity or none.
-  struct PolarityVotes {
+  // A piece's polarity or façade side: the one every one of its samples
+  // predicts. A silhouette has the sky behind it above the horizon and the
+  // ground below, where it shows the other polarity or none.
+  struct SideVotes {
     int samples = 0;
-    int left_brighter = 0;
-    int right_brighter = 0;
-    void add(int polarity) {
+    int left = 0;
+    int right = 0;
+    void add(int side) {
       ++samples;
-      left_brighter += polarity > 0 ? 1 : 0;
-      right_brighter += polarity < 0 ? 1 : 0;
+      left += side > 0 ? 1 : 0;
+      right += side < 0 ? 1 : 0;
     }
-    int polarity() const {
-      if (left_brighter == samples) {
+    int side() const {
+      if (left == samples) {
         return 1;
       }
-      return right_brighter == samples ? -1 : 0;
+      return right == samples ? -1 : 0;
     }
   };
 
@@ -283,7 +308,7 @@ class LineSampler {
       return {};
     }
     return {visibleFraction(scene_, viewpoints_, p_world, options_.surface_clearance_m),
-            options_.predict_polarity ? edge.polarity : 0};
+            options_.predict_polarity ? edge.polarity : 0, edge.facade_side};
   }
 
   const OcclusionScene& scene_;

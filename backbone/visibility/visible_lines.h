@@ -42,6 +42,13 @@
 // at many corners: over the first minute of the demo's drive (the LinePolarity
 // test, tests/integration/drive/test_unmodelled_lines.cpp) 16 of 99 such
 // predictions disagreed with the image, against none of 372 from the sky.
+//
+// The probes also tell which side of a piece its own façade lies on
+// (facade_side): the side whose ray meets a face where the other's meets none,
+// or one farther by facade_depth_ratio. A roof line's façade lies below it, a
+// silhouette's on its building's side; a crease has faces on both sides and
+// gets none. Detail the model lacks (window frames, doors) lies on that side
+// only, and the alignment leaves out matches there (model_alignment.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -74,6 +81,9 @@ struct VisibleSegment {
   // +1 when the side left of its projection start -> end (image, y down) is
   // predicted brighter, -1 when the right one is, 0 when the model cannot tell.
   int polarity = 0;
+  // The side, read the same way, that the line's own façade is on: +1 left,
+  // -1 right, 0 both (a crease) or unknown.
+  int facade_side = 0;
 };
 
 struct VisibilityOptions {
@@ -90,6 +100,9 @@ struct VisibilityOptions {
   // narrower strip of wall gives no edge of its own.
   double contrast_probe_px = 1.5;
   double same_plane_angle_rad = 10.0 * M_PI / 180.0;
+  // A probe whose ray meets a face nearer by this factor than the other
+  // probe's (or the only one that meets a face) sees the line's own façade.
+  double facade_depth_ratio = 1.1;
   // The sun over the scene, when known; then faces lit alike show no edge.
   std::optional<Sunlight> sunlight = std::nullopt;
   double min_irradiance_difference = 0.1;

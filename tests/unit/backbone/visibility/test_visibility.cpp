@@ -157,6 +157,44 @@ TEST(Visibility, PredictsThatTheSkyIsBrighterThanAFacadeAgainstIt) {
   }
 }
 
+// The side of each piece its own façade lies on, as an image direction:
+// facade_side times the left normal (image, y down) of its projection.
+std::map<int64_t, Eigen::Vector2d> facadeDirections(const std::vector<VisibleSegment>& visible,
+                                                    const PoseWithCovariance& T_world_camera) {
+  std::map<int64_t, Eigen::Vector2d> directions;
+  for (const VisibleSegment& s : visible) {
+    const Eigen::Vector2d along = projectedDirection(s, T_world_camera).normalized();
+    directions[s.model_line_id] = s.facade_side * Eigen::Vector2d(along.y(), -along.x());
+  }
+  return directions;
+}
+
+// From the south-west diagonal, the silhouettes' façades lie inwards (9, the
+// south-east vertical, on the right of the image has its wall to its left; 11
+// the converse), the roof lines' below them, the feet's above, whether the sky
+// or a farther building lies beyond: a block [20, 26] x [-10, 12] x [0, 20]
+// seen right of the south-east corner is at least 1.4 times as far (the sight
+// line past the corner, (10, 0) + t (25, 15), reaches x = 20 at 41 m, the
+// corner at 29 m). The south-west vertical (8) has a wall on both sides.
+TEST(Visibility, KnowsWhichSideOfALineItsOwnFacadeIsOn) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const Box behind = makeBox(20, -10, 26, 12, 20, 100);
+  for (const OcclusionScene& scene : {sceneOf({&cube}), sceneOf({&cube, &behind})}) {
+    const auto facade = facadeDirections(
+        visibleSegments(cube.edges, scene, diagonalView(), kCamera, {}), diagonalView());
+    ASSERT_EQ(facade.size(), 7u);
+    EXPECT_LT(facade.at(9).x(), -0.9);
+    EXPECT_GT(facade.at(11).x(), 0.9);
+    for (const int64_t roof : {4, 7}) {
+      EXPECT_GT(facade.at(roof).y(), 0.5) << roof;
+    }
+    for (const int64_t foot : {0, 3}) {
+      EXPECT_LT(facade.at(foot).y(), -0.5) << foot;
+    }
+    EXPECT_EQ(facade.at(8), Eigen::Vector2d::Zero());
+  }
+}
+
 // A tower [-5, 5] x [-12, -8] x [0, 30] south of the cube, clear of the
 // view of the south-west corner (the sight line crosses y = -8 at x = -8),
 // shades that corner from a sun in the south at 40 degrees: the ray from

@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
@@ -85,31 +86,48 @@ bool settled(const Alignment& alignment) {
   return isOk(alignment) || alignment.status == AlignmentStatus::kIllConditioned;
 }
 
-// The best covered OK alignment, its covariance grown by d d^T for every
-// settled rival covered at least rival_score_fraction as well and outside it
-// (d the rival's offset); kAmbiguous when that leaves a position sigma beyond
-// the alignment's limit.
-Alignment coverRivals(const std::vector<Alignment>& aligned, const std::vector<ImageSegment>& image,
-                      const std::vector<VisibleSegment>& visible, const PinholeCamera& camera,
-                      const LocalizerOptions& options) {
+// Each alignment's coverage of the image by the visible model lines
+// (pose_acquisition.h), against a sharp distance map.
+std::vector<double> coverageScores(const std::vector<Alignment>& aligned,
+                                   const std::vector<ImageSegment>& image,
+                                   const std::vector<VisibleSegment>& visible,
+                                   const PinholeCamera& camera, const LocalizerOptions& options) {
   const CoverageVerifier verifier(image, camera, options.acquisition);
   std::vector<double> scores;
+  for (const Alignment& alignment : aligned) {
+    scores.push_back(verifier.coverage(visible, alignment.T_world_camera.pose).score);
+  }
+  return scores;
+}
+
+// The index of the best covered OK alignment, by coverage `scores`.
+size_t bestCovered(const std::vector<Alignment>& aligned, const std::vector<double>& scores) {
   size_t best = aligned.size();
   for (size_t i = 0; i < aligned.size(); ++i) {
-    scores.push_back(verifier.coverage(visible, aligned[i].T_world_camera.pose).score);
     if (isOk(aligned[i]) && (best == aligned.size() || scores[i] > scores[best])) {
       best = i;
     }
   }
-  Alignment answer = aligned[best];
+  return best;
+}
+
+// The answer, its covariance grown by d d^T for every settled rival covered
+// at least rival_score_fraction as well as the answer's start (best_score) and
+// outside it (d the rival's offset); kAmbiguous when that leaves a position
+// sigma beyond the alignment's limit.
+Alignment coverRivals(Alignment answer, const std::vector<Alignment>& aligned,
+                      const std::vector<double>& scores, double best_score,
+                      const LocalizerOptions& options) {
+  const Eigen::Isometry3d answer_pose = answer.T_world_camera.pose;
+  const Matrix6d answer_covariance = answer.T_world_camera.covariance;
   int rivals = 0;
   for (size_t i = 0; i < aligned.size(); ++i) {
-    if (scores[i] < options.rival_score_fraction * scores[best] ||
-        !outside(answer, aligned[i], options)) {
+    if (scores[i] < options.rival_score_fraction * best_score ||
+        within(answer_pose, answer_covariance, aligned[i].T_world_camera.pose, options)) {
       continue;
     }
     const Eigen::Matrix<double, 6, 1> offset =
-        poseError(aligned[best].T_world_camera.pose, aligned[i].T_world_camera.pose);
+        poseError(answer_pose, aligned[i].T_world_camera.pose);
     answer.T_world_camera.covariance += offset * offset.transpose();
     ++rivals;
   }
@@ -150,17 +168,21 @@ Alignment alignWithinReach(const std::vector<ImageSegment>& image,
 
 // The settled alignments from the prior and its sigma points, the OK ones
 // within reach of their start: the first OK one when every other lies within
-// its covariance, else coverRivals. The centre's own answer when it is
-// ill-conditioned or none is OK.
+// its covariance, else the best covered, with its rivals (coverRivals). The
+// centre's own answer when it is ill-conditioned or none is OK. The starts
+// align without the façade-side cut; the OK one answered takes it
+// (leaveOutFacadeSideDetail), before its rivals widen it.
 Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
                 const PoseWithCovariance& prior, const PinholeCamera& camera,
                 const LocalizerOptions& options) {
   const std::vector<PoseWithCovariance> starts =
       trackingStarts(prior, options.start_sigma, options.min_start_step_m);
+  LocalizerOptions uncut = options;
+  uncut.alignment.facade_side_cut_sigma = std::numeric_limits<double>::infinity();
   std::vector<Alignment> from_starts(starts.size());
   const int64_t aligning_start_ns = steadyClockNs();
   parallelFor(static_cast<int>(starts.size()), options.threads, [&](int i) {
-    from_starts[i] = alignWithinReach(image, visible, starts[i], camera, options);
+    from_starts[i] = alignWithinReach(image, visible, starts[i], camera, uncut);
   });
   const int64_t aligning_ns = steadyClockNs() - aligning_start_ns;
   const Alignment& centre = from_starts.front();
@@ -178,7 +200,7 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
   const double matching_share =
       static_cast<double>(matching_cpu_ns) / std::max<int64_t>(1, matching_cpu_ns + pose_cpu_ns);
   int64_t matching_ns = std::llround(matching_share * aligning_ns);
-  const int64_t pose_ns = aligning_ns - matching_ns;
+  int64_t pose_ns = aligning_ns - matching_ns;
   const auto first_ok = std::find_if(aligned.begin(), aligned.end(), isOk);
   Alignment answer = centre;
   if (first_ok != aligned.end() && centre.status != AlignmentStatus::kIllConditioned) {
@@ -187,8 +209,16 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
     };
     const bool agree = std::none_of(aligned.begin(), aligned.end(), outsideFirst);
     const int64_t scoring_start_ns = steadyClockNs();
-    answer = agree ? *first_ok : coverRivals(aligned, image, visible, camera, options);
+    const std::vector<double> scores =
+        agree ? std::vector<double>{} : coverageScores(aligned, image, visible, camera, options);
     matching_ns += steadyClockNs() - scoring_start_ns;
+    const size_t chosen = agree ? first_ok - aligned.begin() : bestCovered(aligned, scores);
+    answer = leaveOutFacadeSideDetail(aligned[chosen], image, visible, camera, options.alignment);
+    matching_ns += answer.matching_ns - aligned[chosen].matching_ns;
+    pose_ns += answer.pose_ns - aligned[chosen].pose_ns;
+    if (!agree) {
+      answer = coverRivals(answer, aligned, scores, scores[chosen], options);
+    }
   }
   answer.matching_ns = matching_ns;
   answer.pose_ns = pose_ns;

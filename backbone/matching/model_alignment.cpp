@@ -155,6 +155,123 @@ bool converged(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
          std::abs(rotation.angle()) < options.converged_rotation_rad;
 }
 
+PoseOptions refinementOptions(const AlignmentOptions& options) {
+  PoseOptions pose_options;
+  pose_options.refinement.loss = RobustLoss::kCauchy;
+  pose_options.refinement.loss_scale = options.loss_scale_sigma;
+  pose_options.refinement.function_tolerance = options.function_tolerance;
+  pose_options.refinement.parameter_tolerance = options.parameter_tolerance;
+  pose_options.refinement.step_information_tolerance = options.step_information_tolerance;
+  return pose_options;
+}
+
+// One round from `gate`: candidates gated there, each image segment's best
+// kept (less those on their façade's side when cut_facade_side), and the pose
+// refined from the gate's centre without weighing it. The alignment takes the
+// round's matches, inliers, residual and time, and its pose, the covariance
+// scaled by the inliers' variance factor. False, with the status and message
+// set and the pose left alone, when too few matches or the refinement fails.
+bool alignRound(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& model,
+                const PoseWithCovariance& gate, const PinholeCamera& camera, bool cut_facade_side,
+                const AlignmentOptions& options, Alignment& alignment, MatchedProblem& matched) {
+  ++alignment.rounds;
+  const int64_t matching_start_ns = steadyClockNs();
+  const auto candidates = gateCandidates(image, model, gate, camera, options.matching);
+  matched = buildProblem(image, model, candidates, gate.pose, camera, cut_facade_side, options);
+  alignment.matching_ns += steadyClockNs() - matching_start_ns;
+  alignment.matches = static_cast<int>(matched.matches.size());
+  if (alignment.matches < options.min_inliers) {
+    alignment.status = AlignmentStatus::kTooFewMatches;
+    alignment.message =
+        fmt::format("{} matches, {} needed", alignment.matches, options.min_inliers);
+    return false;
+  }
+  PoseOptions pose_options = refinementOptions(options);
+  pose_options.prior_T_world_camera = gate.pose;
+  const int64_t pose_start_ns = steadyClockNs();
+  const PoseEstimate estimate = estimatePose(matched.problem, pose_options);
+  alignment.pose_ns += steadyClockNs() - pose_start_ns;
+  if (!estimate.ok()) {
+    alignment.status = estimate.status == PoseStatus::kAmbiguous ? AlignmentStatus::kAmbiguous
+                                                                 : AlignmentStatus::kFailed;
+    alignment.message = fmt::format("pose: {} {}", toString(estimate.status), estimate.message);
+    return false;
+  }
+  alignment.inliers = 0;
+  double inlier_chi2 = 0.0;
+  for (const CorrespondenceResidual& residual : estimate.line_residuals) {
+    if (residual.normalized_residual < options.inlier_threshold_sigma) {
+      ++alignment.inliers;
+      inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
+    }
+  }
+  alignment.rms_residual_px = estimate.rms_residual_px;
+  alignment.T_world_camera = estimate.T_world_camera;
+  alignment.T_world_camera.covariance *= varianceFactor(inlier_chi2, alignment.inliers);
+  return true;
+}
+
+// The status of the last round's pose: OK when enough inliers carry it and,
+// its covariance grown to cover the jackknife over model edges, it leaves the
+// position within max_position_sigma_m.
+void conclude(const MatchedProblem& last_round, const std::vector<VisibleSegment>& model,
+              const AlignmentOptions& options, Alignment& alignment) {
+  if (alignment.inliers < options.min_inliers) {
+    alignment.status = AlignmentStatus::kTooFewMatches;
+    alignment.message =
+        fmt::format("{} inliers, {} needed", alignment.inliers, options.min_inliers);
+    return;
+  }
+  const int64_t jackknife_start_ns = steadyClockNs();
+  const Matrix6d jackknife =
+      leaveGroupOutCovariance(last_round.problem, alignment.T_world_camera.pose,
+                              edgeGroups(last_round.matches, model, options.coincident_edge_m),
+                              refinementOptions(options).refinement);
+  alignment.pose_ns += steadyClockNs() - jackknife_start_ns;
+  if (!jackknife.allFinite()) {
+    alignment.status = AlignmentStatus::kIllConditioned;
+    alignment.message = "one model line alone determines part of the pose";
+    return;
+  }
+  alignment.T_world_camera.covariance =
+      coveringCovariance(alignment.T_world_camera.covariance, jackknife);
+  const double sigma = largestPositionSigma(alignment.T_world_camera.covariance);
+  if (!(sigma <= options.max_position_sigma_m)) {
+    alignment.status = AlignmentStatus::kIllConditioned;
+    alignment.message = fmt::format("position sigma {:.3f} m", sigma);
+    return;
+  }
+  alignment.status = AlignmentStatus::kOk;
+}
+
+// Rounds until the pose stops moving, at most max_rounds, without the cut.
+// A round that fails leaves the predicted pose.
+Alignment alignRounds(const std::vector<ImageSegment>& image,
+                      const std::vector<VisibleSegment>& model,
+                      const PoseWithCovariance& predicted_T_world_camera,
+                      const PinholeCamera& camera, const AlignmentOptions& options) {
+  Alignment alignment;
+  alignment.T_world_camera = predicted_T_world_camera;
+  alignment.next_gate = predicted_T_world_camera;
+  MatchedProblem last_round;
+  for (int round = 0; round < options.max_rounds; ++round) {
+    const Eigen::Isometry3d previous = alignment.T_world_camera.pose;
+    if (!alignRound(image, model, alignment.next_gate, camera, false, options, alignment,
+                    last_round)) {
+      alignment.T_world_camera = predicted_T_world_camera;
+      return alignment;
+    }
+    alignment.next_gate = alignment.T_world_camera.covariance.allFinite()
+                              ? fusePoses(predicted_T_world_camera, alignment.T_world_camera)
+                              : predicted_T_world_camera;
+    if (converged(previous, alignment.T_world_camera.pose, options)) {
+      break;
+    }
+  }
+  conclude(last_round, model, options, alignment);
+  return alignment;
+}
+
 }  // namespace
 
 const char* toString(AlignmentStatus status) {
@@ -179,97 +296,30 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
                      const std::vector<VisibleSegment>& model,
                      const PoseWithCovariance& predicted_T_world_camera,
                      const PinholeCamera& camera, const AlignmentOptions& options) {
-  Alignment alignment;
-  alignment.T_world_camera = predicted_T_world_camera;
-  PoseWithCovariance current = predicted_T_world_camera;
-  PoseWithCovariance gate = predicted_T_world_camera;
+  return leaveOutFacadeSideDetail(
+      alignRounds(image, model, predicted_T_world_camera, camera, options), image, model, camera,
+      options);
+}
+
+Alignment leaveOutFacadeSideDetail(const Alignment& aligned, const std::vector<ImageSegment>& image,
+                                   const std::vector<VisibleSegment>& model,
+                                   const PinholeCamera& camera, const AlignmentOptions& options) {
+  if (aligned.status != AlignmentStatus::kOk || !std::isfinite(options.facade_side_cut_sigma)) {
+    return aligned;
+  }
+  Alignment cut = aligned;
   MatchedProblem last_round;
-  PoseOptions pose_options;
-  pose_options.refinement.loss = RobustLoss::kCauchy;
-  pose_options.refinement.loss_scale = options.loss_scale_sigma;
-  pose_options.refinement.function_tolerance = options.function_tolerance;
-  pose_options.refinement.parameter_tolerance = options.parameter_tolerance;
-  pose_options.refinement.step_information_tolerance = options.step_information_tolerance;
-  // Once the rounds have converged, one more leaves out the matches on their
-  // façade's side: the cut presumes the gate near the answer, and from afar
-  // it drops true matches.
-  const bool cuts_facade_side = std::isfinite(options.facade_side_cut_sigma);
-  bool cut_facade_side = false;
-  int last_round_index = options.max_rounds - 1;
-  for (int round = 0; round <= last_round_index; ++round) {
-    alignment.rounds = round + 1;
-    const int64_t matching_start_ns = steadyClockNs();
-    const auto candidates = gateCandidates(image, model, gate, camera, options.matching);
-    MatchedProblem matched =
-        buildProblem(image, model, candidates, gate.pose, camera, cut_facade_side, options);
-    alignment.matching_ns += steadyClockNs() - matching_start_ns;
-    alignment.matches = static_cast<int>(matched.matches.size());
-    if (alignment.matches < options.min_inliers) {
-      alignment.status = AlignmentStatus::kTooFewMatches;
-      alignment.message =
-          fmt::format("{} matches, {} needed", alignment.matches, options.min_inliers);
-      return alignment;
-    }
-    pose_options.prior_T_world_camera = gate.pose;
-    const int64_t pose_start_ns = steadyClockNs();
-    const PoseEstimate estimate = estimatePose(matched.problem, pose_options);
-    alignment.pose_ns += steadyClockNs() - pose_start_ns;
-    if (!estimate.ok()) {
-      alignment.status = estimate.status == PoseStatus::kAmbiguous ? AlignmentStatus::kAmbiguous
-                                                                   : AlignmentStatus::kFailed;
-      alignment.message = fmt::format("pose: {} {}", toString(estimate.status), estimate.message);
-      return alignment;
-    }
-    alignment.inliers = 0;
-    double inlier_chi2 = 0.0;
-    for (const CorrespondenceResidual& residual : estimate.line_residuals) {
-      if (residual.normalized_residual < options.inlier_threshold_sigma) {
-        ++alignment.inliers;
-        inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
-      }
-    }
-    alignment.rms_residual_px = estimate.rms_residual_px;
-    const bool done = converged(current.pose, estimate.T_world_camera.pose, options);
-    current = estimate.T_world_camera;
-    current.covariance *= varianceFactor(inlier_chi2, alignment.inliers);
-    gate = current.covariance.allFinite() ? fusePoses(predicted_T_world_camera, current)
-                                          : predicted_T_world_camera;
-    last_round = std::move(matched);
-    if (done && (cut_facade_side || !cuts_facade_side)) {
-      break;
-    }
-    if (done) {
-      cut_facade_side = true;
-      last_round_index = round + 1;
-    }
+  if (alignRound(image, model, aligned.next_gate, camera, true, options, cut, last_round)) {
+    conclude(last_round, model, options, cut);
   }
-  alignment.T_world_camera = current;
-  if (alignment.inliers < options.min_inliers) {
-    alignment.status = AlignmentStatus::kTooFewMatches;
-    alignment.message =
-        fmt::format("{} inliers, {} needed", alignment.inliers, options.min_inliers);
-    return alignment;
+  if (cut.status == AlignmentStatus::kOk) {
+    return cut;
   }
-  const int64_t jackknife_start_ns = steadyClockNs();
-  const Matrix6d jackknife = leaveGroupOutCovariance(
-      last_round.problem, current.pose,
-      edgeGroups(last_round.matches, model, options.coincident_edge_m), pose_options.refinement);
-  alignment.pose_ns += steadyClockNs() - jackknife_start_ns;
-  if (!jackknife.allFinite()) {
-    alignment.status = AlignmentStatus::kIllConditioned;
-    alignment.message = "one model line alone determines part of the pose";
-    return alignment;
-  }
-  current.covariance = coveringCovariance(current.covariance, jackknife);
-  alignment.T_world_camera = current;
-  const double sigma = largestPositionSigma(current.covariance);
-  if (!(sigma <= options.max_position_sigma_m)) {
-    alignment.status = AlignmentStatus::kIllConditioned;
-    alignment.message = fmt::format("position sigma {:.3f} m", sigma);
-    return alignment;
-  }
-  alignment.status = AlignmentStatus::kOk;
-  return alignment;
+  Alignment kept = aligned;
+  kept.rounds = cut.rounds;
+  kept.matching_ns = cut.matching_ns;
+  kept.pose_ns = cut.pose_ns;
+  return kept;
 }
 
 void widenForConfidence(Alignment& alignment, double confidence) {

@@ -8,13 +8,13 @@
 // beside a building edge barely pulls (loss_scale_sigma). The refinement does
 // not weigh the prior, so the two are taken as independent estimates: the
 // next round gates with their fusion (fusePoses, common/geometry/pose.h) and
-// refines from its centre, until the pose stops moving; then one more round
-// leaves out the matches on their façade's side (facade_side_cut_sigma).
-// Gating with the
+// refines from its centre, until the pose stops moving. Gating with the
 // refined pose alone widened the gates wherever a round's matches left the
 // pose undetermined: on a Delft frame predicted at the truth with nine model
 // segments in view, the second round took in 22 candidates instead of 7 and
 // the alignment settled 1.3 m off reporting 0.2 m (tests/integration/drive).
+// An OK answer then takes one more round that leaves out the matches on their
+// façade's side (facade_side_cut_sigma, leaveOutFacadeSideDetail).
 // A model line may take several collinear image pieces; an image segment
 // takes at most one model line.
 //
@@ -168,8 +168,10 @@ struct AlignmentOptions {
   // from 10 to 5, with no fix beyond three sigma; the mean error along the
   // view of seed 19's driving fixes from 6.3 to 3.0 cm, seed 11's from 6.0 to
   // 2.7. One round did as well on six of them, and costs less: a tracking frame
-  // on one core took 5.9 ms without the cut, 7.8 ms with one round and 8.9 ms
-  // with rounds to convergence (medians, bench_localization_stages).
+  // on one core took 5.9 ms without the cut, 7.8 ms with one round in the
+  // alignment from every start and 8.9 ms with rounds to convergence (medians,
+  // bench_localization_stages). Tracking cuts only the alignment it answers
+  // with (localizer.h).
   double facade_side_cut_sigma = 1.0;
   // Image segments whose best candidate is not this much better (chi^2) than
   // the second, within the first round, are left out: ambiguous under the prior.
@@ -192,15 +194,32 @@ struct Alignment {
   int inliers = 0;
   double rms_residual_px = 0.0;
   int rounds = 0;
+  // Where a further round would gate: the prediction fused with the last
+  // round's pose, whose covariance the jackknife had not yet widened. The
+  // façade-side cut's round gates there.
+  PoseWithCovariance next_gate;
   // Time spent gating candidates, and estimating poses and their covariance.
   int64_t matching_ns = 0;
   int64_t pose_ns = 0;
 };
 
+// Rounds until the pose stops moving, then leaveOutFacadeSideDetail.
 Alignment alignModel(const std::vector<ImageSegment>& image,
                      const std::vector<VisibleSegment>& model,
                      const PoseWithCovariance& predicted_T_world_camera,
                      const PinholeCamera& camera, const AlignmentOptions& options);
+
+// One more round for an OK alignment, gated at its next_gate, that leaves out
+// the matches lying beyond facade_side_cut_sigma on their façade's side. The
+// cut only sharpens an answer: when its round does not end OK (it left too few
+// matches, or a pose the remaining edges do not determine), the alignment is
+// kept as it was, with the round's time and count added. Any other alignment,
+// or an infinite facade_side_cut_sigma, is returned as it is. A caller that
+// aligns from several starts (localizer.h) aligns them with the cut off and
+// cuts only the one it answers with.
+Alignment leaveOutFacadeSideDetail(const Alignment& aligned, const std::vector<ImageSegment>& image,
+                                   const std::vector<VisibleSegment>& model,
+                                   const PinholeCamera& camera, const AlignmentOptions& options);
 
 // An OK alignment's covariance, estimated from its own n inliers, scaled by
 // confidenceScale(2 n - 6, confidence) (common/stats/confidence_scale.h) so

@@ -193,6 +193,30 @@ TEST(ModelAlignment, DetailOnTheFacadeSideOfBuildingEdgesIsLeftOut) {
   EXPECT_LT(std::abs(ahead_m), 0.5 * ahead_uncut_m);
 }
 
+// The cut only sharpens an OK answer. A threshold far on the other side of
+// every line cuts all the matches that have a façade side: of the street's 40
+// inliers, 16 matches stay, too few when 20 are needed. The alignment keeps
+// the pose its rounds converged to, and counts the cut's round.
+TEST(ModelAlignment, ACutThatLeavesTooFewMatchesKeepsTheConvergedAnswer) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(7);
+  const Scene scene = render(street, occlusion, 0, random);
+  const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.03, 0.003);
+  AlignmentOptions uncut;
+  uncut.min_inliers = 20;
+  uncut.facade_side_cut_sigma = std::numeric_limits<double>::infinity();
+  AlignmentOptions cut_all = uncut;
+  cut_all.facade_side_cut_sigma = -1e6;
+  const Alignment converged = alignModel(scene.image, scene.visible, prior, kCamera, uncut);
+  const Alignment kept = alignModel(scene.image, scene.visible, prior, kCamera, cut_all);
+  ASSERT_EQ(converged.status, AlignmentStatus::kOk) << converged.message;
+  EXPECT_EQ(kept.status, AlignmentStatus::kOk) << kept.message;
+  EXPECT_EQ(kept.rounds, converged.rounds + 1);
+  EXPECT_EQ(kept.inliers, converged.inliers);
+  EXPECT_TRUE(kept.T_world_camera.pose.isApprox(converged.T_world_camera.pose, 0.0));
+}
+
 TEST(ModelAlignment, ASingleFacadeIsReportedIllConditionedNotPrecise) {
   Street wall;
   addBox(wall, 8, -50, 9, 200, 10);  // one long façade along the street, featureless

@@ -151,7 +151,8 @@ struct AlignmentOptions {
   // basin of their own: 35 of 83 aligned frames settled 0.3-0.7 m off, most of
   // them ahead, each corner on the window column beside it.
   double loss_scale_sigma = 0.7;
-  // Once the rounds have converged, one more leaves out each match whose image
+  // Once the rounds have ended (the pose stopped moving, or max_rounds ran
+  // out), an OK alignment takes one more that leaves out each match whose image
   // segment lies more than this many standard deviations from its model line
   // on the side of the line's own façade (VisibleSegment::facade_side). Window
   // frames and doors lie on that side of a building edge only, and a loss
@@ -159,7 +160,7 @@ struct AlignmentOptions {
   // there is sky or a farther building, which put no detail at the line. In a
   // street both sides' façades lie outward in the image, so their detail held
   // the pose ahead of the truth (above). Cut from afar, the true edges would
-  // go too: the cut waits for convergence. Leaving out matches on one side
+  // go too: the cut waits for the rounds to end. Leaving out matches on one side
   // biases the rest by phi(k) / Phi(k) standard deviations the other way (0.29
   // at k = 1) where the edges' own noise is that wide; at the truth most of
   // them lie well within it. Over 49 simulated Delft drives (seeds 1-50; 41's

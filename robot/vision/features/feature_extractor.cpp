@@ -34,7 +34,8 @@ FeatureExtractor::FeatureExtractor(const CameraCalibration& calibration,
       edge_detector_(options.edges),
       linker_(options.linking),
       line_extractor_(options.lines),
-      corner_detector_(options.corners) {
+      corner_detector_(options.corners),
+      corner_thread_([this] { detectCorners(); }) {
   if (!(options.junction_radius_px >= 0.0)) {
     throw std::invalid_argument("feature extractor: junction_radius_px must be >= 0");
   }
@@ -72,23 +73,38 @@ const cv::Mat& FeatureExtractor::toGrey(const cv::Mat& image) {
 
 const FrameFeatures& FeatureExtractor::extract(const cv::Mat& image) {
   const cv::Mat& grey = toGrey(image);
-  if (options_.detect_corners) {
-    corner_detector_.begin(grey.size(), EdgeDetector::kGradientGain);
-  }
-  edge_detector_.detect(grey, options_.detect_corners ? this : nullptr);
-  linker_.link(edge_detector_.next(), edge_detector_.previous());
-  line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
-  exportSegments();
   features_.corners.clear();
-  if (options_.detect_corners) {
-    corner_detector_.finish(edge_detector_.gradientX(), edge_detector_.gradientY());
-    exportCorners();
+  if (!options_.detect_corners) {
+    edge_detector_.detect(grey);
+    fitLines();
+    return features_;
   }
+  if (options_.corners_on_own_thread) {
+    edge_detector_.detect(grey);
+    corner_thread_.runAlongside([this] { fitLines(); });
+  } else {
+    corner_detector_.begin(grey.size(), EdgeDetector::kGradientGain);
+    edge_detector_.detect(grey, this);
+    fitLines();
+    corner_detector_.finish(edge_detector_.gradientX(), edge_detector_.gradientY());
+  }
+  exportCorners();
   return features_;
 }
 
 void FeatureExtractor::gradientRow(int y, const cv::Mat& gradient_x, const cv::Mat& gradient_y) {
   corner_detector_.addRow(y, gradient_x, gradient_y);
+}
+
+void FeatureExtractor::detectCorners() {
+  corner_detector_.detect(edge_detector_.gradientX(), edge_detector_.gradientY(),
+                          EdgeDetector::kGradientGain);
+}
+
+void FeatureExtractor::fitLines() {
+  linker_.link(edge_detector_.next(), edge_detector_.previous());
+  line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
+  exportSegments();
 }
 
 void FeatureExtractor::exportSegments() {

@@ -12,8 +12,10 @@
 //
 // Run: build/bin/bench_localization_stages (simulates its frames first, a few
 // seconds). Each stage reports its median over the frames; the
-// exposure -> fix budget of a 30 Hz robot is the sum of the tracking stages
-// plus the DDS round trip.
+// exposure -> fix budget of a 30 Hz robot is the sum of the tracking stages'
+// wall times (Time) plus the DDS round trip. Stages on more than one thread
+// (the front end's corners, threads:0) show less CPU than Time: the CPU
+// column counts the calling thread's alone.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 

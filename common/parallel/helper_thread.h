@@ -1,7 +1,7 @@
 // One job, run again and again on a thread of its own beside work of the
 // caller's: runAlongside(here) starts the job on the helper, runs here() on
 // the calling thread, and returns once both have ended. The robot's front end
-// detects a frame's corners so while it links and fits the frame's lines
+// detects a frame's corners on it while it links and fits the frame's lines
 // (feature_extractor.h): on a machine with a core to spare, the frame's
 // features come back after the longer of the two instead of their sum.
 //

@@ -26,6 +26,10 @@ constexpr double kMaxGroundAcceleration_mps2 = 2.0;
 // Gated vision fixes that can show a common offset from the filter: three
 // fit its offset and drift with a degree of freedom to spare.
 constexpr size_t kMinGatedFixesForRestart = 3;
+// Position sigma of a start without DGPS: unknown. A DGPS fix up to tens of
+// kilometres from the site's origin passes the gate; in double precision a
+// 1e8 m^2 variance rounds by 1e-8 m^2, a ten-thousandth of a vision fix's.
+constexpr double kUnknownPositionSigma_m = 1e4;
 // Compass readings needed for a start-up heading (1 s at 10 Hz).
 constexpr size_t kMinStartupCompassReadings = 10;
 // Start-up compass readings farther than this many compass sigmas from their
@@ -348,6 +352,7 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     const UpdateOutcome outcome =
         applyUpdate(z, gate_by_dimension_[6], state, covariance, update_noise);
     if (outcome.status == UpdateStatus::kAccepted) {
+      snapshot.position_known = true;
       snapshot.at_last_vision = state;
       snapshot.unproven_covariance =
           bodyCovarianceOf(vision->T_world_camera.pose, vision->unproven_covariance);
@@ -366,6 +371,9 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     const std::optional<UpdateOutcome> outcome = applyBoundingUpdate(
         lineariseAntennaPosition(state, gps->p_world_antenna, noise, config_.p_body_gps_antenna),
         gate_by_dimension_[3], state, covariance);
+    if (outcome && outcome->status == UpdateStatus::kAccepted) {
+      snapshot.position_known = true;
+    }
     return outcome ? fromUpdate(outcome->status) : MeasurementOutcome::kSkipped;
   }
   const auto& yaw = std::get<YawPayload>(measurement.payload);
@@ -453,12 +461,12 @@ bool InertialNavigator::initialise(const NavigationState& state,
   if (!imu) {
     return false;
   }
-  startAt(state, covariance, *imu, false);
+  startAt(state, covariance, *imu, StartPosition::kFromSensors);
   return true;
 }
 
 void InertialNavigator::startAt(const NavigationState& state, const ErrorCovariance& covariance,
-                                const ImuSample& imu, bool from_vision,
+                                const ImuSample& imu, StartPosition position,
                                 const Matrix6d& unproven_covariance) {
   snapshots_.clear();
   measurements_.clear();
@@ -468,7 +476,8 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshot.imu = imu;
   snapshot.last_zero_velocity_ns = state.stamp_ns;
   snapshot.unproven_covariance = unproven_covariance;
-  if (from_vision) {
+  snapshot.position_known = position != StartPosition::kUnknown;
+  if (position == StartPosition::kFromVision) {
     snapshot.at_last_vision = state;
   }
   snapshots_.push_back(snapshot);
@@ -500,8 +509,7 @@ void InertialNavigator::tryInitialiseFromSensors() {
   // Only while standing still since power-on: the start covariance assumes it,
   // and a robot cruising on a smooth road can be as quiet as a standing one.
   const auto alignment = alignment_detector_.alignment();
-  if (moved_since_start_ || !alignment || !startup_gps_ ||
-      startup_compass_.size() < kMinStartupCompassReadings) {
+  if (moved_since_start_ || !alignment || startup_compass_.size() < kMinStartupCompassReadings) {
     return;
   }
   std::vector<double> compass_yaws_rad;
@@ -516,18 +524,24 @@ void InertialNavigator::tryInitialiseFromSensors() {
   state.stamp_ns = latest.stamp_ns;
   state.q_world_body =
       quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
-  state.p_world_body =
-      startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
+  if (startup_gps_) {
+    state.p_world_body =
+        startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
+  }
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
   // A tilt error of b_a / g hides behind an accelerometer bias b_a.
   const double tilt_sigma = config_.accel_turn_on_bias_sigma_mps2 / config_.gravity_mps2;
+  const Eigen::Vector3d position_sigma_m =
+      startup_gps_ ? Eigen::Vector3d(config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
+                                     config_.gps_vertical_sigma_m)
+                   : Eigen::Vector3d::Constant(kUnknownPositionSigma_m);
   ErrorVector sigma;
-  sigma << config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
-      config_.gps_vertical_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
+  sigma << position_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
       tilt_sigma, config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
-  startAt(state, sigma.cwiseAbs2().asDiagonal(), latest, false);
+  startAt(state, sigma.cwiseAbs2().asDiagonal(), latest,
+          startup_gps_ ? StartPosition::kFromSensors : StartPosition::kUnknown);
 }
 
 InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,
@@ -589,7 +603,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   covariance.block<3, 3>(kAccelBias, kAccelBias)
       .diagonal()
       .setConstant(config_.accel_turn_on_bias_sigma_mps2 * config_.accel_turn_on_bias_sigma_mps2);
-  startAt(state, covariance, *imu, true, fix.unproven_covariance);
+  startAt(state, covariance, *imu, StartPosition::kFromVision, fix.unproven_covariance);
   return MeasurementOutcome::kAccepted;
 }
 
@@ -733,7 +747,9 @@ void InertialNavigator::restartHeadingIfCompassKeepsBeingGated() {
   covariance.col(kAttitude + 2).setZero();
   covariance(kAttitude + 2, kAttitude + 2) =
       config_.initial_yaw_sigma_rad * config_.initial_yaw_sigma_rad;
-  startAt(state, covariance, latest.imu, false, latest.unproven_covariance);
+  startAt(state, covariance, latest.imu,
+          latest.position_known ? StartPosition::kFromSensors : StartPosition::kUnknown,
+          latest.unproven_covariance);
   ++counters_.heading_restarts;
 }
 
@@ -750,6 +766,9 @@ PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {
       snapshots_.begin(), snapshots_.end(), stamp_ns,
       [](int64_t stamp, const Snapshot& snapshot) { return stamp < snapshot.state.stamp_ns; });
   const Snapshot& from = *std::prev(after);
+  if (!from.position_known) {
+    return prediction;
+  }
   NavigationState state = from.state;
   ErrorCovariance covariance = from.covariance;
   // Between two snapshots the next sample is known; past the last, hold its rates.
@@ -765,7 +784,7 @@ PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {
 }
 
 std::optional<NavigatorEstimate> InertialNavigator::state() const {
-  if (snapshots_.empty()) {
+  if (snapshots_.empty() || !snapshots_.back().position_known) {
     return std::nullopt;
   }
   const Snapshot& latest = snapshots_.back();
@@ -787,6 +806,10 @@ NavigatorHealth InertialNavigator::health() const {
   const Snapshot& latest = snapshots_.back();
   health.stamp_ns = latest.state.stamp_ns;
   health.zero_velocity_updates = latest.zero_velocity_updates;
+  if (!latest.position_known) {
+    health.mode = NavigatorMode::kInitialising;
+    return health;
+  }
   if (latest.at_last_vision) {
     health.since_vision_fix_ns = latest.state.stamp_ns - latest.at_last_vision->stamp_ns;
   }

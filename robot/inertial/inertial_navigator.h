@@ -17,10 +17,19 @@
 // and meridian convergence, gives yaw, the robust mean of the window's
 // readings (robust_heading.h: a disturbance over part of the window is left
 // out); DGPS gives position; all with large covariances but the yaw's, one
-// compass reading's; only if the robot has not moved since power-on. Vision fixes
-// before that start the filter from their pose: at once when it has stood
-// still since power-on, else from two fixes at most 0.5 s apart, whose
-// difference gives the velocity.
+// compass reading's; only if the robot has not moved since power-on. Without
+// a DGPS fix by the end of that window (an outage, a receiver still
+// acquiring), the filter starts there all the same, its position unknown
+// (kUnknownPositionSigma_m): the IMU carries the attitude and velocity of a
+// robot that drives off meanwhile, and the first DGPS or vision fix accepted
+// gives the position. Until one does, predictAt, state and health say
+// "initialising": a prediction with no position would send the backbone's
+// search to the wrong street. (A start that waited for DGPS never came on a
+// simulated Delft drive whose DGPS came back 9 s after the robot drove off,
+// seed 41.) Vision fixes before any start (the window not yet full, or a
+// robot that never stood still) start the filter from their pose: at once
+// when it has stood still since power-on, else from two fixes at most 0.5 s
+// apart, whose difference gives the velocity.
 //
 // Restart. Vision fixes gated without a break for `vision_gated_restart_after_ns`
 // mean the filter, not the fixes, is wrong, but only when their residuals
@@ -299,11 +308,11 @@ class InertialNavigator {
   // T_world_camera and its covariance at `stamp_ns` (a frame's exposure time),
   // using the configured T_body_camera; beyond the last IMU sample the last
   // rates are held. The covariance leaves the fixes' unproven part out (see
-  // above).
+  // above). kNotInitialised also where the position was not yet known.
   PosePrediction predictAt(int64_t stamp_ns) const;
   // The state after the last IMU sample, with the covariance the filter
   // reports (the unproven offset and the fixes' shared error in it, see
-  // above); nullopt before initialisation.
+  // above); nullopt before initialisation, or while the position is unknown.
   std::optional<NavigatorEstimate> state() const;
   // The camera's pose and covariance in `estimate` (state()'s), through the
   // configured T_body_camera.
@@ -335,6 +344,8 @@ class InertialNavigator {
     ImuSample imu;
     int64_t last_zero_velocity_ns = 0;
     int64_t zero_velocity_updates = 0;
+    // False from a start without position until a DGPS or vision fix is accepted.
+    bool position_known = true;
     // The state the last vision fix applied left.
     std::optional<NavigationState> at_last_vision;
     // That fix's unproven covariance, of the body's pose error [dp; dtheta].
@@ -386,9 +397,11 @@ class InertialNavigator {
   void prune();
 
   std::optional<ImuSample> bufferedImuAt(int64_t stamp_ns) const;
-  // `from_vision`: the state is a vision fix's pose, which counts as applied.
+  // What a start knows of the position: nothing yet, a sensor's, or a vision
+  // fix's, which counts as applied.
+  enum class StartPosition { kUnknown, kFromSensors, kFromVision };
   void startAt(const NavigationState& state, const ErrorCovariance& covariance,
-               const ImuSample& imu, bool from_vision,
+               const ImuSample& imu, StartPosition position,
                const Matrix6d& unproven_covariance = Matrix6d::Zero());
   // (1 + rho) / (1 - rho) for a fix at the snapshot's state.
   double correlatedFixInflation(const Snapshot& snapshot) const;

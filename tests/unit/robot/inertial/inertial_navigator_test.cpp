@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -17,15 +19,18 @@ using testing::initialCovariance;
 using testing::toImuSample;
 using testing::truthState;
 
+// A route drawn with `seed`: standing for `still_s`, then driving.
+sim::TrajectoryConfig routeOf(uint64_t seed, double duration_s, double still_s) {
+  sim::TrajectoryConfig config;
+  config.seed = seed;
+  config.duration_s = duration_s;
+  config.initial_still_s = still_s;
+  return config;
+}
+
 struct Drive {
   explicit Drive(uint64_t seed, double duration_s = 20.0, double still_s = 2.0)
-      : trajectory([&] {
-          sim::TrajectoryConfig config;
-          config.seed = seed;
-          config.duration_s = duration_s;
-          config.initial_still_s = still_s;
-          return config;
-        }()),
+      : trajectory(routeOf(seed, duration_s, still_s)),
         imu(sim::synthesiseImu(trajectory, sim::ImuModel{}, seed)) {}
 
   InertialNavigator startedNavigator(const InertialNavigatorConfig& config = {}) const {
@@ -335,11 +340,7 @@ class DgpsAndCompassFeed {
 // DGPS errors are correlated over minutes: a robot standing still for a
 // minute of 1 Hz fixes knows its position no better than one fix tells it.
 TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
-  sim::TrajectoryConfig trajectory_config;
-  trajectory_config.seed = 4;
-  trajectory_config.duration_s = 62.0;
-  trajectory_config.initial_still_s = 60.0;
-  const SensedDrive drive(trajectory_config, 3);
+  const SensedDrive drive(routeOf(4, 62.0, 60.0), 3);
   const InertialNavigatorConfig config;
   InertialNavigator navigator(config);
   DgpsAndCompassFeed feed(drive.gps, drive.compass);
@@ -363,10 +364,7 @@ TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
 // metre-level covariance; then vision fixes pull it in to centimetres, DGPS is
 // no longer used, and compass disturbances are gated.
 TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
-  sim::TrajectoryConfig trajectory_config;
-  trajectory_config.seed = 12;
-  trajectory_config.duration_s = 120.0;
-  trajectory_config.initial_still_s = 5.0;
+  sim::TrajectoryConfig trajectory_config = routeOf(12, 120.0, 5.0);
   trajectory_config.start_yaw_rad = 0.7;
   sim::CompassModel compass_model;
   compass_model.magnetic_declination_rad = 0.03;
@@ -427,6 +425,58 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   EXPECT_GT(health.compass.gated, 0);  // disturbances
 }
 
+// DGPS late: the robot stands through the alignment window, drives off, and
+// its first DGPS fix comes ten seconds after that. The filter starts at the
+// window's end without a position and gives no pose, neither predicted nor
+// reported, until the fix; from then on its position (the fix's), velocity
+// (the IMU's, carried from the standstill) and attitude lie within their
+// covariance: the squared error normalised by it, nine degrees of freedom,
+// below the 99.9 % chi2(9) bound, checked once a second.
+TEST(InertialNavigator, StartsWithoutPositionWhenDgpsComesAfterTheRobotDroveOff) {
+  const SensedDrive drive(routeOf(7, 30.0, 5.0), 5);
+  const int64_t t0 = drive.imu.front().stamp_ns;
+  const int64_t first_gps_ns = t0 + 15'000'000'000;
+  std::vector<sim::SimGpsFix> late_gps;
+  std::copy_if(drive.gps.begin(), drive.gps.end(), std::back_inserter(late_gps),
+               [&](const sim::SimGpsFix& fix) { return fix.stamp_ns >= first_gps_ns; });
+  InertialNavigator navigator(InertialNavigatorConfig{});
+  DgpsAndCompassFeed feed(late_gps, drive.compass);
+  const double bound = chiSquareQuantile(0.999, 9);
+  int64_t next_check_ns = first_gps_ns;
+  int checks = 0;
+  for (const sim::SimImuSample& sample : drive.imu) {
+    feed.deliverUntil(navigator, sample.stamp_ns);
+    navigator.addImu(toImuSample(sample));
+    if (sample.stamp_ns < first_gps_ns) {
+      EXPECT_FALSE(navigator.state());
+      EXPECT_EQ(navigator.predictAt(sample.stamp_ns).status, PredictionStatus::kNotInitialised);
+      EXPECT_EQ(navigator.health().mode, NavigatorMode::kInitialising);
+      continue;
+    }
+    if (sample.stamp_ns < next_check_ns) {
+      continue;
+    }
+    next_check_ns += 1'000'000'000;
+    const std::optional<NavigatorEstimate> estimate = navigator.state();
+    ASSERT_TRUE(estimate);
+    EXPECT_EQ(navigator.predictAt(sample.stamp_ns).status, PredictionStatus::kOk);
+    EXPECT_NE(navigator.health().mode, NavigatorMode::kInitialising);
+    const Eigen::Matrix<double, 9, 1> error =
+        errorBetween(truthState(drive.trajectory, sample.stamp_ns, &sample), estimate->state)
+            .head<9>();
+    const Eigen::Matrix<double, 9, 9> covariance = estimate->covariance.topLeftCorner<9, 9>();
+    EXPECT_LT(error.dot(covariance.ldlt().solve(error)), bound)
+        << "at " << (sample.stamp_ns - t0) * 1e-9 << " s: error " << error.transpose();
+    ++checks;
+  }
+  EXPECT_GE(checks, 14);
+  EXPECT_GT(navigator.health().gps.accepted, 0);
+  // The robot did drive off before the fix.
+  EXPECT_GT((drive.trajectory.at(first_gps_ns).p_world_body - drive.trajectory.at(t0).p_world_body)
+                .norm(),
+            5.0);
+}
+
 struct CompassDrive {
   std::optional<double> yaw_error_at_start_rad;
   double yaw_error_at_end_rad = 0.0;
@@ -439,10 +489,7 @@ struct CompassDrive {
 // `from_s` to `until_s` (a parked car, steel).
 CompassDrive standWithCompassDisturbance(double duration_s, double from_s, double until_s,
                                          double offset_rad) {
-  sim::TrajectoryConfig trajectory_config;
-  trajectory_config.seed = 30;
-  trajectory_config.duration_s = duration_s;
-  trajectory_config.initial_still_s = duration_s - 0.5;
+  sim::TrajectoryConfig trajectory_config = routeOf(30, duration_s, duration_s - 0.5);
   trajectory_config.start_yaw_rad = 0.6;
   sim::CompassModel compass_model;
   compass_model.disturbance_rate_hz = 0.0;

@@ -309,6 +309,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   }
   FeatureExtractorOptions extractor_options;
   extractor_options.lines.min_length_px = config.min_segment_length_px;
+  extractor_options.corners_on_own_thread = config.corners_on_own_thread;
   FeatureExtractor extractor(calibration, extractor_options);
 
   RobotRunSummary summary;

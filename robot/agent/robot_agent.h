@@ -40,6 +40,10 @@ struct RobotConfig {
   double rate_hz = 10.0;
   int max_frames = 0;
   double min_segment_length_px = 20.0;
+  // Detect each frame's corners on a second thread while its lines are linked
+  // and fitted (FeatureExtractorOptions::corners_on_own_thread); off on a
+  // one-core robot, where that thread only shares the core.
+  bool corners_on_own_thread = true;
   int domain_id = 0;
   std::string dds_config;
   std::string trajectory_out = "poses.tum";

@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
   options.add("max_frames", config.max_frames, "stop after this many frames (0: all)");
   options.add("min_segment_length_px", config.min_segment_length_px,
               "shortest segment sent (pixels)");
+  options.add("corners_on_own_thread", config.corners_on_own_thread,
+              "detect each frame's corners on a second thread while its lines are fitted; false "
+              "on a one-core robot");
   options.add("domain_id", config.domain_id, "DDS domain id");
   options.add("dds_config", config.dds_config,
               "Cyclone DDS XML configuration file, or several separated by commas, each adding "

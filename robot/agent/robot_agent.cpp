@@ -392,8 +392,12 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         if (navigator) {
           const PosePrediction prediction = navigator->predictAt(line_set.stamp_ns);
           if (prediction.status != PredictionStatus::kOk) {
-            ++summary.frames_before_start;
+            ++summary.frames_before_pose;
             break;
+          }
+          if (summary.frames_sent == 0 && summary.frames_before_pose > 0) {
+            spdlog::info("the navigator has a pose: sending from frame {}, {} held before it",
+                         event.index, summary.frames_before_pose);
           }
           line_set.predicted_T_world_camera = prediction.T_world_camera;
         } else {

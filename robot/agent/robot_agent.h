@@ -69,7 +69,9 @@ struct RobotConfig {
 
 struct RobotRunSummary {
   int frames_sent = 0;
-  int frames_before_start = 0;
+  // Frames held, not sent, before the navigator had a pose: standing still
+  // for its alignment, then DGPS or a vision fix for its position.
+  int frames_before_pose = 0;
   int fixes_received = 0;
   int fixes_dropped = 0;
   int fixes_applied = 0;

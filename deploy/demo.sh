@@ -11,7 +11,9 @@
 # LINELOC_DEMO_OUT (where everything goes, out/demo/),
 # LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off),
 # LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY (the backbone's, 5, and with it
-# Cyclone DDS's receive threads'; 0: off).
+# Cyclone DDS's receive threads'; 0: off), LINELOC_DEMO_ROBOT_START_S (the
+# robot's --start-at-s, default 0: it replays the drive from that far in, as a
+# robot whose software restarted while driving).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -21,6 +23,7 @@ DOMAIN_ID="${LINELOC_DEMO_DOMAIN:-42}"
 DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
 SEED="${LINELOC_DEMO_SEED:-1}"
 CAMERA_HZ="${LINELOC_DEMO_CAMERA_HZ:-30}"
+ROBOT_START_S="${LINELOC_DEMO_ROBOT_START_S:-0}"
 # The robot's front end runs ahead of the backbone's threads on the cores
 # they share here, as it would on a computer of its own (thread_priority.h).
 REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
@@ -74,7 +77,7 @@ echo "demo: robot and backbone running in real time over DDS"
 "$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
   --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
   --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
-  --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
+  --start-at-s "$ROBOT_START_S" --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
   --fix-log-out "$OUT/fixes.txt" --state-log-out "$OUT/states.txt" \
   --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
 

@@ -200,6 +200,19 @@ std::optional<std::chrono::year_month_day> parseDate(std::string_view text) {
   return date.ok() ? std::optional(date) : std::nullopt;
 }
 
+// An optional field (RMC's speed and course): empty, or a number in [0, max].
+bool isEmptyOrWithin(std::string_view field, double max) {
+  if (field.empty()) {
+    return true;
+  }
+  const std::optional<double> value = parseDouble(field);
+  return value && *value >= 0.0 && *value <= max;
+}
+
+std::optional<double> optionalDouble(std::string_view field) {
+  return field.empty() ? std::nullopt : parseDouble(field);
+}
+
 NmeaParseResult parseRmc(const std::vector<std::string_view>& f) {
   if (f.size() < kRmcMinFieldCount) {
     return failure(NmeaStatus::kMalformedField, fmt::format("RMC: {} fields, expected at least {}",
@@ -227,20 +240,18 @@ NmeaParseResult parseRmc(const std::vector<std::string_view>& f) {
   }
   const auto latitude = parseAngle(f[3], f[4], kLatitude);
   const auto longitude = parseAngle(f[5], f[6], kLongitude);
-  const auto speed = f[7].empty() ? std::optional<double>(0.0) : parseDouble(f[7]);
-  const auto course = f[8].empty() ? std::optional<double>(0.0) : parseDouble(f[8]);
   if (!latitude)
     return malformed("RMC", "latitude");
   if (!longitude)
     return malformed("RMC", "longitude");
-  if (!speed || *speed < 0.0 || *speed > kMaxSpeed_knots)
+  if (!isEmptyOrWithin(f[7], kMaxSpeed_knots))
     return malformed("RMC", "speed");
-  if (!course || *course < 0.0 || *course > 360.0)
+  if (!isEmptyOrWithin(f[8], 360.0))
     return malformed("RMC", "course");
   rmc.latitude_deg = *latitude;
   rmc.longitude_deg = *longitude;
-  rmc.speed_knots = *speed;
-  rmc.course_deg = *course;
+  rmc.speed_knots = optionalDouble(f[7]);
+  rmc.course_deg = optionalDouble(f[8]);
   NmeaParseResult result;
   result.status = NmeaStatus::kOk;
   result.sentence = rmc;
@@ -369,10 +380,14 @@ std::string formatRmc(const RmcSentence& rmc) {
   const std::string position = rmc.valid ? formatAngle(rmc.latitude_deg, kLatitude) + "," +
                                                formatAngle(rmc.longitude_deg, kLongitude)
                                          : ",,,";
-  return withChecksum(fmt::format("{}RMC,{},{},{},{:.3f},{:.2f},{:02d}{:02d}{:02d},,,{}",
-                                  rmc.talker, formatTimeOfDay(rmc.time_of_day_ns),
-                                  rmc.valid ? 'A' : 'V', position, rmc.speed_knots, rmc.course_deg,
-                                  rmc.day, rmc.month, rmc.year % 100, rmc.valid ? 'D' : 'N'));
+  const auto optional = [](const std::optional<double>& value, int decimals) {
+    return value ? fmt::format("{:.{}f}", *value, decimals) : std::string();
+  };
+  return withChecksum(fmt::format("{}RMC,{},{},{},{},{},{:02d}{:02d}{:02d},,,{}", rmc.talker,
+                                  formatTimeOfDay(rmc.time_of_day_ns), rmc.valid ? 'A' : 'V',
+                                  position, optional(rmc.speed_knots, 3),
+                                  optional(rmc.course_deg, 2), rmc.day, rmc.month, rmc.year % 100,
+                                  rmc.valid ? 'D' : 'N'));
 }
 
 }  // namespace lineloc

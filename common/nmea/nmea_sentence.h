@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -35,9 +36,11 @@ struct RmcSentence {
   bool valid = false;  // status 'A'; 'V' (void) carries no position
   double latitude_deg = 0.0;
   double longitude_deg = 0.0;
-  double speed_knots = 0.0;
-  double course_deg = 0.0;  // over ground, clockwise from true north
-  int year = 2000;          // four digits; RMC's two-digit yy is 19yy for yy >= 80, else 20yy
+  // Over ground, course clockwise from true north; nullopt where the field is
+  // empty (a receiver leaves the course out when standing, some the speed too).
+  std::optional<double> speed_knots;
+  std::optional<double> course_deg;
+  int year = 2000;  // four digits; RMC's two-digit yy is 19yy for yy >= 80, else 20yy
   int month = 1;
   int day = 1;
   // UTC nanoseconds since the Unix epoch of this sentence's date and time.

@@ -296,10 +296,15 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   if (config.calibration.empty()) {
     throw std::runtime_error("calibration: a camera calibration file is required");
   }
+  if (!(config.start_at_s >= 0.0 && config.start_at_s < 1e9)) {
+    throw std::runtime_error(
+        fmt::format("start_at_s must be >= 0 seconds, got {}", config.start_at_s));
+  }
   const CameraCalibration calibration = readCameraCalibration(config.calibration);
   const PoseWithCovariance configured = configuredPose(config);
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
-  SensorStreams streams = loadSensorStreams(config.images, gps.get());
+  SensorStreams streams =
+      loadSensorStreams(config.images, gps.get(), static_cast<int64_t>(config.start_at_s * 1e9));
   for (const std::string& reason : streams.drop_reasons) {
     spdlog::warn("input dropped: {}", reason);
   }
@@ -374,6 +379,10 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       case SensorKind::kGps:
         if (navigator)
           navigator->addGps(streams.gps[event.index]);
+        break;
+      case SensorKind::kGpsVelocity:
+        if (navigator)
+          navigator->addGpsVelocity(streams.gps_velocity[event.index]);
         break;
       case SensorKind::kCompass:
         if (navigator)

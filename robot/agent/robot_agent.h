@@ -39,6 +39,9 @@ struct RobotConfig {
   // Frame rate for image folders without time stamps (0: as fast as possible).
   double rate_hz = 10.0;
   int max_frames = 0;
+  // Replay a dataset from this many seconds in, as a robot whose software
+  // restarts mid-drive: its navigator sees nothing before.
+  double start_at_s = 0.0;
   double min_segment_length_px = 20.0;
   // Detect each frame's corners on a second thread while its lines are linked
   // and fitted (FeatureExtractorOptions::corners_on_own_thread); off on a

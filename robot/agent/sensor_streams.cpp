@@ -41,8 +41,9 @@ int64_t rowStampNs(const std::string& line, size_t comma) {
 }
 
 // gps0/data.csv rows: "timestamp_ns,sentence"; the row's stamp is the fix
-// time. RMC rows and GGA rows without a fix are valid input that gives no
-// position; only rows the decoder finds malformed are dropped and reported.
+// time. GGA rows give positions, RMC rows velocities; GGA rows without a fix,
+// and RMC rows without one or without speed and course, are valid input that
+// gives neither; only rows the decoder finds malformed are dropped and reported.
 void readGps(const fs::path& csv, NmeaGpsDecoder& decoder, SensorStreams& streams) {
   std::ifstream stream(csv);
   if (!stream) {
@@ -56,13 +57,18 @@ void readGps(const fs::path& csv, NmeaGpsDecoder& decoder, SensorStreams& stream
     const size_t comma = line.find(',');
     const int64_t stamp_ns = rowStampNs(line, comma);
     const NmeaCounters before = decoder.counters();
-    std::optional<GpsFix> fix;
+    GpsReading reading;
     if (stamp_ns > 0) {
-      fix = decoder.decode(csvSentence(std::string_view(line).substr(comma + 1)), stamp_ns);
+      reading = decoder.decode(csvSentence(std::string_view(line).substr(comma + 1)), stamp_ns);
     }
-    if (fix) {
+    if (auto* fix = std::get_if<GpsFix>(&reading)) {
       fix->stamp_ns = stamp_ns;
       streams.gps.push_back(*fix);
+      continue;
+    }
+    if (auto* velocity = std::get_if<GpsVelocity>(&reading)) {
+      velocity->stamp_ns = stamp_ns;
+      streams.gps_velocity.push_back(*velocity);
       continue;
     }
     const NmeaCounters& after = decoder.counters();
@@ -86,6 +92,48 @@ std::optional<Eigen::Isometry3d> sensorPose(const fs::path& sensor_yaml) {
 }
 
 template <typename T>
+int64_t stampOf(const T& record) {
+  return record.stamp_ns;
+}
+
+int64_t stampOf(const FrameRef& frame) {
+  return frame.stamp_ns.value_or(0);
+}
+
+template <typename T>
+void eraseBefore(int64_t stamp_ns, std::vector<T>& records) {
+  std::erase_if(records, [&](const T& record) { return stampOf(record) < stamp_ns; });
+}
+
+template <typename T>
+void takeEarliest(const std::vector<T>& records, int64_t& first_ns) {
+  if (!records.empty()) {
+    first_ns = std::min(first_ns, stampOf(records.front()));
+  }
+}
+
+// Leaves out every record of the first `offset_ns` of the streams.
+void startAfter(int64_t offset_ns, SensorStreams& streams) {
+  if (offset_ns <= 0) {
+    return;
+  }
+  if (streams.frames.empty() || !streams.frames.front().stamp_ns) {
+    throw std::runtime_error("a replay that starts later needs time-stamped frames");
+  }
+  int64_t first_ns = stampOf(streams.frames.front());
+  takeEarliest(streams.imu, first_ns);
+  takeEarliest(streams.gps, first_ns);
+  takeEarliest(streams.gps_velocity, first_ns);
+  takeEarliest(streams.compass, first_ns);
+  const int64_t start_ns = first_ns + offset_ns;
+  eraseBefore(start_ns, streams.frames);
+  eraseBefore(start_ns, streams.imu);
+  eraseBefore(start_ns, streams.gps);
+  eraseBefore(start_ns, streams.gps_velocity);
+  eraseBefore(start_ns, streams.compass);
+}
+
+template <typename T>
 void addEvents(const std::vector<T>& records, SensorKind kind, SensorStreams& streams) {
   for (size_t i = 0; i < records.size(); ++i) {
     streams.timeline.push_back({records[i].stamp_ns, kind, i});
@@ -94,7 +142,8 @@ void addEvents(const std::vector<T>& records, SensorKind kind, SensorStreams& st
 
 }  // namespace
 
-SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps) {
+SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
+                                int64_t start_offset_ns) {
   SensorStreams streams;
   streams.frames = listImageSequence(root);
   const fs::path dataset(root);
@@ -109,17 +158,22 @@ SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps) {
   if (gps != nullptr && fs::is_regular_file(dataset / "gps0" / "data.csv")) {
     readGps(dataset / "gps0" / "data.csv", *gps, streams);
   }
-  const bool timed = !streams.imu.empty() || !streams.gps.empty() || !streams.compass.empty();
+  const bool timed = !streams.imu.empty() || !streams.gps.empty() ||
+                     !streams.gps_velocity.empty() || !streams.compass.empty();
   for (size_t i = 0; i < streams.frames.size(); ++i) {
     if (timed && !streams.frames[i].stamp_ns) {
       throw std::runtime_error(fmt::format(
           "frame '{}' has no time stamp, so it cannot be replayed with the other sensors",
           streams.frames[i].path));
     }
-    streams.timeline.push_back({streams.frames[i].stamp_ns.value_or(0), SensorKind::kFrame, i});
+  }
+  startAfter(start_offset_ns, streams);
+  for (size_t i = 0; i < streams.frames.size(); ++i) {
+    streams.timeline.push_back({stampOf(streams.frames[i]), SensorKind::kFrame, i});
   }
   addEvents(streams.imu, SensorKind::kImu, streams);
   addEvents(streams.gps, SensorKind::kGps, streams);
+  addEvents(streams.gps_velocity, SensorKind::kGpsVelocity, streams);
   addEvents(streams.compass, SensorKind::kCompass, streams);
   std::stable_sort(
       streams.timeline.begin(), streams.timeline.end(),

@@ -1,6 +1,6 @@
 // The robot's timed inputs from a recorded or simulated EuRoC/ASL dataset —
 // camera frames (cam0/), IMU (imu0/data.csv), DGPS as NMEA 0183
-// (gps0/data.csv: "timestamp_ns,sentence"), compass (compass0/data.csv) —
+// (gps0/data.csv: "timestamp_ns,sentence"; positions and velocities), compass (compass0/data.csv) —
 // merged into one time-ordered timeline, so the robot can replay them as they
 // were measured, and the mounting of camera and IMU on the body (T_BS of
 // cam0/sensor.yaml and imu0/sensor.yaml). Streams other than the camera are
@@ -18,7 +18,7 @@
 
 namespace lineloc {
 
-enum class SensorKind { kImu, kGps, kCompass, kFrame };
+enum class SensorKind { kImu, kGps, kGpsVelocity, kCompass, kFrame };
 
 struct SensorEvent {
   int64_t stamp_ns = 0;
@@ -30,6 +30,7 @@ struct SensorStreams {
   std::vector<FrameRef> frames;
   std::vector<ImuSample> imu;
   std::vector<GpsFix> gps;
+  std::vector<GpsVelocity> gps_velocity;
   std::vector<CompassReading> compass;
   std::vector<SensorEvent> timeline;
   // The sensors' poses in the body frame, when the dataset gives them.
@@ -43,9 +44,13 @@ struct SensorStreams {
 
 // Reads the streams of the dataset at `root` (or a plain image folder: frames
 // only). `gps` decodes the NMEA sentences into the site frame; without it
-// DGPS is not read. Throws std::runtime_error naming the file when the camera
+// DGPS is not read. `start_offset_ns` leaves out the records of that long
+// from the earliest one of any stream (a robot whose software restarts
+// mid-drive). Throws std::runtime_error naming the file when the camera
 // stream is unreadable; frames without a time stamp are refused when other
-// streams are present (they cannot be placed on the timeline).
-SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps);
+// streams are present (they cannot be placed on the timeline), and when the
+// replay starts later.
+SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
+                                int64_t start_offset_ns = 0);
 
 }  // namespace lineloc

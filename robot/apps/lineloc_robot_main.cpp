@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
   options.add("rate_hz", config.rate_hz,
               "frame rate for image folders without stamps (0: as fast as possible)");
   options.add("max_frames", config.max_frames, "stop after this many frames (0: all)");
+  options.add("start_at_s", config.start_at_s,
+              "replay the dataset from this many seconds in (a restart mid-drive)");
   options.add("min_segment_length_px", config.min_segment_length_px,
               "shortest segment sent (pixels)");
   options.add("corners_on_own_thread", config.corners_on_own_thread,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "common/stats/chi_square.h"
+#include "robot/inertial/in_motion_alignment.h"
 #include "robot/inertial/measurement_models.h"
 #include "robot/inertial/robust_heading.h"
 
@@ -41,6 +42,20 @@ constexpr double kMinAgreeingCompassFraction = 0.9;
 // Bound on a correlated fix's covariance inflation: a fix of an unchanged view
 // still counts, at a ten-thousandth of an independent one.
 constexpr double kMaxCorrelatedFixInflation = 1e4;
+// Longest interval between the two DGPS velocities of a start in motion (two
+// epochs of a 1 Hz receiver, with jitter); longer, the tilt is as good but the
+// robot's turns between them are the gyros' to carry.
+constexpr int64_t kMaxVelocityMatchingBaseline_ns = 1'500'000'000;
+// A DGPS velocity faster than this many of its sigmas (per axis) is motion.
+constexpr double kMovingSpeedSigmas = 4.0;
+// How long a DGPS velocity tells whether the robot moves: until the next
+// epoch of a 1 Hz receiver, with jitter.
+constexpr int64_t kReceiverMotionHold_ns = 1'500'000'000;
+// A DGPS fix this close to a start in motion's last velocity is of its epoch.
+constexpr int64_t kSameEpoch_ns = 50'000'000;
+// Vertical velocity of a start in motion, per m/s of horizontal speed: a
+// steep street's grade (8 %).
+constexpr double kSteepGrade = 0.08;
 
 void requirePositive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -162,6 +177,7 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   requirePositive(static_cast<double>(config.history_ns), "history_ns");
   requirePositive(config.gps_horizontal_sigma_m, "gps_horizontal_sigma_m");
   requirePositive(config.gps_vertical_sigma_m, "gps_vertical_sigma_m");
+  requirePositive(config.gps_velocity_sigma_mps, "gps_velocity_sigma_mps");
   requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
   requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
   if (config.vision_error_correlation_m != 0.0) {
@@ -224,6 +240,7 @@ void InertialNavigator::addImu(const ImuSample& sample_imu) {
       alignment_ = alignment;
     }
     tryInitialiseFromSensors();
+    tryInitialiseInMotion();
   } else {
     process(imu_.back());
     restartIfVisionKeepsBeingGated();
@@ -244,6 +261,39 @@ void InertialNavigator::addGps(const GpsFix& fix) {
   }
   addMeasurement(fix.stamp_ns,
                  {GpsPayload{fix.p_world_antenna}, std::nullopt, std::nullopt, std::nullopt});
+}
+
+void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {
+  if (!velocity.v_world_mps.allFinite()) {
+    ++counters_.gps_velocity.invalid;
+    return;
+  }
+  receiver_velocities_.push_back(velocity);
+  if (!snapshots_.empty()) {
+    ++counters_.gps_velocity.skipped;
+    return;
+  }
+  // A robot cruising on a smooth road can look as still to the IMU as a
+  // standing one; a speed the receiver measures beyond its noise is motion.
+  moved_since_start_ = moved_since_start_ || isMotion(velocity);
+  startup_velocities_.push_back(velocity);
+  if (startup_velocities_.size() > 2) {
+    startup_velocities_.pop_front();
+  }
+  tryInitialiseInMotion();
+}
+
+bool InertialNavigator::isMotion(const GpsVelocity& velocity) const {
+  return velocity.v_world_mps.norm() > kMovingSpeedSigmas * config_.gps_velocity_sigma_mps;
+}
+
+bool InertialNavigator::receiverSawMotion(int64_t stamp_ns) const {
+  const auto after = std::upper_bound(
+      receiver_velocities_.begin(), receiver_velocities_.end(), stamp_ns,
+      [](int64_t stamp, const GpsVelocity& velocity) { return stamp < velocity.stamp_ns; });
+  return after != receiver_velocities_.begin() &&
+         stamp_ns - std::prev(after)->stamp_ns <= kReceiverMotionHold_ns &&
+         isMotion(*std::prev(after));
 }
 
 void InertialNavigator::addCompass(const CompassReading& reading) {
@@ -326,7 +376,7 @@ void InertialNavigator::process(const BufferedImu& imu) {
     strapdown_.propagate(current, imu.sample, snapshot.state, snapshot.covariance);
   }
   const bool slow = snapshot.state.v_world_body.norm() < config_.zero_velocity_max_speed_mps;
-  if (imu.still && slow &&
+  if (imu.still && slow && !receiverSawMotion(imu.sample.stamp_ns) &&
       imu.sample.stamp_ns - snapshot.last_zero_velocity_ns >= config_.zero_velocity_interval_ns) {
     const UpdateOutcome outcome =
         applyUpdate(lineariseZeroVelocity(snapshot.state, config_.zero_velocity_sigma_mps),
@@ -432,6 +482,10 @@ void InertialNavigator::prune() {
     trackGatedCompass(it->first, it->second);
   }
   measurements_.erase(measurements_.begin(), kept);
+  while (!receiver_velocities_.empty() &&
+         receiver_velocities_.front().stamp_ns < first_ns - kReceiverMotionHold_ns) {
+    receiver_velocities_.pop_front();
+  }
   // Start-up heading: the compass readings of the last still window.
   const int64_t compass_from_ns = imu_.back().sample.stamp_ns - config_.alignment.window_ns;
   while (!startup_compass_.empty() && startup_compass_.front().stamp_ns < compass_from_ns) {
@@ -482,6 +536,7 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   }
   snapshots_.push_back(snapshot);
   startup_gps_.reset();
+  startup_velocities_.clear();
   startup_compass_.clear();
   gated_compass_.clear();
   startup_vision_.reset();
@@ -524,24 +579,83 @@ void InertialNavigator::tryInitialiseFromSensors() {
   state.stamp_ns = latest.stamp_ns;
   state.q_world_body =
       quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
-  if (startup_gps_) {
-    state.p_world_body =
-        startup_gps_->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
-  }
+  const Eigen::Vector3d position_sigma_m =
+      placeAtDgps(startup_gps_ ? &*startup_gps_ : nullptr, state);
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
   // A tilt error of b_a / g hides behind an accelerometer bias b_a.
   const double tilt_sigma = config_.accel_turn_on_bias_sigma_mps2 / config_.gravity_mps2;
-  const Eigen::Vector3d position_sigma_m =
-      startup_gps_ ? Eigen::Vector3d(config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
-                                     config_.gps_vertical_sigma_m)
-                   : Eigen::Vector3d::Constant(kUnknownPositionSigma_m);
   ErrorVector sigma;
   sigma << position_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
       tilt_sigma, config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   startAt(state, sigma.cwiseAbs2().asDiagonal(), latest,
           startup_gps_ ? StartPosition::kFromSensors : StartPosition::kUnknown);
+}
+
+Eigen::Vector3d InertialNavigator::placeAtDgps(const GpsFix* fix, NavigationState& state) const {
+  if (fix == nullptr) {
+    return Eigen::Vector3d::Constant(kUnknownPositionSigma_m);
+  }
+  state.p_world_body = fix->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
+  return {config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
+          config_.gps_vertical_sigma_m};
+}
+
+void InertialNavigator::tryInitialiseInMotion() {
+  // Only once the robot has moved since power-on: standing, the start above
+  // levels better. Tried once per pair of velocities, when the IMU has passed
+  // the second (and the DGPS fix of its epoch has come).
+  if (!snapshots_.empty() || !moved_since_start_ || startup_velocities_.size() < 2 ||
+      imu_.back().sample.stamp_ns <= startup_velocities_.back().stamp_ns) {
+    return;
+  }
+  const GpsVelocity from = startup_velocities_.front();
+  const GpsVelocity to = startup_velocities_.back();
+  startup_velocities_.pop_front();
+  if (to.stamp_ns - from.stamp_ns > kMaxVelocityMatchingBaseline_ns) {
+    return;
+  }
+  std::vector<ImuSample> imu;
+  for (const BufferedImu& buffered : imu_) {
+    imu.push_back(buffered.sample);
+  }
+  std::vector<TimedYaw> compass_yaws;
+  for (const CompassReading& reading : startup_compass_) {
+    compass_yaws.push_back({reading.stamp_ns, yawFromCompass(reading.magnetic_heading_rad)});
+  }
+  const InMotionAlignmentNoise noise{
+      config_.gravity_mps2, config_.gps_velocity_sigma_mps, config_.accel_turn_on_bias_sigma_mps2,
+      config_.gyro_turn_on_bias_sigma_radps, kStartupHeadingGateSigmas * config_.compass_sigma_rad};
+  const std::optional<InMotionAttitude> attitude = alignInMotion(
+      imu, from.stamp_ns, from.v_world_mps, to.stamp_ns, to.v_world_mps, compass_yaws, noise);
+  const std::optional<ImuSample> imu_at_start = bufferedImuAt(to.stamp_ns);
+  if (!attitude || !imu_at_start) {
+    return;
+  }
+  NavigationState state;
+  state.stamp_ns = to.stamp_ns;
+  state.q_world_body = attitude->q_world_body;
+  // v_body = v_antenna - R (omega x r).
+  state.v_world_body =
+      Eigen::Vector3d(to.v_world_mps.x(), to.v_world_mps.y(), 0.0) -
+      state.q_world_body * imu_at_start->gyro_radps.cross(config_.p_body_gps_antenna);
+  const bool position_known =
+      startup_gps_ && std::abs(startup_gps_->stamp_ns - to.stamp_ns) <= kSameEpoch_ns;
+  const Eigen::Vector3d position_sigma_m =
+      placeAtDgps(position_known ? &*startup_gps_ : nullptr, state);
+  double gyro_bias_sigma = 0.0;
+  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  const double vertical_velocity_sigma =
+      std::max(kStillVelocitySigma_mps, kSteepGrade * to.v_world_mps.norm());
+  ErrorVector sigma;
+  sigma << position_sigma_m, config_.gps_velocity_sigma_mps, config_.gps_velocity_sigma_mps,
+      vertical_velocity_sigma, attitude->tilt_sigma_rad, attitude->tilt_sigma_rad,
+      config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
+      Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
+  counters_.gps_velocity.accepted += 2;
+  startAt(state, sigma.cwiseAbs2().asDiagonal(), *imu_at_start,
+          position_known ? StartPosition::kFromSensors : StartPosition::kUnknown);
 }
 
 InertialNavigator::BodyFix InertialNavigator::bodyFixOf(int64_t stamp_ns,

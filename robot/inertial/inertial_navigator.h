@@ -26,10 +26,30 @@
 // "initialising": a prediction with no position would send the backbone's
 // search to the wrong street. (A start that waited for DGPS never came on a
 // simulated Delft drive whose DGPS came back 9 s after the robot drove off,
-// seed 41.) Vision fixes before any start (the window not yet full, or a
-// robot that never stood still) start the filter from their pose: at once
-// when it has stood still since power-on, else from two fixes at most 0.5 s
-// apart, whose difference gives the velocity.
+// seed 41.)
+//
+// A robot that has moved since power-on (started while driving, or whose
+// software restarted mid-drive) has no standstill to level from. It starts in
+// motion instead, from two consecutive DGPS velocities (the receiver's
+// Doppler, NMEA RMC) at most kMaxVelocityMatchingBaseline_ns apart: roll and
+// pitch by velocity matching against the IMU between them, yaw from the
+// compass readings between them (in_motion_alignment.h); velocity the
+// receiver's, the vertical one zero within a steep street's grade times the
+// speed; position the DGPS fix of the same epoch, or unknown as above; gyro
+// and accelerometer biases zero within their turn-on spread. Later DGPS
+// velocities are not fused (counted as skipped), but one that shows motion
+// (beyond kMovingSpeedSigmas of its noise) holds off zero-velocity updates
+// until the next: a robot cruising straight at constant speed is as quiet to
+// the IMU as a standing one, and after a start in motion whose tilt was 0.9
+// degrees off, taking 0.16 m/s off each second, the filter's speed fell below
+// zero_velocity_max_speed_mps and was held at zero at 0.54 m/s. A slow DGPS
+// velocity does not call for zero-velocity updates in turn: it holds for up
+// to a second after the robot has pulled away.
+//
+// Vision fixes before any start (the window not yet full, or a robot that
+// never stood still and has no DGPS velocity) start the filter from their
+// pose: at once when it has stood still since power-on, else from two fixes
+// at most 0.5 s apart, whose difference gives the velocity.
 //
 // Restart. Vision fixes gated without a break for `vision_gated_restart_after_ns`
 // mean the filter, not the fixes, is wrong, but only when their residuals
@@ -179,6 +199,9 @@ struct InertialNavigatorConfig {
 
   double gps_horizontal_sigma_m = 5.0;
   double gps_vertical_sigma_m = 10.0;
+  // Per horizontal axis, of one DGPS velocity (Doppler: 0.05 m/s on a current
+  // single-frequency receiver's data sheet, doubled for multipath in a street).
+  double gps_velocity_sigma_mps = 0.1;
   double compass_sigma_rad = 2.0 * M_PI / 180.0;
   double magnetic_declination_rad = 0.0;  // magnetic north's bearing from true north, east positive
   double grid_bearing_of_true_north_rad = 0.0;  // SiteProjection::gridBearingOfTrueNorth_rad
@@ -219,6 +242,13 @@ struct InertialNavigatorConfig {
 struct GpsFix {
   int64_t stamp_ns = 0;
   Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
+};
+
+// The antenna's horizontal velocity over ground, site x (east) and y (north),
+// from the receiver's Doppler measurements (NMEA RMC speed and course).
+struct GpsVelocity {
+  int64_t stamp_ns = 0;
+  Eigen::Vector2d v_world_mps = Eigen::Vector2d::Zero();
 };
 
 // Magnetic heading of the body x axis, clockwise from magnetic north.
@@ -268,6 +298,9 @@ struct NavigatorHealth {
   double yaw_sigma_rad = 0.0;
   MeasurementCounters vision;
   MeasurementCounters gps;
+  // Accepted: the two a start in motion took; skipped: those after the start
+  // (not fused; they hold off zero-velocity updates while they show motion).
+  MeasurementCounters gps_velocity;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
   int64_t restarts = 0;          // from vision, after vision_gated_restart_after_ns of gated fixes
@@ -295,6 +328,7 @@ class InertialNavigator {
   // A sample in the IMU frame (rotated here by R_body_imu).
   void addImu(const ImuSample& sample_imu);
   void addGps(const GpsFix& fix);
+  void addGpsVelocity(const GpsVelocity& velocity);
   void addCompass(const CompassReading& reading);
   // `unproven_covariance`: the part of T_world_camera.covariance its error
   // shares with the fixes after it (see above); within it, else kInvalid.
@@ -406,6 +440,16 @@ class InertialNavigator {
   // (1 + rho) / (1 - rho) for a fix at the snapshot's state.
   double correlatedFixInflation(const Snapshot& snapshot) const;
   void tryInitialiseFromSensors();
+  void tryInitialiseInMotion();
+  // A start's position: `fix`'s antenna moved to the body at the state's
+  // attitude, with DGPS's sigma; without a fix, unknown (kUnknownPositionSigma_m).
+  // Returns the sigma per axis.
+  Eigen::Vector3d placeAtDgps(const GpsFix* fix, NavigationState& state) const;
+  // A speed beyond kMovingSpeedSigmas of the DGPS velocity's noise.
+  bool isMotion(const GpsVelocity& velocity) const;
+  // The last DGPS velocity at or up to kReceiverMotionHold_ns before
+  // `stamp_ns` showed motion.
+  bool receiverSawMotion(int64_t stamp_ns) const;
   BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision) const;
   // A covariance of the camera pose's error [dp; dtheta] as the body pose's.
   Matrix6d bodyCovarianceOf(const Eigen::Isometry3d& T_world_camera,
@@ -443,6 +487,11 @@ class InertialNavigator {
   std::deque<Snapshot> snapshots_;
   std::multimap<int64_t, Measurement> measurements_;
   std::optional<GpsFix> startup_gps_;
+  // The last two DGPS velocities before a start, oldest first.
+  std::deque<GpsVelocity> startup_velocities_;
+  // The DGPS velocities, oldest first, back to kReceiverMotionHold_ns before
+  // the first snapshot (before a start, the history's first sample).
+  std::deque<GpsVelocity> receiver_velocities_;
   std::deque<CompassReading> startup_compass_;
   std::optional<BodyFix> startup_vision_;
   bool moved_since_start_ = false;

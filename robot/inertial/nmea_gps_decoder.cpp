@@ -9,6 +9,23 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kNsPerDay = 86'400'000'000'000;
+constexpr double kMetresPerSecondPerKnot = 1852.0 / 3600.0;
+
+// The velocity of an RMC with speed and course (a speed of zero needs none);
+// throws std::domain_error where the projection does not reach.
+std::optional<GpsVelocity> velocityOf(const RmcSentence& rmc, const SiteProjection& projection) {
+  if (!rmc.speed_knots || !(rmc.course_deg || *rmc.speed_knots == 0.0)) {
+    return std::nullopt;
+  }
+  const GeodeticPosition position{rmc.latitude_deg, rmc.longitude_deg, 0.0};
+  // v = s (sin beta, cos beta), beta the grid bearing = true course + grid
+  // bearing of true north.
+  const double grid_bearing_rad =
+      rmc.course_deg.value_or(0.0) * M_PI / 180.0 + projection.gridBearingOfTrueNorth_rad(position);
+  const double speed_mps = *rmc.speed_knots * kMetresPerSecondPerKnot;
+  return GpsVelocity{rmc.utcStamp_ns(), speed_mps * Eigen::Vector2d(std::sin(grid_bearing_rad),
+                                                                    std::cos(grid_bearing_rad))};
+}
 
 }  // namespace
 
@@ -20,33 +37,43 @@ int64_t stampNearest(int64_t time_of_day_ns, int64_t reference_ns) {
 
 NmeaGpsDecoder::NmeaGpsDecoder(SiteProjection projection) : projection_(std::move(projection)) {}
 
-std::optional<GpsFix> NmeaGpsDecoder::decode(std::string_view line, int64_t reference_stamp_ns) {
+GpsReading NmeaGpsDecoder::decode(std::string_view line, int64_t reference_stamp_ns) {
   const NmeaParseResult result = parseNmeaSentence(line);
   switch (result.status) {
     case NmeaStatus::kOk:
       break;
     case NmeaStatus::kNoFix:
       ++counters_.no_fix;
-      return std::nullopt;
+      return {};
     case NmeaStatus::kBadChecksum:
       ++counters_.bad_checksum;
-      return std::nullopt;
+      return {};
     case NmeaStatus::kUnsupportedType:
       ++counters_.unsupported;
-      return std::nullopt;
+      return {};
     case NmeaStatus::kBadFraming:
     case NmeaStatus::kMalformedField:
       ++counters_.malformed;
-      return std::nullopt;
+      return {};
   }
   if (const auto* rmc = std::get_if<RmcSentence>(&result.sentence)) {
     day_start_ns_ = rmc->utcStamp_ns() - rmc->time_of_day_ns;
-    return std::nullopt;
+    try {
+      const std::optional<GpsVelocity> velocity = velocityOf(*rmc, projection_);
+      if (!velocity) {
+        return {};
+      }
+      ++counters_.velocities;
+      return *velocity;
+    } catch (const std::domain_error&) {
+      ++counters_.malformed;
+      return {};
+    }
   }
   const auto& gga = std::get<GgaSentence>(result.sentence);
   if (!day_start_ns_ && reference_stamp_ns == 0) {
     ++counters_.undated;
-    return std::nullopt;
+    return {};
   }
   GpsFix fix;
   fix.stamp_ns = day_start_ns_ ? *day_start_ns_ + gga.time_of_day_ns
@@ -56,7 +83,7 @@ std::optional<GpsFix> NmeaGpsDecoder::decode(std::string_view line, int64_t refe
         projection_.toSite({gga.latitude_deg, gga.longitude_deg, gga.altitude_msl_m});
   } catch (const std::domain_error&) {
     ++counters_.malformed;
-    return std::nullopt;
+    return {};
   }
   ++counters_.fixes;
   return fix;

@@ -2,11 +2,15 @@
 // frame: GGA gives the position (WGS84 latitude and longitude, height above
 // mean sea level) and fix quality, projected with SiteProjection; its UTC time
 // of day is dated by the last RMC's date or, before any RMC, by the day
-// nearest a reference time (the IMU clock). Bad sentences are dropped and counted.
+// nearest a reference time (the IMU clock). RMC gives the velocity over
+// ground, when it holds both speed and course (a speed of zero needs no
+// course): its course, a true bearing, turned into the grid by the meridian
+// convergence at the sentence's position. Bad sentences are dropped and counted.
 #pragma once
 
 #include <optional>
 #include <string_view>
+#include <variant>
 
 #include "common/geodesy/site_projection.h"
 #include "robot/inertial/inertial_navigator.h"
@@ -15,6 +19,7 @@ namespace lineloc {
 
 struct NmeaCounters {
   int64_t fixes = 0;
+  int64_t velocities = 0;
   int64_t no_fix = 0;
   int64_t bad_checksum = 0;
   int64_t malformed = 0;    // bad framing or fields, or outside the site CRS
@@ -22,13 +27,17 @@ struct NmeaCounters {
   int64_t undated = 0;      // a GGA before any RMC and without a reference time
 };
 
+// What one sentence gives: a GGA's position, an RMC's velocity, or nothing.
+using GpsReading = std::variant<std::monostate, GpsFix, GpsVelocity>;
+
 class NmeaGpsDecoder {
  public:
   explicit NmeaGpsDecoder(SiteProjection projection);
 
-  // The fix of a GGA sentence with a position; nullopt for anything else.
-  // `reference_stamp_ns` (0: none) dates GGA times before the first RMC.
-  std::optional<GpsFix> decode(std::string_view line, int64_t reference_stamp_ns = 0);
+  // The fix of a GGA sentence with a position, the velocity of an RMC with
+  // one; nothing for anything else. `reference_stamp_ns` (0: none) dates GGA
+  // times before the first RMC.
+  GpsReading decode(std::string_view line, int64_t reference_stamp_ns = 0);
 
   const NmeaCounters& counters() const { return counters_; }
   const SiteProjection& projection() const { return projection_; }

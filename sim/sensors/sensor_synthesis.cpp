@@ -14,6 +14,8 @@ namespace lineloc::sim {
 namespace {
 
 constexpr int64_t kNsPerDay = 86'400'000'000'000;
+constexpr double kMetresPerSecondPerKnot = 1852.0 / 3600.0;
+constexpr uint64_t kVelocityStreamKey = 0x5ee9'd0bb'1e2c'0a57;
 constexpr int kDgpsFixQuality = 2;
 constexpr int kSimulatedSatellites = 10;
 constexpr double kSimulatedHdop = 0.9;
@@ -86,6 +88,9 @@ std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const Gp
                               model.correlated_horizontal_sigma_m,
                               model.correlated_vertical_sigma_m);
   Eigen::Vector3d error = sigma.cwiseProduct(gaussian3(random, 1.0));
+  // The velocity's noise has a stream of its own: the positions of a seed stay
+  // as they were before the velocity was simulated.
+  std::mt19937_64 velocity_random(seed ^ kVelocityStreamKey);
   int64_t outage_end_ns = 0;
   std::vector<SimGpsFix> fixes;
   for (int64_t stamp = trajectory.startStamp_ns(); stamp <= trajectory.endStamp_ns();
@@ -94,6 +99,13 @@ std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const Gp
     SimGpsFix fix;
     fix.stamp_ns = stamp;
     fix.true_p_world_antenna = truth.p_world_body + truth.q_world_body * model.p_body_antenna;
+    // v_antenna = v_body + R (omega x r).
+    fix.true_v_world_antenna_mps =
+        (truth.v_world_body +
+         truth.q_world_body * truth.gyro_body_radps.cross(model.p_body_antenna))
+            .head<2>();
+    fix.v_world_antenna_mps = fix.true_v_world_antenna_mps +
+                              gaussian3(velocity_random, model.velocity_sigma_mps).head<2>();
     if (stamp >= outage_end_ns && uniform(random) < model.outage_probability) {
       const double outage_s =
           model.min_outage_s + uniform(random) * (model.max_outage_s - model.min_outage_s);
@@ -125,6 +137,14 @@ std::vector<std::string> formatNmeaEpoch(const SimGpsFix& fix, const SiteProject
   rmc.valid = fix.valid;
   rmc.latitude_deg = position.latitude_deg;
   rmc.longitude_deg = position.longitude_deg;
+  if (fix.valid) {
+    // Course = grid bearing of the velocity - grid bearing of true north.
+    const Eigen::Vector2d& velocity = fix.v_world_antenna_mps;
+    const double course_rad =
+        std::atan2(velocity.x(), velocity.y()) - projection.gridBearingOfTrueNorth_rad(position);
+    rmc.speed_knots = velocity.norm() / kMetresPerSecondPerKnot;
+    rmc.course_deg = std::fmod(course_rad * 180.0 / M_PI + 720.0, 360.0);
+  }
   rmc.year = static_cast<int>(date.year());
   rmc.month = static_cast<int>(static_cast<unsigned>(date.month()));
   rmc.day = static_cast<int>(static_cast<unsigned>(date.day()));

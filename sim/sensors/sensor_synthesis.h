@@ -56,6 +56,9 @@ struct GpsModel {
   double correlated_vertical_sigma_m = 6.0;
   double correlation_time_s = 60.0;
   double white_sigma_m = 0.3;
+  // Horizontal velocity from the carrier's Doppler shift, white per axis (a
+  // current single-frequency receiver's specification: 0.05 m/s).
+  double velocity_sigma_mps = 0.05;
   double outage_probability = 0.01;  // per fix, that an outage starts
   double min_outage_s = 5.0;
   double max_outage_s = 30.0;
@@ -67,12 +70,16 @@ struct SimGpsFix {
   bool valid = false;  // false during an outage
   Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
   Eigen::Vector3d true_p_world_antenna = Eigen::Vector3d::Zero();
+  // Horizontal: site x (east), y (north).
+  Eigen::Vector2d v_world_antenna_mps = Eigen::Vector2d::Zero();
+  Eigen::Vector2d true_v_world_antenna_mps = Eigen::Vector2d::Zero();
 };
 
 std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const GpsModel& model,
                                      uint64_t seed);
 
-// GGA then RMC of one fix (no position and quality 0 / status V when invalid).
+// GGA then RMC of one fix (no position and quality 0 / status V when invalid);
+// RMC's speed and course are the velocity's, the course a true bearing.
 std::vector<std::string> formatNmeaEpoch(const SimGpsFix& fix, const SiteProjection& projection);
 
 struct CompassModel {

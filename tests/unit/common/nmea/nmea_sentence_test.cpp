@@ -13,6 +13,13 @@ constexpr const char* kClassicGga =
 constexpr const char* kClassicRmc =
     "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A";
 
+// Rebuilds a sentence with a correct checksum so only the named field is wrong.
+std::string withValidChecksum(const std::string& body) {
+  char hex[3];
+  std::snprintf(hex, sizeof(hex), "%02X", nmeaChecksum(body));
+  return "$" + body + "*" + hex;
+}
+
 TEST(NmeaChecksum, MatchesPublishedExample) {
   const std::string_view sentence(kClassicGga);
   EXPECT_EQ(nmeaChecksum(sentence.substr(1, sentence.size() - 4)), 0x47);
@@ -40,8 +47,8 @@ TEST(ParseNmea, ClassicRmcWithDate) {
   EXPECT_EQ(rmc.year, 1994);
   EXPECT_EQ(rmc.month, 3);
   EXPECT_EQ(rmc.day, 23);
-  EXPECT_DOUBLE_EQ(rmc.speed_knots, 22.4);
-  EXPECT_DOUBLE_EQ(rmc.course_deg, 84.4);
+  EXPECT_EQ(rmc.speed_knots, 22.4);
+  EXPECT_EQ(rmc.course_deg, 84.4);
   // 1994-03-23 12:35:19 UTC = 764426119 s after the epoch (date -u -d @764426119).
   EXPECT_EQ(rmc.utcStamp_ns(), 764'426'119 * kNsPerSecond);
 }
@@ -99,7 +106,28 @@ TEST(FormatNmea, RmcRoundTrip) {
   const auto& parsed = std::get<RmcSentence>(result.sentence);
   EXPECT_EQ(parsed.utcStamp_ns(), rmc.utcStamp_ns());
   EXPECT_NEAR(parsed.latitude_deg, rmc.latitude_deg, 1e-9);
-  EXPECT_DOUBLE_EQ(parsed.course_deg, 271.25);
+  EXPECT_EQ(parsed.speed_knots, 2.5);
+  EXPECT_EQ(parsed.course_deg, 271.25);
+}
+
+// A receiver standing still leaves the course out, some the speed too: an
+// empty field is "not given", not zero, both ways.
+TEST(FormatNmea, RmcWithoutSpeedOrCourseRoundTrip) {
+  const NmeaParseResult result =
+      parseNmeaSentence(withValidChecksum("GPRMC,123519,A,4807.038,N,01131.000,E,0.0,,230394,,"));
+  ASSERT_EQ(result.status, NmeaStatus::kOk) << result.error;
+  const auto& rmc = std::get<RmcSentence>(result.sentence);
+  EXPECT_EQ(rmc.speed_knots, 0.0);
+  EXPECT_FALSE(rmc.course_deg);
+  RmcSentence without_speed = rmc;
+  without_speed.speed_knots.reset();
+  const std::string text = formatRmc(without_speed);
+  EXPECT_NE(text.find(",E,,,230394,"), std::string::npos) << text;
+  const NmeaParseResult reparsed = parseNmeaSentence(text);
+  ASSERT_EQ(reparsed.status, NmeaStatus::kOk) << reparsed.error;
+  const auto& parsed = std::get<RmcSentence>(reparsed.sentence);
+  EXPECT_FALSE(parsed.speed_knots);
+  EXPECT_FALSE(parsed.course_deg);
 }
 
 TEST(FormatNmea, MinutesThatRoundUpCarryIntoDegrees) {
@@ -128,13 +156,6 @@ struct MalformedCase {
   std::string sentence;
   NmeaStatus expected;
 };
-
-// Rebuilds a sentence with a correct checksum so only the named field is wrong.
-std::string withValidChecksum(const std::string& body) {
-  char hex[3];
-  std::snprintf(hex, sizeof(hex), "%02X", nmeaChecksum(body));
-  return "$" + body + "*" + hex;
-}
 
 TEST(ParseNmea, RejectsMalformedInputNamingTheProblem) {
   const std::vector<MalformedCase> cases = {
@@ -172,6 +193,15 @@ TEST(ParseNmea, RejectsMalformedInputNamingTheProblem) {
        withValidChecksum("GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,1e300,M,46.9,M,,"),
        NmeaStatus::kMalformedField},
       {"bad date", withValidChecksum("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,320394,,"),
+       NmeaStatus::kMalformedField},
+      {"negative speed",
+       withValidChecksum("GPRMC,123519,A,4807.038,N,01131.000,E,-1.0,084.4,230394,,"),
+       NmeaStatus::kMalformedField},
+      {"speed not a number",
+       withValidChecksum("GPRMC,123519,A,4807.038,N,01131.000,E,fast,084.4,230394,,"),
+       NmeaStatus::kMalformedField},
+      {"course > 360",
+       withValidChecksum("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,361.0,230394,,"),
        NmeaStatus::kMalformedField},
       {"bad status",
        withValidChecksum("GPRMC,123519,Q,4807.038,N,01131.000,E,022.4,084.4,230394,,"),

@@ -57,11 +57,15 @@ TEST_F(SensorStreamsTest, ReadsEveryStreamOfASimulatedDataset) {
   EXPECT_EQ(streams.imu.size(), 1u);
   ASSERT_EQ(streams.compass.size(), 1u);
   EXPECT_DOUBLE_EQ(streams.compass[0].magnetic_heading_rad, 4.285654603);
-  // The first GGA is a fix; the RMC only dates it; the second GGA has a bad
-  // checksum (4C, not 4D) and the last row is not a row at all: both dropped.
+  // The first GGA is a fix; the RMC dates it and gives a velocity (standing:
+  // zero); the second GGA has a bad checksum (4C, not 4D) and the last row is
+  // not a row at all: both dropped.
   ASSERT_EQ(streams.gps.size(), 1u);
   EXPECT_EQ(streams.gps[0].stamp_ns, 1700000000000000000);
   EXPECT_LT(streams.gps[0].p_world_antenna.head<2>().norm(), 1000.0);
+  ASSERT_EQ(streams.gps_velocity.size(), 1u);
+  EXPECT_EQ(streams.gps_velocity[0].stamp_ns, 1700000000000000001);
+  EXPECT_EQ(streams.gps_velocity[0].v_world_mps, Eigen::Vector2d::Zero());
   EXPECT_EQ(streams.dropped_lines, 2);
   ASSERT_EQ(streams.drop_reasons.size(), 2u);
   EXPECT_NE(streams.drop_reasons[0].find("gps0/data.csv:4"), std::string::npos)
@@ -69,7 +73,35 @@ TEST_F(SensorStreamsTest, ReadsEveryStreamOfASimulatedDataset) {
   ASSERT_TRUE(streams.T_body_camera.has_value());
   EXPECT_DOUBLE_EQ(streams.T_body_camera->translation().z(), 1.2);
   EXPECT_FALSE(streams.T_body_imu.has_value());
-  EXPECT_EQ(streams.timeline.size(), 5u);
+  EXPECT_EQ(streams.timeline.size(), 6u);
+}
+
+// A robot whose software restarts mid-drive replays from later on: 10 ms in,
+// only the second frame is left; everything else came at the start.
+TEST_F(SensorStreamsTest, StartsLaterLeavingOutTheRecordsBefore) {
+  NmeaGpsDecoder gps(SiteProjection("EPSG:7415", Eigen::Vector3d(84900.0, 447600.0, 0.0)));
+  const SensorStreams streams = loadSensorStreams(root_.string(), &gps, 10'000'000);
+  ASSERT_EQ(streams.frames.size(), 1u);
+  EXPECT_EQ(streams.frames[0].stamp_ns, 1700000000050000000);
+  EXPECT_TRUE(streams.imu.empty());
+  EXPECT_TRUE(streams.compass.empty());
+  EXPECT_TRUE(streams.gps.empty());
+  EXPECT_TRUE(streams.gps_velocity.empty());
+  ASSERT_EQ(streams.timeline.size(), 1u);
+  EXPECT_EQ(streams.timeline[0].kind, SensorKind::kFrame);
+  EXPECT_EQ(streams.timeline[0].index, 0u);
+}
+
+TEST_F(SensorStreamsTest, StartingLaterNeedsTimeStampedFrames) {
+  const fs::path images = root_ / "plain";
+  writeFile(images / "a.png", "");
+  try {
+    loadSensorStreams(images.string(), nullptr, 1'000'000'000);
+    FAIL() << "started an untimed image folder later";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("time-stamped"), std::string::npos) << error.what();
+  }
+  EXPECT_EQ(loadSensorStreams(images.string(), nullptr).frames.size(), 1u);
 }
 
 TEST_F(SensorStreamsTest, MalformedMountingIsAnErrorNamingTheFile) {

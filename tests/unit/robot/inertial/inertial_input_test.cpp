@@ -73,10 +73,8 @@ SiteProjection delftSite() {
   return SiteProjection("UTM:31N", Eigen::Vector3d(593000.0, 5763000.0, 0.0));
 }
 
-TEST(NmeaGpsDecoder, DatesGgaWithRmcAndProjectsToTheSite) {
-  NmeaGpsDecoder decoder(delftSite());
-  const Eigen::Vector3d p_site(120.0, -45.0, 2.0);
-  const GeodeticPosition position = decoder.projection().toGeodetic(p_site);
+// A valid RMC at 10:00 UTC on 22 November 2026, at `position`.
+RmcSentence rmcAt(const GeodeticPosition& position) {
   RmcSentence rmc;
   rmc.valid = true;
   rmc.time_of_day_ns = 36'000'000'000'000;
@@ -85,17 +83,26 @@ TEST(NmeaGpsDecoder, DatesGgaWithRmcAndProjectsToTheSite) {
   rmc.day = 22;
   rmc.latitude_deg = position.latitude_deg;
   rmc.longitude_deg = position.longitude_deg;
+  return rmc;
+}
+
+TEST(NmeaGpsDecoder, DatesGgaWithRmcAndProjectsToTheSite) {
+  NmeaGpsDecoder decoder(delftSite());
+  const Eigen::Vector3d p_site(120.0, -45.0, 2.0);
+  const GeodeticPosition position = decoder.projection().toGeodetic(p_site);
+  const RmcSentence rmc = rmcAt(position);
   GgaSentence gga;
   gga.time_of_day_ns = rmc.time_of_day_ns;
   gga.fix_quality = 2;
   gga.latitude_deg = position.latitude_deg;
   gga.longitude_deg = position.longitude_deg;
   gga.altitude_msl_m = position.height_msl_m;
-  EXPECT_FALSE(decoder.decode(formatGga(gga)).has_value());
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(decoder.decode(formatGga(gga))));
   EXPECT_EQ(decoder.counters().undated, 1);
-  EXPECT_FALSE(decoder.decode(formatRmc(rmc)).has_value());
-  const auto fix = decoder.decode(formatGga(gga));
-  ASSERT_TRUE(fix.has_value());
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(decoder.decode(formatRmc(rmc))));
+  const GpsReading reading = decoder.decode(formatGga(gga));
+  const auto* fix = std::get_if<GpsFix>(&reading);
+  ASSERT_NE(fix, nullptr);
   EXPECT_EQ(fix->stamp_ns, rmc.utcStamp_ns());
   // NMEA keeps 0.2 mm of latitude/longitude and 1 mm of altitude.
   EXPECT_LT((fix->p_world_antenna - p_site).norm(), 2e-3);
@@ -114,21 +121,59 @@ TEST(NmeaGpsDecoder, CountsBadSentencesAndDatesByReference) {
   }());
   std::string corrupted = good;
   corrupted[10] = corrupted[10] == '1' ? '2' : '1';
-  EXPECT_FALSE(decoder.decode(corrupted, 1).has_value());
-  EXPECT_FALSE(
-      decoder.decode(fmt::format("$GPGGA,bad*{:02X}", nmeaChecksum("GPGGA,bad"))).has_value());
-  EXPECT_FALSE(decoder.decode(formatGga(GgaSentence{})).has_value());  // quality 0
-  EXPECT_FALSE(decoder.decode("$GPGSV,1,1,00*79").has_value());
+  const auto nothing = [&](std::string_view line) {
+    return std::holds_alternative<std::monostate>(decoder.decode(line, 1));
+  };
+  EXPECT_TRUE(nothing(corrupted));
+  EXPECT_TRUE(nothing(fmt::format("$GPGGA,bad*{:02X}", nmeaChecksum("GPGGA,bad"))));
+  EXPECT_TRUE(nothing(formatGga(GgaSentence{})));  // quality 0
+  EXPECT_TRUE(nothing("$GPGSV,1,1,00*79"));
   // Reference late on the previous day: the fix is just after midnight.
   const int64_t reference = 20'000 * kNsPerDay - 60'000'000'000;
-  const auto fix = decoder.decode(good, reference);
-  ASSERT_TRUE(fix.has_value());
+  const GpsReading reading = decoder.decode(good, reference);
+  const auto* fix = std::get_if<GpsFix>(&reading);
+  ASSERT_NE(fix, nullptr);
   EXPECT_EQ(fix->stamp_ns, 20'000 * kNsPerDay + 100'000'000'000);
   const NmeaCounters& counters = decoder.counters();
   EXPECT_EQ(counters.bad_checksum, 1);
   EXPECT_EQ(counters.malformed, 1);
   EXPECT_EQ(counters.no_fix, 1);
   EXPECT_EQ(counters.unsupported, 1);
+}
+
+// RMC's speed and course give the velocity in the site frame: the course, a
+// true bearing, turned by the grid bearing of true north there (1.3 degrees
+// at Delft in UTM zone 31). A speed of zero needs no course; a speed without
+// a course, or an RMC without a speed, gives no velocity.
+TEST(NmeaGpsDecoder, TurnsRmcSpeedAndCourseIntoTheSiteFrame) {
+  NmeaGpsDecoder decoder(delftSite());
+  const GeodeticPosition position = decoder.projection().toGeodetic({10.0, 20.0, 0.0});
+  const double grid_bearing_of_true_north_rad =
+      decoder.projection().gridBearingOfTrueNorth_rad(position);
+  ASSERT_GT(std::abs(grid_bearing_of_true_north_rad), 1.0 * M_PI / 180.0);
+  RmcSentence rmc = rmcAt(position);
+  rmc.speed_knots = 10.0;
+  rmc.course_deg = 30.0;
+  const GpsReading reading = decoder.decode(formatRmc(rmc));
+  const auto* velocity = std::get_if<GpsVelocity>(&reading);
+  ASSERT_NE(velocity, nullptr);
+  EXPECT_EQ(velocity->stamp_ns, rmc.utcStamp_ns());
+  const double speed_mps = 10.0 * 1852.0 / 3600.0;
+  const double grid_bearing_rad = 30.0 * M_PI / 180.0 + grid_bearing_of_true_north_rad;
+  EXPECT_NEAR(velocity->v_world_mps.x(), speed_mps * std::sin(grid_bearing_rad), 1e-6);
+  EXPECT_NEAR(velocity->v_world_mps.y(), speed_mps * std::cos(grid_bearing_rad), 1e-6);
+
+  rmc.speed_knots = 0.0;
+  rmc.course_deg.reset();
+  const GpsReading standing = decoder.decode(formatRmc(rmc));
+  ASSERT_TRUE(std::holds_alternative<GpsVelocity>(standing));
+  EXPECT_EQ(std::get<GpsVelocity>(standing).v_world_mps, Eigen::Vector2d::Zero());
+  rmc.speed_knots = 3.0;
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(decoder.decode(formatRmc(rmc))));
+  rmc.speed_knots.reset();
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(decoder.decode(formatRmc(rmc))));
+  EXPECT_EQ(decoder.counters().velocities, 2);
+  EXPECT_EQ(decoder.counters().malformed, 0);
 }
 
 TEST(SerialLineReader, ReadsNmeaLinesFromAPseudoTerminal) {

@@ -39,7 +39,8 @@ TEST(SimulatedLogs, NavigatorStartsAndTracksFromTheFiles) {
   std::vector<GpsFix> gps;
   std::ifstream nmea(logs.folder + "/gps0/data.nmea");
   for (std::string line; std::getline(nmea, line);) {
-    if (auto fix = decoder.decode(line)) {
+    const GpsReading reading = decoder.decode(line);
+    if (const auto* fix = std::get_if<GpsFix>(&reading)) {
       gps.push_back(*fix);
     }
   }
@@ -49,6 +50,9 @@ TEST(SimulatedLogs, NavigatorStartsAndTracksFromTheFiles) {
   EXPECT_EQ(counters.fixes + counters.no_fix / 2 + counters.undated,
             static_cast<int64_t>(summary.gps_fixes));
   EXPECT_EQ(decoder.counters().no_fix, 2 * static_cast<int64_t>(summary.gps_outage_fixes));
+  // Every RMC with a fix carries a speed and a course.
+  EXPECT_EQ(counters.velocities,
+            static_cast<int64_t>(summary.gps_fixes - summary.gps_outage_fixes));
   std::filesystem::remove_all(logs.folder);
 
   InertialNavigatorConfig config;

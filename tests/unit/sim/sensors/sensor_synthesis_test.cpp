@@ -140,8 +140,40 @@ TEST(SynthesiseGps, NmeaEpochDecodesToTheSamePosition) {
   const NmeaParseResult rmc = parseNmeaSentence(lines[1]);
   ASSERT_EQ(rmc.status, NmeaStatus::kOk) << lines[1];
   // Millisecond time in NMEA.
-  EXPECT_EQ(std::get<RmcSentence>(rmc.sentence).utcStamp_ns(),
-            fixes[10].stamp_ns / 1'000'000 * 1'000'000);
+  const auto& velocity_sentence = std::get<RmcSentence>(rmc.sentence);
+  EXPECT_EQ(velocity_sentence.utcStamp_ns(), fixes[10].stamp_ns / 1'000'000 * 1'000'000);
+  // Speed and course give the velocity back: course = grid bearing - grid
+  // bearing of true north, to 0.005 degrees and 0.0005 knots.
+  ASSERT_TRUE(velocity_sentence.speed_knots && velocity_sentence.course_deg);
+  const double speed_mps = *velocity_sentence.speed_knots * 1852.0 / 3600.0;
+  ASSERT_GT(speed_mps, 0.1);
+  const double grid_bearing_rad =
+      *velocity_sentence.course_deg * M_PI / 180.0 +
+      projection.gridBearingOfTrueNorth_rad(projection.toGeodetic(fixes[10].p_world_antenna));
+  const Eigen::Vector2d velocity =
+      speed_mps * Eigen::Vector2d(std::sin(grid_bearing_rad), std::cos(grid_bearing_rad));
+  EXPECT_LT((velocity - fixes[10].v_world_antenna_mps).norm(), 1e-3);
+}
+
+// The velocity's error is white, 0.05 m/s per axis, and drawn apart from the
+// position's: the positions of a seed are those it had before.
+TEST(SynthesiseGps, VelocityIsDopplerNoiseOnTheTruth) {
+  TrajectoryConfig config = shortDrive(2);
+  config.duration_s = 600.0;
+  const GroundTruthTrajectory trajectory(config);
+  GpsModel model;
+  const auto fixes = synthesiseGps(trajectory, model, 4);
+  model.velocity_sigma_mps = 0.0;
+  const auto exact = synthesiseGps(trajectory, model, 4);
+  double sum_squares = 0.0;
+  for (size_t i = 0; i < fixes.size(); ++i) {
+    EXPECT_EQ(fixes[i].p_world_antenna, exact[i].p_world_antenna);
+    EXPECT_EQ(exact[i].v_world_antenna_mps, exact[i].true_v_world_antenna_mps);
+    sum_squares += (fixes[i].v_world_antenna_mps - fixes[i].true_v_world_antenna_mps).squaredNorm();
+  }
+  // 1202 squared normal deviates: their mean is 1 within 0.2 (5 of its sigmas).
+  const double per_axis_sigma = std::sqrt(sum_squares / (2.0 * static_cast<double>(fixes.size())));
+  EXPECT_NEAR(per_axis_sigma, 0.05, 0.2 * 0.05 / 2.0);
 }
 
 TEST(SynthesiseCompass, NoiseAndDisturbances) {

@@ -174,13 +174,14 @@ lineloc_msg_RobotState robotState(const NavigatorEstimate& estimate, const Navig
 std::string describe(const NavigatorHealth& health) {
   return fmt::format(
       "{}, position sigma {:.3f} m, yaw sigma {:.2f} deg, vision fixes {} accepted / {} "
-      "rejected, DGPS {} accepted / {} skipped / {} rejected, compass {} accepted / {} "
-      "rejected, {} restarts from vision, {} heading restarts from the compass, IMU samples "
-      "dropped {}",
+      "rejected, DGPS {} accepted / {} skipped / {} rejected, DGPS velocities {} accepted / {} "
+      "skipped / {} rejected, compass {} accepted / {} rejected, {} restarts from vision, {} "
+      "heading restarts from the compass, IMU samples dropped {}",
       toString(health.mode), health.position_sigma_m, health.yaw_sigma_rad * 180.0 / M_PI,
       health.vision.accepted, health.vision.rejected(), health.gps.accepted, health.gps.skipped,
-      health.gps.rejected(), health.compass.accepted, health.compass.rejected(), health.restarts,
-      health.heading_restarts,
+      health.gps.rejected(), health.gps_velocity.accepted, health.gps_velocity.skipped,
+      health.gps_velocity.rejected(), health.compass.accepted, health.compass.rejected(),
+      health.restarts, health.heading_restarts,
       health.imu.non_finite + health.imu.saturated + health.imu.out_of_order +
           health.imu.duplicate);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "robot/inertial/measurement_models.h"
 #include "robot/inertial/robust_heading.h"
@@ -16,32 +17,6 @@ constexpr double kMagnitudeGateSigmas = 5.0;
 // whose grade changes), which u leaves out.
 constexpr double kVerticalVelocityChangeSigma_mps = 0.1;
 
-// The samples of [from, to], with its ends interpolated; nullopt when `imu`
-// does not cover it.
-std::optional<std::vector<ImuSample>> samplesOver(const std::vector<ImuSample>& imu,
-                                                  int64_t from_stamp_ns, int64_t to_stamp_ns) {
-  if (imu.empty() || imu.front().stamp_ns > from_stamp_ns || imu.back().stamp_ns < to_stamp_ns) {
-    return std::nullopt;
-  }
-  const auto by_stamp = [](const ImuSample& sample, int64_t stamp) {
-    return sample.stamp_ns < stamp;
-  };
-  const auto interpolatedAt = [&](int64_t stamp_ns) {
-    const auto after = std::lower_bound(imu.begin(), imu.end(), stamp_ns, by_stamp);
-    return after->stamp_ns == stamp_ns ? *after
-                                       : interpolateImu(*std::prev(after), *after, stamp_ns);
-  };
-  std::vector<ImuSample> samples{interpolatedAt(from_stamp_ns)};
-  for (auto it = std::upper_bound(
-           imu.begin(), imu.end(), from_stamp_ns,
-           [](int64_t stamp, const ImuSample&sample) { return stamp < sample.stamp_ns; });
-       it != imu.end() && it->stamp_ns < to_stamp_ns; ++it) {
-    samples.push_back(*it);
-  }
-  samples.push_back(interpolatedAt(to_stamp_ns));
-  return samples;
-}
-
 }  // namespace
 
 std::optional<InMotionAttitude> alignInMotion(const std::vector<ImuSample>& imu,
@@ -50,11 +25,8 @@ std::optional<InMotionAttitude> alignInMotion(const std::vector<ImuSample>& imu,
                                               int64_t to_stamp_ns, const Eigen::Vector2d& v_to_mps,
                                               const std::vector<TimedYaw>& compass_yaws,
                                               const InMotionAlignmentNoise& noise) {
-  if (!(to_stamp_ns > from_stamp_ns)) {
-    return std::nullopt;
-  }
   const std::optional<std::vector<ImuSample>> samples =
-      samplesOver(imu, from_stamp_ns, to_stamp_ns);
+      imuOver(imu.begin(), imu.end(), from_stamp_ns, to_stamp_ns, std::identity{});
   if (!samples) {
     return std::nullopt;
   }

@@ -19,8 +19,9 @@
 //
 // Tilt standard deviation: the velocities' noise across u, sqrt(2) sigma_v
 // / (g dt), with the accelerometer bias's b_a / g and the gyro bias's drift
-// over the interval, sigma_bg dt. Over dt = 1 s at 0.1 m/s per velocity that
-// is 0.8 degrees, where standing still gives b_a / g = 0.3 degrees.
+// over the interval, sigma_bg dt. Over dt = 1 s at 0.1 m/s per velocity the
+// first term is 0.8 degrees and the three together 0.9, where standing still
+// gives b_a / g = 0.3 degrees.
 #pragma once
 
 #include <Eigen/Geometry>

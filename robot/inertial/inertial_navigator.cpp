@@ -494,19 +494,7 @@ void InertialNavigator::prune() {
 }
 
 std::optional<ImuSample> InertialNavigator::bufferedImuAt(int64_t stamp_ns) const {
-  const auto after = std::lower_bound(
-      imu_.begin(), imu_.end(), stamp_ns,
-      [](const BufferedImu& imu, int64_t stamp) { return imu.sample.stamp_ns < stamp; });
-  if (after == imu_.end()) {
-    return std::nullopt;
-  }
-  if (after->sample.stamp_ns == stamp_ns) {
-    return after->sample;
-  }
-  if (after == imu_.begin()) {
-    return std::nullopt;
-  }
-  return interpolateImu(std::prev(after)->sample, after->sample, stamp_ns);
+  return imuAt(imu_.begin(), imu_.end(), stamp_ns, &InertialNavigator::sampleOf);
 }
 
 bool InertialNavigator::initialise(const NavigationState& state,
@@ -616,9 +604,10 @@ void InertialNavigator::tryInitialiseInMotion() {
   if (to.stamp_ns - from.stamp_ns > kMaxVelocityMatchingBaseline_ns) {
     return;
   }
-  std::vector<ImuSample> imu;
-  for (const BufferedImu& buffered : imu_) {
-    imu.push_back(buffered.sample);
+  const std::optional<std::vector<ImuSample>> imu =
+      imuOver(imu_.begin(), imu_.end(), from.stamp_ns, to.stamp_ns, &InertialNavigator::sampleOf);
+  if (!imu) {
+    return;
   }
   std::vector<TimedYaw> compass_yaws;
   for (const CompassReading& reading : startup_compass_) {
@@ -628,7 +617,7 @@ void InertialNavigator::tryInitialiseInMotion() {
       config_.gravity_mps2, config_.gps_velocity_sigma_mps, config_.accel_turn_on_bias_sigma_mps2,
       config_.gyro_turn_on_bias_sigma_radps, kStartupHeadingGateSigmas * config_.compass_sigma_rad};
   const std::optional<InMotionAttitude> attitude = alignInMotion(
-      imu, from.stamp_ns, from.v_world_mps, to.stamp_ns, to.v_world_mps, compass_yaws, noise);
+      *imu, from.stamp_ns, from.v_world_mps, to.stamp_ns, to.v_world_mps, compass_yaws, noise);
   const std::optional<ImuSample> imu_at_start = bufferedImuAt(to.stamp_ns);
   if (!attitude || !imu_at_start) {
     return;

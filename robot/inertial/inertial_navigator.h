@@ -392,6 +392,7 @@ class InertialNavigator {
     ImuSample sample;
     bool still = false;
   };
+  static const ImuSample& sampleOf(const BufferedImu& buffered) { return buffered.sample; }
   // A vision fix as the body's pose, the covariance of what tracking measured
   // (R - U) and the unproven part U.
   struct BodyFix {

@@ -11,6 +11,7 @@
 namespace lineloc {
 namespace {
 
+using testing::dgpsWithoutOutages;
 using testing::toImuSample;
 
 constexpr double kDegToRad = M_PI / 180.0;
@@ -52,12 +53,6 @@ struct DriveInterval {
 
   double speedChange(size_t epoch) const {
     return (gps[epoch + 1].true_v_world_antenna_mps - gps[epoch].true_v_world_antenna_mps).norm();
-  }
-
-  static sim::GpsModel dgpsWithoutOutages() {
-    sim::GpsModel model;
-    model.outage_probability = 0.0;
-    return model;
   }
 
   std::optional<InMotionAttitude> align(const InMotionAlignmentNoise& noise = {}) const {

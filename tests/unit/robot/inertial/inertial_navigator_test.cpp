@@ -15,6 +15,7 @@
 namespace lineloc {
 namespace {
 
+using testing::dgpsWithoutOutages;
 using testing::initialCovariance;
 using testing::toImuSample;
 using testing::truthState;
@@ -298,12 +299,6 @@ struct SensedDrive {
         gps(sim::synthesiseGps(trajectory, dgpsWithoutOutages(), sensor_seed)),
         compass(sim::synthesiseCompass(trajectory, compass_model, grid_bearing_of_true_north_rad,
                                        sensor_seed)) {}
-
-  static sim::GpsModel dgpsWithoutOutages() {
-    sim::GpsModel model;
-    model.outage_probability = 0.0;
-    return model;
-  }
 
   sim::GroundTruthTrajectory trajectory;
   std::vector<sim::SimImuSample> imu;

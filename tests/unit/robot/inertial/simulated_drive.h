@@ -63,4 +63,11 @@ inline ImuNoiseDensities densitiesOf(const sim::ImuModel& model) {
   return densities;
 }
 
+// The simulator's DGPS receiver, never out.
+inline sim::GpsModel dgpsWithoutOutages() {
+  sim::GpsModel model;
+  model.outage_probability = 0.0;
+  return model;
+}
+
 }  // namespace lineloc::testing

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 #include "simulated_drive.h"
@@ -16,6 +17,52 @@ ErrorCovariance randomCovariance(std::mt19937_64& random) {
     a.data()[i] = normal(random);
   }
   return a * a.transpose() + ErrorCovariance::Identity();
+}
+
+// Samples at 0, 10 and 20 ms whose rates and forces grow linearly with time,
+// so interpolation between any two reproduces the line.
+std::vector<ImuSample> rampSamples() {
+  std::vector<ImuSample> samples;
+  for (int64_t stamp_ns : {0, 10'000'000, 20'000'000}) {
+    const double t_s = static_cast<double>(stamp_ns) * 1e-9;
+    samples.push_back(
+        {stamp_ns, Eigen::Vector3d(t_s, 0.0, 0.0), Eigen::Vector3d(0.0, 2.0 * t_s, 9.8)});
+  }
+  return samples;
+}
+
+TEST(ImuLookup, InterpolatesInsideTheSamplesAndRefusesOutside) {
+  const std::vector<ImuSample> samples = rampSamples();
+  const auto at = [&](int64_t stamp_ns) {
+    return imuAt(samples.begin(), samples.end(), stamp_ns, std::identity{});
+  };
+  ASSERT_TRUE(at(15'000'000));
+  EXPECT_NEAR(at(15'000'000)->gyro_radps.x(), 0.015, 1e-12);
+  EXPECT_NEAR(at(15'000'000)->accel_mps2.y(), 0.030, 1e-12);
+  ASSERT_TRUE(at(0));
+  EXPECT_EQ(at(20'000'000)->stamp_ns, 20'000'000);
+  EXPECT_FALSE(at(-1));
+  EXPECT_FALSE(at(20'000'001));
+}
+
+TEST(ImuLookup, TakesAnIntervalWithItsEndsInterpolated) {
+  const std::vector<ImuSample> samples = rampSamples();
+  const auto over = [&](int64_t from_ns, int64_t to_ns) {
+    return imuOver(samples.begin(), samples.end(), from_ns, to_ns, std::identity{});
+  };
+  const std::optional<std::vector<ImuSample>> inside = over(5'000'000, 15'000'000);
+  ASSERT_TRUE(inside);
+  ASSERT_EQ(inside->size(), 3u);
+  EXPECT_EQ((*inside)[0].stamp_ns, 5'000'000);
+  EXPECT_EQ((*inside)[1].stamp_ns, 10'000'000);
+  EXPECT_EQ((*inside)[2].stamp_ns, 15'000'000);
+  EXPECT_NEAR((*inside)[2].gyro_radps.x(), 0.015, 1e-12);
+  const std::optional<std::vector<ImuSample>> on_samples = over(0, 20'000'000);
+  ASSERT_TRUE(on_samples);
+  EXPECT_EQ(on_samples->size(), 3u);
+  EXPECT_FALSE(over(5'000'000, 25'000'000));
+  EXPECT_FALSE(over(15'000'000, 5'000'000));
+  EXPECT_FALSE(over(5'000'000, 5'000'000));
 }
 
 NavigationState movingState() {

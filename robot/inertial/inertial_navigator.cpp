@@ -48,9 +48,6 @@ constexpr double kMaxCorrelatedFixInflation = 1e4;
 constexpr int64_t kMaxVelocityMatchingBaseline_ns = 1'500'000'000;
 // A DGPS velocity faster than this many of its sigmas (per axis) is motion.
 constexpr double kMovingSpeedSigmas = 4.0;
-// How long a DGPS velocity tells whether the robot moves: until the next
-// epoch of a 1 Hz receiver, with jitter.
-constexpr int64_t kReceiverMotionHold_ns = 1'500'000'000;
 // A DGPS fix this close to a start in motion's last velocity is of its epoch.
 constexpr int64_t kSameEpoch_ns = 50'000'000;
 // Vertical velocity of a start in motion, per m/s of horizontal speed: a
@@ -268,9 +265,9 @@ void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {
     ++counters_.gps_velocity.invalid;
     return;
   }
-  receiver_velocities_.push_back(velocity);
   if (!snapshots_.empty()) {
-    ++counters_.gps_velocity.skipped;
+    addMeasurement(velocity.stamp_ns, {GpsVelocityPayload{velocity.v_world_mps}, std::nullopt,
+                                       std::nullopt, std::nullopt});
     return;
   }
   // A robot cruising on a smooth road can look as still to the IMU as a
@@ -285,15 +282,6 @@ void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {
 
 bool InertialNavigator::isMotion(const GpsVelocity& velocity) const {
   return velocity.v_world_mps.norm() > kMovingSpeedSigmas * config_.gps_velocity_sigma_mps;
-}
-
-bool InertialNavigator::receiverSawMotion(int64_t stamp_ns) const {
-  const auto after = std::upper_bound(
-      receiver_velocities_.begin(), receiver_velocities_.end(), stamp_ns,
-      [](int64_t stamp, const GpsVelocity& velocity) { return stamp < velocity.stamp_ns; });
-  return after != receiver_velocities_.begin() &&
-         stamp_ns - std::prev(after)->stamp_ns <= kReceiverMotionHold_ns &&
-         isMotion(*std::prev(after));
 }
 
 void InertialNavigator::addCompass(const CompassReading& reading) {
@@ -370,13 +358,13 @@ void InertialNavigator::process(const BufferedImu& imu) {
     const ImuSample at_measurement = interpolateImu(start, imu.sample, it->first);
     strapdown_.propagate(current, at_measurement, snapshot.state, snapshot.covariance);
     current = at_measurement;
-    recordOutcome(it->second, apply(it->second, snapshot));
+    recordOutcome(it->second, apply(it->second, at_measurement, snapshot));
   }
   if (imu.sample.stamp_ns > current.stamp_ns) {
     strapdown_.propagate(current, imu.sample, snapshot.state, snapshot.covariance);
   }
   const bool slow = snapshot.state.v_world_body.norm() < config_.zero_velocity_max_speed_mps;
-  if (imu.still && slow && !receiverSawMotion(imu.sample.stamp_ns) &&
+  if (imu.still && slow &&
       imu.sample.stamp_ns - snapshot.last_zero_velocity_ns >= config_.zero_velocity_interval_ns) {
     const UpdateOutcome outcome =
         applyUpdate(lineariseZeroVelocity(snapshot.state, config_.zero_velocity_sigma_mps),
@@ -390,7 +378,8 @@ void InertialNavigator::process(const BufferedImu& imu) {
   snapshots_.push_back(std::move(snapshot));
 }
 
-MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& snapshot) const {
+MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuSample& imu,
+                                            Snapshot& snapshot) const {
   NavigationState& state = snapshot.state;
   ErrorCovariance& covariance = snapshot.covariance;
   if (const auto* vision = std::get_if<VisionPayload>(&measurement.payload)) {
@@ -426,6 +415,13 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, Snapshot& 
     }
     return outcome ? fromUpdate(outcome->status) : MeasurementOutcome::kSkipped;
   }
+  if (const auto* velocity = std::get_if<GpsVelocityPayload>(&measurement.payload)) {
+    return fromUpdate(applyUpdate(lineariseAntennaVelocity(
+                                      state, imu.gyro_radps, velocity->v_world_antenna_mps,
+                                      config_.gps_velocity_sigma_mps, config_.p_body_gps_antenna),
+                                  gate_by_dimension_[2], state, covariance)
+                          .status);
+  }
   const auto& yaw = std::get<YawPayload>(measurement.payload);
   const auto z = lineariseYaw(state, yaw.yaw_rad, config_.compass_sigma_rad);
   if (!z) {
@@ -450,6 +446,9 @@ double InertialNavigator::correlatedFixInflation(const Snapshot& snapshot) const
 MeasurementCounters& InertialNavigator::countersFor(const Measurement& measurement) {
   if (std::holds_alternative<VisionPayload>(measurement.payload)) {
     return counters_.vision;
+  }
+  if (std::holds_alternative<GpsVelocityPayload>(measurement.payload)) {
+    return counters_.gps_velocity;
   }
   return std::holds_alternative<GpsPayload>(measurement.payload) ? counters_.gps
                                                                  : counters_.compass;
@@ -482,10 +481,6 @@ void InertialNavigator::prune() {
     trackGatedCompass(it->first, it->second);
   }
   measurements_.erase(measurements_.begin(), kept);
-  while (!receiver_velocities_.empty() &&
-         receiver_velocities_.front().stamp_ns < first_ns - kReceiverMotionHold_ns) {
-    receiver_velocities_.pop_front();
-  }
   // Start-up heading: the compass readings of the last still window.
   const int64_t compass_from_ns = imu_.back().sample.stamp_ns - config_.alignment.window_ns;
   while (!startup_compass_.empty() && startup_compass_.front().stamp_ns < compass_from_ns) {

@@ -36,15 +36,18 @@
 // compass readings between them (in_motion_alignment.h); velocity the
 // receiver's, the vertical one zero within a steep street's grade times the
 // speed; position the DGPS fix of the same epoch, or unknown as above; gyro
-// and accelerometer biases zero within their turn-on spread. Later DGPS
-// velocities are not fused (counted as skipped), but one that shows motion
-// (beyond kMovingSpeedSigmas of its noise) holds off zero-velocity updates
-// until the next: a robot cruising straight at constant speed is as quiet to
-// the IMU as a standing one, and after a start in motion whose tilt was 0.9
-// degrees off, taking 0.16 m/s off each second, the filter's speed fell below
-// zero_velocity_max_speed_mps and was held at zero at 0.54 m/s. A slow DGPS
-// velocity does not call for zero-velocity updates in turn: it holds for up
-// to a second after the robot has pulled away.
+// and accelerometer biases zero within their turn-on spread.
+//
+// DGPS velocities. Before a start, one beyond kMovingSpeedSigmas of its noise
+// says the robot moves, and bars the standstill start: a robot cruising
+// straight at constant speed is as quiet to the IMU as a standing one. After
+// the start each one updates the filter as the antenna's horizontal velocity
+// over ground (measurement_models.h; the receiver's Doppler error is white,
+// unlike its position's). That bounds the velocity, and so the position's
+// drift, while vision has no fix, and keeps the filter's speed from falling
+// below zero_velocity_max_speed_mps on such a road, where zero-velocity
+// updates would hold it at zero (with DGPS positions alone, simulated route
+// 39 was held there 0.72 m/s off).
 //
 // Vision fixes before any start (the window not yet full, or a robot that
 // never stood still and has no DGPS velocity) start the filter from their
@@ -298,8 +301,7 @@ struct NavigatorHealth {
   double yaw_sigma_rad = 0.0;
   MeasurementCounters vision;
   MeasurementCounters gps;
-  // Accepted: the two a start in motion took; skipped: those after the start
-  // (not fused; they hold off zero-velocity updates while they show motion).
+  // Accepted: those fused and the two a start in motion took.
   MeasurementCounters gps_velocity;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
@@ -361,11 +363,14 @@ class InertialNavigator {
   struct GpsPayload {
     Eigen::Vector3d p_world_antenna;
   };
+  struct GpsVelocityPayload {
+    Eigen::Vector2d v_world_antenna_mps;
+  };
   struct YawPayload {
     double yaw_rad;
   };
   struct Measurement {
-    std::variant<VisionPayload, GpsPayload, YawPayload> payload;
+    std::variant<VisionPayload, GpsPayload, GpsVelocityPayload, YawPayload> payload;
     std::optional<MeasurementOutcome> outcome;
     // A vision fix's residual z - h(x) against the filter when last applied.
     std::optional<Eigen::Matrix<double, 6, 1>> vision_residual;
@@ -426,7 +431,9 @@ class InertialNavigator {
   MeasurementOutcome addMeasurement(int64_t stamp_ns, Measurement measurement);
   void replayFrom(size_t snapshot_index);
   void process(const BufferedImu& imu);
-  MeasurementOutcome apply(Measurement& measurement, Snapshot& snapshot) const;
+  // `imu`: the reading at the measurement's time.
+  MeasurementOutcome apply(Measurement& measurement, const ImuSample& imu,
+                           Snapshot& snapshot) const;
   void recordOutcome(Measurement& measurement, MeasurementOutcome outcome);
   MeasurementCounters& countersFor(const Measurement& measurement);
   void prune();
@@ -448,9 +455,6 @@ class InertialNavigator {
   Eigen::Vector3d placeAtDgps(const GpsFix* fix, NavigationState& state) const;
   // A speed beyond kMovingSpeedSigmas of the DGPS velocity's noise.
   bool isMotion(const GpsVelocity& velocity) const;
-  // The last DGPS velocity at or up to kReceiverMotionHold_ns before
-  // `stamp_ns` showed motion.
-  bool receiverSawMotion(int64_t stamp_ns) const;
   BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision) const;
   // A covariance of the camera pose's error [dp; dtheta] as the body pose's.
   Matrix6d bodyCovarianceOf(const Eigen::Isometry3d& T_world_camera,
@@ -490,9 +494,6 @@ class InertialNavigator {
   std::optional<GpsFix> startup_gps_;
   // The last two DGPS velocities before a start, oldest first.
   std::deque<GpsVelocity> startup_velocities_;
-  // The DGPS velocities, oldest first, back to kReceiverMotionHold_ns before
-  // the first snapshot (before a start, the history's first sample).
-  std::deque<GpsVelocity> receiver_velocities_;
   std::deque<CompassReading> startup_compass_;
   std::optional<BodyFix> startup_vision_;
   bool moved_since_start_ = false;

@@ -60,6 +60,23 @@ LinearisedMeasurement<3> lineariseAntennaPosition(const NavigationState& state,
   return z;
 }
 
+LinearisedMeasurement<2> lineariseAntennaVelocity(const NavigationState& state,
+                                                  const Eigen::Vector3d& gyro_radps,
+                                                  const Eigen::Vector2d& v_world_antenna_mps,
+                                                  double sigma_mps,
+                                                  const Eigen::Vector3d& p_body_antenna) {
+  const Eigen::Matrix3d R = state.q_world_body.toRotationMatrix();
+  const Eigen::Vector3d lever_velocity =
+      R * (gyro_radps - state.gyro_bias_radps).cross(p_body_antenna);
+  LinearisedMeasurement<2> z;
+  z.residual = v_world_antenna_mps - (state.v_world_body + lever_velocity).head<2>();
+  z.jacobian.block<2, 3>(0, kVelocity).setIdentity();
+  z.jacobian.block<2, 3>(0, kAttitude) = -skew(lever_velocity).topRows<2>();
+  z.jacobian.block<2, 3>(0, kGyroBias) = (R * skew(p_body_antenna)).topRows<2>();
+  z.noise = Eigen::Matrix2d::Identity() * sigma_mps * sigma_mps;
+  return z;
+}
+
 std::optional<LinearisedMeasurement<1>> lineariseYaw(const NavigationState& state, double yaw_rad,
                                                      double sigma_rad) {
   const Eigen::Vector3d u = state.q_world_body * Eigen::Vector3d::UnitX();

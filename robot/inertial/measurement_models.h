@@ -9,6 +9,9 @@
 //  - Yaw (1), the heading of the body x axis u = R e_x in the world xy plane:
 //    psi = atan2(u_y, u_x); du = dtheta x u gives
 //    dpsi = (-u_x u_z dtheta_x - u_y u_z dtheta_y + (u_x^2 + u_y^2) dtheta_z) / (u_x^2 + u_y^2).
+//  - Antenna velocity over ground (2, x and y): v_a = v + R (omega x l), with
+//    omega = w_meas - b_g the body's rate; dv_a = dv - [R (omega x l)]x dtheta
+//    + R [l]x db_g.
 //  - Zero velocity (3): v = 0.
 #pragma once
 
@@ -26,6 +29,13 @@ LinearisedMeasurement<6> linearisePoseFix(const NavigationState& state,
 LinearisedMeasurement<3> lineariseAntennaPosition(const NavigationState& state,
                                                   const Eigen::Vector3d& p_world_antenna,
                                                   const Eigen::Matrix3d& covariance,
+                                                  const Eigen::Vector3d& p_body_antenna);
+
+// `gyro_radps`: the gyros' reading at the measurement's time, biases not removed.
+LinearisedMeasurement<2> lineariseAntennaVelocity(const NavigationState& state,
+                                                  const Eigen::Vector3d& gyro_radps,
+                                                  const Eigen::Vector2d& v_world_antenna_mps,
+                                                  double sigma_mps,
                                                   const Eigen::Vector3d& p_body_antenna);
 
 // nullopt when the body x axis is within ~18 deg of vertical (yaw undefined).

@@ -61,6 +61,24 @@ TEST(MeasurementModels, AntennaPositionJacobian) {
   });
 }
 
+TEST(MeasurementModels, AntennaVelocityJacobianAndLeverArm) {
+  const Eigen::Vector3d lever_arm(-0.4, 0.2, 1.1);
+  const Eigen::Vector3d gyro_radps(0.05, -0.1, 0.6);
+  expectJacobianMatchesNumerical<2>([&](const NavigationState& s) {
+    return lineariseAntennaVelocity(s, gyro_radps, Eigen::Vector2d(1.2, -0.3), 0.1, lever_arm);
+  });
+  // Turning on the spot at 0.6 rad/s, an antenna 1 m ahead of the body's
+  // origin moves 0.6 m/s sideways.
+  NavigationState turning;
+  turning.q_world_body = expSO3(Eigen::Vector3d(0.0, 0.0, M_PI_2));
+  const LinearisedMeasurement<2> z =
+      lineariseAntennaVelocity(turning, Eigen::Vector3d(0.0, 0.0, 0.6), Eigen::Vector2d::Zero(),
+                               0.1, Eigen::Vector3d::UnitX());
+  EXPECT_NEAR(z.residual.x(), 0.6, 1e-12);
+  EXPECT_NEAR(z.residual.y(), 0.0, 1e-12);
+  EXPECT_NEAR(z.noise(0, 0), 0.01, 1e-15);
+}
+
 TEST(MeasurementModels, YawJacobianAndWrap) {
   const double yaw = yawOf(tiltedState().q_world_body);
   expectJacobianMatchesNumerical<1>(

@@ -17,4 +17,15 @@ std::optional<OutstandingFrames::Frame> OutstandingFrames::take(uint32_t sequenc
   return frame;
 }
 
+FixLatency fixLatencyOf(const OutstandingFrames::Frame& frame, int64_t received_steady_ns,
+                        int64_t received_wall_ns, int64_t written_wall_ns, int64_t backbone_ns) {
+  FixLatency latency;
+  latency.total_ns = received_steady_ns - frame.exposure_steady_ns;
+  latency.front_end_ns = frame.sent_steady_ns - frame.exposure_steady_ns;
+  latency.to_backbone_ns = written_wall_ns - frame.sent_wall_ns - backbone_ns;
+  latency.backbone_ns = backbone_ns;
+  latency.back_ns = received_wall_ns - written_wall_ns;
+  return latency;
+}
+
 }  // namespace lineloc

@@ -3,6 +3,14 @@
 // restarted robot numbers its frames from 0 again, and the backbone keeps its
 // last answers a moment for late readers (common/messages/topics.h), so an
 // answer to the run before can name a frame of this run.
+//
+// An answer's exposure -> fix latency and its legs (fixLatencyOf): the
+// robot's own intervals are read on its steady clock, so a wall clock that is
+// stepped or slewed meanwhile (NTP, chrony disciplined by GPS time) does not
+// enter them; only the legs to and from the backbone compare the robot's wall
+// clock with the backbone's. (Measured from a wall-clock exposure time, a
+// simulated drive once reported 3.2 s: its machine's clock stepped 3.2 s, then
+// slewed 5 ms/s.)
 #pragma once
 
 #include <cstddef>
@@ -16,7 +24,8 @@ class OutstandingFrames {
  public:
   struct Frame {
     int64_t stamp_ns = 0;
-    int64_t exposure_wall_ns = 0;
+    int64_t exposure_steady_ns = 0;
+    int64_t sent_steady_ns = 0;
     int64_t sent_wall_ns = 0;
   };
 
@@ -32,5 +41,19 @@ class OutstandingFrames {
  private:
   std::unordered_map<uint32_t, Frame> frames_;
 };
+
+// total = front_end + to_backbone + backbone + back.
+struct FixLatency {
+  int64_t total_ns = 0;
+  int64_t front_end_ns = 0;    // exposure -> LineSet written
+  int64_t to_backbone_ns = 0;  // LineSet written -> the backbone starts on it
+  int64_t backbone_ns = 0;     // the backbone's own total
+  int64_t back_ns = 0;         // PoseFix written -> received
+};
+
+// `received_*`: when the answer came, on the robot's clocks; `written_wall_ns`:
+// when the backbone wrote it, on its wall clock; `backbone_ns`: its timings' total.
+FixLatency fixLatencyOf(const OutstandingFrames::Frame& frame, int64_t received_steady_ns,
+                        int64_t received_wall_ns, int64_t written_wall_ns, int64_t backbone_ns);
 
 }  // namespace lineloc

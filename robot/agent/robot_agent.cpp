@@ -102,26 +102,23 @@ class FixReceiver {
       return;
     }
     const PoseFixData fix = fromMessage(message);
-    const int64_t received_wall_ns = wallClockNs();
-    const int64_t latency_ns = received_wall_ns - frame->exposure_wall_ns;
-    const int64_t front_end_ns = frame->sent_wall_ns - frame->exposure_wall_ns;
-    const int64_t to_backbone_ns = written_wall_ns - frame->sent_wall_ns - fix.timings.total;
-    const int64_t back_ns = received_wall_ns - written_wall_ns;
-    summary_.latency_ns.push_back(latency_ns);
-    summary_.front_end_ns.push_back(front_end_ns);
-    summary_.to_backbone_ns.push_back(to_backbone_ns);
-    summary_.backbone_ns.push_back(fix.timings.total);
-    summary_.from_backbone_ns.push_back(back_ns);
+    const FixLatency latency =
+        fixLatencyOf(*frame, steadyClockNs(), wallClockNs(), written_wall_ns, fix.timings.total);
+    summary_.latency_ns.push_back(latency.total_ns);
+    summary_.front_end_ns.push_back(latency.front_end_ns);
+    summary_.to_backbone_ns.push_back(latency.to_backbone_ns);
+    summary_.backbone_ns.push_back(latency.backbone_ns);
+    summary_.from_backbone_ns.push_back(latency.back_ns);
     ++summary_.fixes_received;
     ++summary_.fixes_by_status[toString(fix.status)];
     if (fix_log_) {
       fix_log_->write({fix.stamp_ns, fix.T_world_camera, toString(fix.status), fix.inliers,
-                       fix.model_lines, fix.residual_rms_px, toMilliseconds(latency_ns),
-                       toMilliseconds(front_end_ns), toMilliseconds(to_backbone_ns),
-                       toMilliseconds(fix.timings.total), toMilliseconds(back_ns)});
+                       fix.model_lines, fix.residual_rms_px, toMilliseconds(latency.total_ns),
+                       toMilliseconds(latency.front_end_ns), toMilliseconds(latency.to_backbone_ns),
+                       toMilliseconds(latency.backbone_ns), toMilliseconds(latency.back_ns)});
     }
     if (fix.status == lineloc_msg_FIX_OK) {
-      summary_.pose_latency_ns.push_back(latency_ns);
+      summary_.pose_latency_ns.push_back(latency.total_ns);
       trajectory_.write({fix.stamp_ns, fix.T_world_camera.pose});
       handler_(fix);
     }
@@ -261,8 +258,14 @@ class Playback {
   }
   // False for a replay as fast as possible, which never waits for an event.
   bool paced(bool stamped) const { return stamped ? speed_ > 0.0 : frame_period_ns_ > 0; }
-  int64_t wallAt(int64_t steady_ns) const {
-    return start_wall_ns_ + std::max<int64_t>(0, steady_ns - start_steady_ns_);
+  // When an event due at `due_steady_ns` happened, on the steady clock (a
+  // replay as fast as possible has every event happen at its start).
+  int64_t happenedSteadyNs(int64_t due_steady_ns) const {
+    return std::max(due_steady_ns, start_steady_ns_);
+  }
+  // That instant on the wall clock, as it read at the replay's start.
+  int64_t wallAt(int64_t happened_steady_ns) const {
+    return start_wall_ns_ + (happened_steady_ns - start_steady_ns_);
   }
 
  private:
@@ -392,11 +395,11 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
       case SensorKind::kFrame: {
         ++frames_done;
         const FrameRef& frame = streams.frames[event.index];
-        const int64_t exposure_wall_ns = playback.wallAt(due_ns);
+        const int64_t exposure_steady_ns = playback.happenedSteadyNs(due_ns);
         LineSetData line_set;
         line_set.robot_id = config.robot_id;
         line_set.sequence_number = static_cast<uint32_t>(event.index);
-        line_set.stamp_ns = frame.stamp_ns.value_or(exposure_wall_ns);
+        line_set.stamp_ns = frame.stamp_ns.value_or(playback.wallAt(exposure_steady_ns));
         line_set.camera = calibration.camera;
         line_set.camera_height_m = config.camera_height_m;
         if (navigator) {
@@ -422,7 +425,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);
         receiver.expect(line_set.sequence_number,
-                        {line_set.stamp_ns, exposure_wall_ns, wallClockNs()});
+                        {line_set.stamp_ns, exposure_steady_ns, steadyClockNs(), wallClockNs()});
         writer.write(message.message());
         in_flight = {true, line_set.sequence_number, due_ns + kDecodeUnansweredAfterNs};
         ++summary.frames_sent;

@@ -1,9 +1,10 @@
 // The robot's timed inputs from a recorded or simulated EuRoC/ASL dataset —
 // camera frames (cam0/), IMU (imu0/data.csv), DGPS as NMEA 0183
-// (gps0/data.csv: "timestamp_ns,sentence"; positions and velocities),
-// compass (compass0/data.csv) — merged into one time-ordered timeline, so the robot can replay them
-// as they were measured, and the mounting of camera and IMU on the body (T_BS of cam0/sensor.yaml
-// and imu0/sensor.yaml). Streams other than the camera are optional.
+// (gps0/data.csv: "timestamp_ns,sentence"; positions and velocities) and
+// compass (compass0/data.csv) — merged into one time-ordered timeline, so the
+// robot can replay them as they were measured, and the mounting of camera and
+// IMU on the body (T_BS of cam0/sensor.yaml and imu0/sensor.yaml). Streams
+// other than the camera are optional.
 #pragma once
 
 #include <cstdint>

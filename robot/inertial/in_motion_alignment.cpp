@@ -1,6 +1,5 @@
 #include "robot/inertial/in_motion_alignment.h"
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 

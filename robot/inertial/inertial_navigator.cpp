@@ -613,17 +613,17 @@ void InertialNavigator::tryInitialiseInMotion() {
       config_.gyro_turn_on_bias_sigma_radps, kStartupHeadingGateSigmas * config_.compass_sigma_rad};
   const std::optional<InMotionAttitude> attitude = alignInMotion(
       *imu, from.stamp_ns, from.v_world_mps, to.stamp_ns, to.v_world_mps, compass_yaws, noise);
-  const std::optional<ImuSample> imu_at_start = bufferedImuAt(to.stamp_ns);
-  if (!attitude || !imu_at_start) {
+  if (!attitude) {
     return;
   }
+  const ImuSample& imu_at_start = imu->back();
   NavigationState state;
   state.stamp_ns = to.stamp_ns;
   state.q_world_body = attitude->q_world_body;
   // v_body = v_antenna - R (omega x r).
   state.v_world_body =
       Eigen::Vector3d(to.v_world_mps.x(), to.v_world_mps.y(), 0.0) -
-      state.q_world_body * imu_at_start->gyro_radps.cross(config_.p_body_gps_antenna);
+      state.q_world_body * imu_at_start.gyro_radps.cross(config_.p_body_gps_antenna);
   const bool position_known =
       startup_gps_ && std::abs(startup_gps_->stamp_ns - to.stamp_ns) <= kSameEpoch_ns;
   const Eigen::Vector3d position_sigma_m =
@@ -638,7 +638,7 @@ void InertialNavigator::tryInitialiseInMotion() {
       config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   counters_.gps_velocity.accepted += 2;
-  startAt(state, sigma.cwiseAbs2().asDiagonal(), *imu_at_start,
+  startAt(state, sigma.cwiseAbs2().asDiagonal(), imu_at_start,
           position_known ? StartPosition::kFromSensors : StartPosition::kUnknown);
 }
 

@@ -174,6 +174,7 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   requirePositive(static_cast<double>(config.history_ns), "history_ns");
   requirePositive(config.gps_horizontal_sigma_m, "gps_horizontal_sigma_m");
   requirePositive(config.gps_vertical_sigma_m, "gps_vertical_sigma_m");
+  requirePositive(config.max_ground_speed_mps, "max_ground_speed_mps");
   requirePositive(config.gps_velocity_sigma_mps, "gps_velocity_sigma_mps");
   requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
   requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
@@ -364,7 +365,7 @@ void InertialNavigator::process(const BufferedImu& imu) {
     strapdown_.propagate(current, imu.sample, snapshot.state, snapshot.covariance);
   }
   const bool slow = snapshot.state.v_world_body.norm() < config_.zero_velocity_max_speed_mps;
-  if (imu.still && slow &&
+  if (imu.still && slow && snapshot.velocity_known &&
       imu.sample.stamp_ns - snapshot.last_zero_velocity_ns >= config_.zero_velocity_interval_ns) {
     const UpdateOutcome outcome =
         applyUpdate(lineariseZeroVelocity(snapshot.state, config_.zero_velocity_sigma_mps),
@@ -392,6 +393,7 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
         applyUpdate(z, gate_by_dimension_[6], state, covariance, update_noise);
     if (outcome.status == UpdateStatus::kAccepted) {
       snapshot.position_known = true;
+      snapshot.velocity_known = true;
       snapshot.at_last_vision = state;
       snapshot.unproven_covariance =
           bodyCovarianceOf(vision->T_world_camera.pose, vision->unproven_covariance);
@@ -416,11 +418,14 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
     return outcome ? fromUpdate(outcome->status) : MeasurementOutcome::kSkipped;
   }
   if (const auto* velocity = std::get_if<GpsVelocityPayload>(&measurement.payload)) {
-    return fromUpdate(applyUpdate(lineariseAntennaVelocity(
-                                      state, imu.gyro_radps, velocity->v_world_antenna_mps,
-                                      config_.gps_velocity_sigma_mps, config_.p_body_gps_antenna),
-                                  gate_by_dimension_[2], state, covariance)
-                          .status);
+    const UpdateOutcome outcome = applyUpdate(
+        lineariseAntennaVelocity(state, imu.gyro_radps, velocity->v_world_antenna_mps,
+                                 config_.gps_velocity_sigma_mps, config_.p_body_gps_antenna),
+        gate_by_dimension_[2], state, covariance);
+    if (outcome.status == UpdateStatus::kAccepted) {
+      snapshot.velocity_known = true;
+    }
+    return fromUpdate(outcome.status);
   }
   const auto& yaw = std::get<YawPayload>(measurement.payload);
   const auto z = lineariseYaw(state, yaw.yaw_rad, config_.compass_sigma_rad);
@@ -504,7 +509,7 @@ bool InertialNavigator::initialise(const NavigationState& state,
 
 void InertialNavigator::startAt(const NavigationState& state, const ErrorCovariance& covariance,
                                 const ImuSample& imu, StartPosition position,
-                                const Matrix6d& unproven_covariance) {
+                                const Matrix6d& unproven_covariance, bool velocity_known) {
   snapshots_.clear();
   measurements_.clear();
   Snapshot snapshot;
@@ -514,6 +519,7 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   snapshot.last_zero_velocity_ns = state.stamp_ns;
   snapshot.unproven_covariance = unproven_covariance;
   snapshot.position_known = position != StartPosition::kUnknown;
+  snapshot.velocity_known = velocity_known;
   if (position == StartPosition::kFromVision) {
     snapshot.at_last_vision = state;
   }
@@ -526,8 +532,8 @@ void InertialNavigator::startAt(const NavigationState& state, const ErrorCovaria
   replayFrom(0);
 }
 
-Eigen::Vector3d InertialNavigator::initialGyroBias(double& sigma_radps) const {
-  if (!alignment_) {
+Eigen::Vector3d InertialNavigator::initialGyroBias(bool stood_still, double& sigma_radps) const {
+  if (!alignment_ || !stood_still) {
     sigma_radps = config_.gyro_turn_on_bias_sigma_radps;
     return Eigen::Vector3d::Zero();
   }
@@ -564,16 +570,22 @@ void InertialNavigator::tryInitialiseFromSensors() {
       quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
   const Eigen::Vector3d position_sigma_m =
       placeAtDgps(startup_gps_ ? &*startup_gps_ : nullptr, state);
+  // Without DGPS only the IMU says the robot stands (see the header): the
+  // velocity is unknown, and the window's mean rate may be the body pitching.
+  const bool with_dgps = startup_gps_.has_value();
   double gyro_bias_sigma = 0.0;
-  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  state.gyro_bias_radps = initialGyroBias(with_dgps, gyro_bias_sigma);
   // A tilt error of b_a / g hides behind an accelerometer bias b_a.
   const double tilt_sigma = config_.accel_turn_on_bias_sigma_mps2 / config_.gravity_mps2;
+  const double velocity_sigma_mps =
+      with_dgps ? kStillVelocitySigma_mps : config_.max_ground_speed_mps;
   ErrorVector sigma;
-  sigma << position_sigma_m, Eigen::Vector3d::Constant(kStillVelocitySigma_mps), tilt_sigma,
-      tilt_sigma, config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
+  sigma << position_sigma_m, Eigen::Vector3d::Constant(velocity_sigma_mps), tilt_sigma, tilt_sigma,
+      config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   startAt(state, sigma.cwiseAbs2().asDiagonal(), latest,
-          startup_gps_ ? StartPosition::kFromSensors : StartPosition::kUnknown);
+          with_dgps ? StartPosition::kFromSensors : StartPosition::kUnknown, Matrix6d::Zero(),
+          with_dgps);
 }
 
 Eigen::Vector3d InertialNavigator::placeAtDgps(const GpsFix* fix, NavigationState& state) const {
@@ -629,7 +641,7 @@ void InertialNavigator::tryInitialiseInMotion() {
   const Eigen::Vector3d position_sigma_m =
       placeAtDgps(position_known ? &*startup_gps_ : nullptr, state);
   double gyro_bias_sigma = 0.0;
-  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  state.gyro_bias_radps = initialGyroBias(false, gyro_bias_sigma);
   const double vertical_velocity_sigma =
       std::max(kStillVelocitySigma_mps, kSteepGrade * to.v_world_mps.norm());
   ErrorVector sigma;
@@ -689,7 +701,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   state.q_world_body = Eigen::Quaterniond(fix.T_world_body.linear()).normalized();
   state.v_world_body = velocity.v_world_mps;
   double gyro_bias_sigma = 0.0;
-  state.gyro_bias_radps = initialGyroBias(gyro_bias_sigma);
+  state.gyro_bias_radps = initialGyroBias(!moved_since_start_, gyro_bias_sigma);
   ErrorCovariance covariance = ErrorCovariance::Zero();
   setPoseBlock(fix.covariance, covariance);
   covariance.block<3, 3>(kVelocity, kVelocity)
@@ -847,7 +859,7 @@ void InertialNavigator::restartHeadingIfCompassKeepsBeingGated() {
       config_.initial_yaw_sigma_rad * config_.initial_yaw_sigma_rad;
   startAt(state, covariance, latest.imu,
           latest.position_known ? StartPosition::kFromSensors : StartPosition::kUnknown,
-          latest.unproven_covariance);
+          latest.unproven_covariance, latest.velocity_known);
   ++counters_.heading_restarts;
 }
 

@@ -203,63 +203,14 @@ void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odo
   logSearch("search", line_set, localization, outcome, search_ns);
 }
 
-LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_set,
-                                                        const PreparedMap& map,
-                                                        const Eigen::Isometry3d& tracked,
-                                                        const Alignment& found) const {
-  if (found.status != AlignmentStatus::kOk) {
-    return {Proof::kUndecided, found.message + "; tried again later"};
-  }
-  if (agrees(tracked, found.T_world_camera.pose)) {
-    return {Proof::kAgrees, "agrees with tracking"};
-  }
-  const AcquisitionOptions& acquisition = options_.localizer.acquisition;
-  const double found_score =
-      verificationScore(line_set.segments, map.segments, map.scene, found.T_world_camera.pose,
-                        line_set.camera, acquisition);
-  const double tracked_score = verificationScore(line_set.segments, map.segments, map.scene,
-                                                 tracked, line_set.camera, acquisition);
-  const std::string scores =
-      fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}",
-                  (found.T_world_camera.pose.translation() - tracked.translation()).norm(),
-                  tracked_score, found_score);
-  if (tracked_score >= acquisition.ambiguous_score_fraction * found_score) {
-    return {Proof::kUndecided, scores + "; tried again later"};
-  }
-  return {Proof::kContradicts, scores + ": tracking stops until two searches confirm each other"};
+LineSetHandler::PoseOffset LineSetHandler::PoseOffset::between(const Eigen::Isometry3d& from,
+                                                               const Eigen::Isometry3d& to) {
+  return {(to.translation() - from.translation()).norm(),
+          std::abs(Eigen::AngleAxisd(from.linear().transpose() * to.linear()).angle())};
 }
 
-void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
-                           const Eigen::Isometry3d& tracked) {
-  const int64_t start_ns = steadyClockNs();
-  PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
-                                                           options_.confirm_rotation_rad)};
-  prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
-  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, localizerOptions(line_set));
-  const ProofVerdict verdict = judgeProof(line_set, map, tracked, localization.alignment);
-  const int64_t search_ns = steadyClockNs() - start_ns;
-  countSearch();
-  {
-    const std::lock_guard<std::mutex> lock(searches_mutex_);
-    const auto start = tracking_start_.find(line_set.robot_id);
-    if (start == tracking_start_.end()) {
-      return;
-    }
-    switch (verdict.proof) {
-      case Proof::kAgrees:
-        ++start->second.agreeing_proofs;
-        [[fallthrough]];
-      case Proof::kUndecided:
-        start->second.proof_due_m += options_.proof_retry_m;
-        break;
-      case Proof::kContradicts:
-        tracking_start_.erase(start);
-        searching_again_.insert(line_set.robot_id);
-        break;
-    }
-  }
-  logSearch("proof search", line_set, localization, verdict.outcome, search_ns);
+LineSetHandler::PoseOffset LineSetHandler::PoseOffset::farthest(const PoseOffset& other) const {
+  return {std::max(position_m, other.position_m), std::max(rotation_rad, other.rotation_rad)};
 }
 
 namespace {
@@ -274,7 +225,94 @@ std::string describePose(const Eigen::Isometry3d& T_world_camera) {
                      std::atan2(axis_world.x(), axis_world.y()) * 180.0 / M_PI);
 }
 
+// The poses a search found: its best, and an ambiguous search's rival too.
+std::vector<Eigen::Isometry3d> foundPoses(const Localization& found) {
+  std::vector<Eigen::Isometry3d> poses{found.alignment.T_world_camera.pose};
+  if (found.alignment.status == AlignmentStatus::kAmbiguous && found.search &&
+      found.search->T_world_camera_rival) {
+    poses.push_back(*found.search->T_world_camera_rival);
+  }
+  return poses;
+}
+
 }  // namespace
+
+LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_set,
+                                                        const PreparedMap& map,
+                                                        const Eigen::Isometry3d& tracked,
+                                                        const Localization& found) const {
+  const Alignment& alignment = found.alignment;
+  const bool ambiguous = alignment.status == AlignmentStatus::kAmbiguous;
+  if (alignment.status != AlignmentStatus::kOk && !ambiguous) {
+    return {Proof::kUndecided, alignment.message + "; tried again later", {}};
+  }
+  if (!ambiguous && agrees(tracked, alignment.T_world_camera.pose)) {
+    return {Proof::kAgrees, "agrees with tracking", {}};
+  }
+  const AcquisitionOptions& acquisition = options_.localizer.acquisition;
+  const auto score = [&](const Eigen::Isometry3d& T_world_camera) {
+    return verificationScore(line_set.segments, map.segments, map.scene, T_world_camera,
+                             line_set.camera, acquisition);
+  };
+  const double tracked_score = score(tracked);
+  const double fraction = acquisition.ambiguous_score_fraction;
+  ProofVerdict verdict{Proof::kUndecided, ambiguous ? alignment.message + "; " : "", {}};
+  for (const Eigen::Isometry3d& pose : foundPoses(found)) {
+    if (agrees(tracked, pose)) {
+      continue;
+    }
+    const double found_score = score(pose);
+    const PoseOffset offset = PoseOffset::between(tracked, pose);
+    verdict.outcome +=
+        fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}; ",
+                    offset.position_m, tracked_score, found_score);
+    if (!ambiguous && tracked_score < fraction * found_score) {
+      verdict.proof = Proof::kContradicts;
+      verdict.outcome += "tracking stops until two searches confirm each other";
+      return verdict;
+    }
+    if (found_score >= fraction * tracked_score) {
+      verdict.rival = verdict.rival.farthest(offset);
+    }
+  }
+  if (verdict.rival.position_m > 0.0) {
+    verdict.outcome += "its rival widens the fixes until tracking is proven; ";
+  }
+  verdict.outcome += "tried again later";
+  return verdict;
+}
+
+void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
+                           const Eigen::Isometry3d& tracked, double moved_m) {
+  const int64_t start_ns = steadyClockNs();
+  PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
+                                                           options_.confirm_rotation_rad)};
+  prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
+  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
+                                             line_set.camera, localizerOptions(line_set));
+  const ProofVerdict verdict = judgeProof(line_set, map, tracked, localization);
+  const int64_t search_ns = steadyClockNs() - start_ns;
+  countSearch();
+  {
+    const std::lock_guard<std::mutex> lock(searches_mutex_);
+    const auto start = tracking_start_.find(line_set.robot_id);
+    if (start == tracking_start_.end()) {
+      return;
+    }
+    if (verdict.proof == Proof::kContradicts) {
+      tracking_start_.erase(start);
+      searching_again_.insert(line_set.robot_id);
+    } else {
+      TrackingStart& tracking = start->second;
+      const bool from_elsewhere = moved_m >= options_.acquisition_proven_after_m;
+      tracking.agreeing_proofs += verdict.proof == Proof::kAgrees && from_elsewhere ? 1 : 0;
+      tracking.rival = tracking.rival.farthest(verdict.rival);
+      tracking.proof_due_m =
+          std::max(moved_m + options_.proof_retry_m, options_.acquisition_proven_after_m);
+    }
+  }
+  logSearch("proof search", line_set, localization, verdict.outcome, search_ns);
+}
 
 void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
                                const Localization& localization, const std::string& outcome,
@@ -340,17 +378,16 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   if (!agrees(moved->pose, acquired.pose)) {
     return Confirmation::kDisagrees;
   }
-  tracking_start_.insert_or_assign(
-      line_set.robot_id, TrackingStart{current, true, 0, options_.acquisition_proven_after_m});
+  tracking_start_.insert_or_assign(line_set.robot_id, TrackingStart{current, true, 0, 0.0, {}});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }
 
 bool LineSetHandler::agrees(const Eigen::Isometry3d& expected,
                             const Eigen::Isometry3d& found) const {
-  const Eigen::AngleAxisd rotation(expected.linear().transpose() * found.linear());
-  return (expected.translation() - found.translation()).norm() <= options_.confirm_position_m &&
-         std::abs(rotation.angle()) <= options_.confirm_rotation_rad;
+  const PoseOffset offset = PoseOffset::between(expected, found);
+  return offset.position_m <= options_.confirm_position_m &&
+         offset.rotation_rad <= options_.confirm_rotation_rad;
 }
 
 std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set,
@@ -375,16 +412,17 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     return;
   }
   bool proof_due = false;
+  double moved_m = 0.0;
+  PoseOffset rival;
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     auto start = tracking_start_.find(line_set.robot_id);
     if (start == tracking_start_.end() || start->second.origin.odometry.epoch != odometry.epoch) {
       start = tracking_start_
-                  .insert_or_assign(line_set.robot_id,
-                                    TrackingStart{{line_set.stamp_ns, fix.T_world_camera, odometry},
-                                                  false,
-                                                  0,
-                                                  options_.acquisition_proven_after_m})
+                  .insert_or_assign(
+                      line_set.robot_id,
+                      TrackingStart{
+                          {line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0, 0.0, {}})
                   .first;
       spdlog::info(
           "tracking {} from #{} on from its own prediction, which no search here found: its "
@@ -395,20 +433,22 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     if (tracking.agreeing_proofs >= options_.agreeing_proofs_needed) {
       return;
     }
-    const double moved_m = (odometry.T_odom_camera.translation() -
-                            tracking.origin.odometry.T_odom_camera.translation())
-                               .norm();
+    moved_m = (odometry.T_odom_camera.translation() -
+               tracking.origin.odometry.T_odom_camera.translation())
+                  .norm();
     proof_due = moved_m >= tracking.proof_due_m;
+    rival = tracking.rival;
   }
   if (proof_due) {
     submitSearch("proof search", line_set,
-                 [this, line_set, map, tracked = fix.T_world_camera.pose] {
-                   prove(line_set, *map, tracked);
+                 [this, line_set, map, tracked = fix.T_world_camera.pose, moved_m] {
+                   prove(line_set, *map, tracked, moved_m);
                  });
   }
   const AcquisitionOptions& acquisition = options_.localizer.acquisition;
-  fix.unproven_position_sigma_m = acquisition.acquired_position_sigma_m;
-  fix.unproven_rotation_sigma_rad = acquisition.acquired_rotation_sigma_rad;
+  fix.unproven_position_sigma_m = std::max(acquisition.acquired_position_sigma_m, rival.position_m);
+  fix.unproven_rotation_sigma_rad =
+      std::max(acquisition.acquired_rotation_sigma_rad, rival.rotation_rad);
   fix.T_world_camera.covariance +=
       diagonalPoseCovariance(fix.unproven_position_sigma_m, fix.unproven_rotation_sigma_rad);
 }

@@ -43,10 +43,11 @@
 // (acquired_*_sigma, pose_acquisition.h) added to its covariance, and states
 // it as the fix's unproven part (PoseFix::unproven_*: an offset the fixes
 // share, which the robot fuses as one, inertial_navigator.h), until
-// searches from other viewpoints agree with tracking: once the robot has
-// moved acquisition_proven_after_m from where its confirmed search saw it, a
-// proof search runs on the worker over proof_position_sigma_m around the
-// frame's tracked pose. Tracking's covariance comes from the residuals of one
+// searches from other viewpoints agree with tracking: proof searches run on
+// the worker over proof_position_sigma_m around the frame's tracked pose,
+// the first at once, from the tracking start's own view, the others once
+// the robot has moved acquisition_proven_after_m from where its confirmed
+// search saw it. Tracking's covariance comes from the residuals of one
 // view, which cannot tell the two basins apart; a view that changes can, but
 // tracking from the wrong basin follows it there (seed 9: 0.5 m off for
 // three metres of driving). Proof searches that agree, agreeing_proofs_needed
@@ -54,6 +55,10 @@
 // can agree with tracking in the wrong basin itself (seed 9 again, with the
 // frames' timing changed: a proof 0.6 m off agreed, and unwidened, 107 fixes
 // lay beyond three sigma), and a basin that a changing view keeps is rarer.
+// The first proves nothing by agreeing, as it sees the view the confirmed
+// searches saw; it is there to find a basin their wider grid missed before
+// tracking has followed it for a metre (seed 39 below).
+//
 // One that finds the camera elsewhere ends the tracking only when the tracked
 // pose, scored as the search scores its hypotheses (verificationScore,
 // pose_acquisition.h), falls below ambiguous_score_fraction of the found one:
@@ -62,8 +67,19 @@
 // may miss the tracked pose's basin among its hypotheses; over 50 simulated
 // Delft drives, both proof searches that ended tracking within 9 cm of the
 // truth had found a pose 0.75 m and 0.9 m off that the truth outscored
-// (17.1 to 14.1, 8.1 to 8.0). One that finds nothing, an ambiguous view, or a pose the tracked
-// one nearly matches, is tried again after proof_retry_m more.
+// (17.1 to 14.1, 8.1 to 8.0). A pose elsewhere that scores within that
+// fraction of the tracked one, found OK or as either pose of an ambiguous
+// search, is a rival the view cannot tell from tracking: until tracking is
+// proven, the unproven part of the fixes grows to the farthest such rival's
+// distance and rotation from the tracked pose, so that a wrong basin is no
+// precise answer. Simulated Delft seed 39 had two searches 13.07 and 13.27 s
+// into its drive confirm a pose 1.75 m along its street (scoring 17.2
+// against a rival of 9.4; the truth was not among their hypotheses), and
+// tracking followed it for 6 s: four proof searches were ambiguous, each with
+// the truth as its best and the tracked pose as its rival (17.3 to 14.4 and
+// alike), and 138 fixes lay beyond three sigma of covariances 0.15 m wide.
+// One that finds nothing, or only poses near the tracked one, is tried again
+// after proof_retry_m more.
 //
 // A robot tracked from its own prediction, without a search of this backbone
 // (one restarted mid-drive, a robot forgotten and back, a robot started from
@@ -191,11 +207,11 @@ struct PipelineOptions {
   // searches that confirmed each other 9 m along its façade with 13 inliers,
   // 28 fixes beyond three sigma. A wide acquired covariance marks a poor match.
   double carried_start_step_m = 0.5;
-  // Fixes keep the acquired pose's resolution term until proof searches,
-  // the first due once the robot has moved this far from where its confirmed
-  // search saw it, agree with tracking; over this sigma around the tracked
-  // pose (three sigma: a few windows' widths), each next one due
-  // proof_retry_m further on.
+  // Fixes keep the acquired pose's resolution term until proof searches
+  // from at least this far from where the confirmed search saw the robot
+  // agree with tracking; over this sigma around the tracked pose (three
+  // sigma: a few windows' widths), the first at once, each next one due
+  // proof_retry_m further on, and acquisition_proven_after_m on at least.
   double acquisition_proven_after_m = 1.0;
   double proof_position_sigma_m = 0.5;
   double proof_retry_m = 1.0;
@@ -327,18 +343,34 @@ class LineSetHandler {
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };
+  // How far one camera pose lies from another: the distance between the two
+  // and the angle of the rotation between them.
+  struct PoseOffset {
+    double position_m = 0.0;
+    double rotation_rad = 0.0;
+    static PoseOffset between(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to);
+    // Each of the two at the larger of its own and `other`'s.
+    PoseOffset farthest(const PoseOffset& other) const;
+  };
   struct ProofVerdict {
     Proof proof;
     std::string outcome;
+    // An undecided proof's farthest rival of the tracked pose (see below).
+    PoseOffset rival;
   };
-  // What the pose a proof search `found` around `tracked` says of tracking: a
-  // pose elsewhere contradicts it only when the tracked pose scores below
-  // ambiguous_score_fraction of it (verificationScore, pose_acquisition.h).
+  // What the poses a proof search `found` around `tracked` say of tracking:
+  // an OK pose elsewhere contradicts it only when the tracked pose scores
+  // below ambiguous_score_fraction of it (verificationScore,
+  // pose_acquisition.h). A pose elsewhere, OK or either of an ambiguous
+  // search's two, that scores at least that fraction of the tracked pose is
+  // its rival: the view does not tell them apart.
   ProofVerdict judgeProof(const LineSetData& line_set, const PreparedMap& map,
-                          const Eigen::Isometry3d& tracked, const Alignment& found) const;
+                          const Eigen::Isometry3d& tracked, const Localization& found) const;
   // Runs on the search worker: searches around `tracked`, the frame's
-  // tracked pose, and proves or ends the tracking of the robot.
-  void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked);
+  // tracked pose, `moved_m` from its tracking start's viewpoint, and proves
+  // or ends the tracking of the robot.
+  void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked,
+             double moved_m);
   // Logs a search's outcome.
   static void logSearch(const char* kind, const LineSetData& line_set,
                         const Localization& localization, const std::string& outcome,
@@ -395,6 +427,9 @@ class LineSetHandler {
     int agreeing_proofs = 0;
     // Motion from the origin's viewpoint (m) at which a proof search is due.
     double proof_due_m = 0.0;
+    // The farthest rival undecided proofs found, which the unproven part of
+    // the fixes covers until tracking is proven.
+    PoseOffset rival;
   };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;

@@ -390,7 +390,9 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
 // alike, tracked from there without a search: widened by the search's
 // resolution, and stating it as their unproven part, until, once the robot
 // has moved acquisition_proven_after_m, a proof search from there agrees with
-// tracking, and a second one proof_retry_m further on does too.
+// tracking, and a second one proof_retry_m further on does too. The proof
+// search from the tracking start's own viewpoint, which its first frame
+// runs, proves nothing by agreeing.
 void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::string& conninfo,
                                          const PipelineOptions& options, PoseWithCovariance truth,
                                          PoseWithCovariance predicted, uint32_t first_sequence) {
@@ -421,21 +423,25 @@ void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::str
   const uint64_t searches = handler.counters().searches;
 
   expectFix(true);
-  // 1.5 m further north: the first proof search is due; agreeing, it leaves
-  // the fixes widened.
-  driveNorth(1.5);
-  expectFix(true);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, searches + 1);
   expectFix(true);
   EXPECT_EQ(handler.counters().searches, searches + 1);
+  // 1.5 m further north: the first proof search from elsewhere is due;
+  // agreeing, it leaves the fixes widened.
+  driveNorth(1.5);
+  expectFix(true);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, searches + 2);
+  expectFix(true);
+  EXPECT_EQ(handler.counters().searches, searches + 2);
   // A metre further on, the second one is due; agreeing too, it proves tracking.
   driveNorth(options.proof_retry_m);
   expectFix(true);
   handler.waitForSearches();
-  EXPECT_EQ(handler.counters().searches, searches + 2);
+  EXPECT_EQ(handler.counters().searches, searches + 3);
   expectFix(false);
-  EXPECT_EQ(handler.counters().searches, searches + 2);
+  EXPECT_EQ(handler.counters().searches, searches + 3);
 }
 
 // A robot that stands still searches the same view twice, and both searches
@@ -463,7 +469,7 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
   expectProvenBySearchesFromElsewhere(handler, database_.conninfo(), options,
                                       lookingNorth({13, -30, 1.5}),
                                       lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003), 3);
-  EXPECT_EQ(handler.counters().searches, 2u);
+  EXPECT_EQ(handler.counters().searches, 3u);
 
   // A frame older than the last (the robot restarted): its odometry starts a
   // new chain, and its motion since the tracking start is unknown.
@@ -488,6 +494,16 @@ struct TrackedBeside {
   PoseWithCovariance predicted;
   std::vector<ImageSegment> seen;
 };
+
+// A fix tracked beside `truth` whose covariance covers it, the offset stated
+// as the fix's unproven part.
+void expectCoversTheTruthAsItsUnprovenPart(const PoseFixData& fix,
+                                           const PoseWithCovariance& truth) {
+  const double offset_m = (fix.T_world_camera.pose.translation() - truth.pose.translation()).norm();
+  EXPECT_GT(offset_m, 1.0);
+  EXPECT_GE(fix.unproven_position_sigma_m, offset_m - 0.1);
+  expectWithinThreeSigma(fix.T_world_camera, truth);
+}
 
 TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& conninfo,
                                   float beside_length) {
@@ -530,10 +546,23 @@ TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
   EXPECT_EQ(handler.counters().searches, 5u);
 }
 
+// Tracked beside the truth with the view beside at 0.8 of its length, frame
+// 6 is tracked on, its fix covering the truth, and no proof search is due.
+void expectTrackedOnCoveringTheTruth(LineSetHandler& handler, const std::string& conninfo) {
+  const TrackedBeside frame = trackBesideTheTruth(handler, conninfo, 0.8f);
+  const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 6)->message());
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+  expectCoversTheTruthAsItsUnprovenPart(*fix, frame.truth);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 3u);
+}
+
 // With the view beside kept at 0.8 of its length, the tracked pose scores
 // nearly as well as the truth the proof search finds: the image does not
-// tell them apart, so tracking goes on, its fixes widened, and the proof is
-// tried again after proof_retry_m more. The proof search aligns its best grid
+// tell them apart, so tracking goes on, its fixes widened to cover the truth
+// as their unproven part, and the proof is tried again after proof_retry_m
+// more. The proof search aligns its best grid
 // hypothesis only, so that it is the tracked pose's score, not a rival in the
 // search, that leaves the proof undecided; and no edge counts as sky, where
 // each view's roof corners lie seen from the other, so that coverage does.
@@ -543,15 +572,18 @@ TEST_F(LineSetHandlerTest, TrackingThatScoresNearlyAsWellAsTheProofSearchsPoseGo
   options.localizer.acquisition.search.max_hypotheses = 1;
   options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
   LineSetHandler handler(cache, MessageLimits{}, options);
-  const TrackedBeside frame = trackBesideTheTruth(handler, database_.conninfo(), 0.8f);
+  expectTrackedOnCoveringTheTruth(handler, database_.conninfo());
+}
 
-  const auto fix = handler.handle(lineSetMessage(frame.seen, frame.predicted, 6)->message());
-  ASSERT_TRUE(fix.has_value());
-  ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
-  EXPECT_GE(fix->T_world_camera.covariance(0, 0),
-            std::pow(options.localizer.acquisition.acquired_position_sigma_m, 2));
-  handler.waitForSearches();
-  EXPECT_EQ(handler.counters().searches, 3u);
+// The same view, the proof search aligning all its grid hypotheses: it
+// finds both poses, too alike to choose between (kAmbiguous). Neither
+// contradicts tracking, but the one elsewhere widens the fixes as above.
+TEST_F(LineSetHandlerTest, AnAmbiguousProofSearchWidensTheFixesToCoverThePoseElsewhere) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  expectTrackedOnCoveringTheTruth(handler, database_.conninfo());
 }
 
 // Each robot's searches are its own: another robot at the same place, with

@@ -34,6 +34,7 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       limits_(limits),
       options_(options),
       silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
+      proof_reach_{options.proof_position_sigma_m, options.confirm_rotation_rad},
       foreground_(fromMilliseconds(options.max_background_yield_ms)),
       cadence_(fromMilliseconds(options.quiet_before_frame_ms),
                fromMilliseconds(options.max_background_yield_ms)),
@@ -307,6 +308,8 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
       const bool from_elsewhere = moved_m >= options_.acquisition_proven_after_m;
       tracking.agreeing_proofs += verdict.proof == Proof::kAgrees && from_elsewhere ? 1 : 0;
       tracking.rival = tracking.rival.farthest(verdict.rival);
+      tracking.looked_around |= localization.alignment.status == AlignmentStatus::kOk ||
+                                localization.alignment.status == AlignmentStatus::kAmbiguous;
       tracking.proof_due_m =
           std::max(moved_m + options_.proof_retry_m, options_.acquisition_proven_after_m);
     }
@@ -335,14 +338,13 @@ std::string LineSetHandler::describe(Confirmation confirmation,
                                      const PoseWithCovariance& found) const {
   switch (confirmation) {
     case Confirmation::kConfirmed:
-      if (needsAcquisition(found, options_.localizer)) {
-        return fmt::format(
-            "confirms the previous search, but is too wide to track from (position sigma {:.2f} "
-            "m, yaw sigma {:.2f} deg); searching on",
-            largestPositionSigma(found.covariance),
-            std::sqrt(std::max(0.0, found.covariance(5, 5))) * 180.0 / M_PI);
-      }
       return "confirms the previous search";
+    case Confirmation::kConfirmedTooWide:
+      return fmt::format(
+          "confirms the previous search, but is too wide to track from (position sigma {:.2f} "
+          "m, yaw sigma {:.2f} deg); searching on",
+          largestPositionSigma(found.covariance),
+          std::sqrt(std::max(0.0, found.covariance(5, 5))) * 180.0 / M_PI);
     case Confirmation::kFirst:
       return "awaits confirmation by the next search";
     case Confirmation::kDisagrees:
@@ -378,7 +380,11 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
   if (!agrees(moved->pose, acquired.pose)) {
     return Confirmation::kDisagrees;
   }
-  tracking_start_.insert_or_assign(line_set.robot_id, TrackingStart{current, true, 0, 0.0, {}});
+  if (needsAcquisition(acquired, options_.localizer)) {
+    return Confirmation::kConfirmedTooWide;
+  }
+  tracking_start_.insert_or_assign(line_set.robot_id,
+                                   TrackingStart{current, true, 0, 0.0, {}, false});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }
@@ -418,12 +424,13 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     auto start = tracking_start_.find(line_set.robot_id);
     if (start == tracking_start_.end() || start->second.origin.odometry.epoch != odometry.epoch) {
-      start = tracking_start_
-                  .insert_or_assign(
-                      line_set.robot_id,
-                      TrackingStart{
-                          {line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0, 0.0, {}})
-                  .first;
+      start =
+          tracking_start_
+              .insert_or_assign(
+                  line_set.robot_id,
+                  TrackingStart{
+                      {line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0, 0.0, {}, false})
+              .first;
       spdlog::info(
           "tracking {} from #{} on from its own prediction, which no search here found: its "
           "fixes stay widened until proof searches agree",
@@ -437,7 +444,7 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
                tracking.origin.odometry.T_odom_camera.translation())
                   .norm();
     proof_due = moved_m >= tracking.proof_due_m;
-    rival = tracking.rival;
+    rival = tracking.looked_around ? tracking.rival : tracking.rival.farthest(proof_reach_);
   }
   if (proof_due) {
     submitSearch("proof search", line_set,

@@ -57,13 +57,18 @@
 // lay beyond three sigma), and a basin that a changing view keeps is rarer.
 // The first proves nothing by agreeing, as it sees the view the confirmed
 // searches saw; it is there to find a basin their wider grid missed before
-// tracking has followed it for a metre (seed 39 below).
+// tracking has followed it for a metre (seed 39 below). Until a proof search
+// has aligned around tracking, the fixes' unproven part is that search's
+// prior (proof_position_sigma_m, confirm_rotation_rad), as no basin within
+// its reach is ruled out yet.
 //
 // One that finds the camera elsewhere ends the tracking only when the tracked
 // pose, scored as the search scores its hypotheses (verificationScore,
 // pose_acquisition.h), falls below ambiguous_score_fraction of the found one:
 // the robot's frames are then searched for again, over at least
-// proof_position_sigma_m, until two searches confirm each other. A search
+// proof_position_sigma_m, until two searches confirm each other on a pose
+// narrow enough to track from: the robot's own prediction, however narrow,
+// stands on the fixes the proof disproved. A search
 // may miss the tracked pose's basin among its hypotheses; over 50 simulated
 // Delft drives, both proof searches that ended tracking within 9 cm of the
 // truth had found a pose 0.75 m and 0.9 m off that the truth outscored
@@ -78,6 +83,10 @@
 // tracking followed it for 6 s: four proof searches were ambiguous, each with
 // the truth as its best and the tracked pose as its rival (17.3 to 14.4 and
 // alike), and 138 fixes lay beyond three sigma of covariances 0.15 m wide.
+// With the rivals widening the fixes, 4 still did: two tracked before the
+// first proof search had returned, and two tracked from the robot's own
+// prediction, still on the disproven fixes, after two searches had confirmed
+// the truth too wide to track from; none since.
 // One that finds nothing, or only poses near the tracked one, is tried again
 // after proof_retry_m more.
 //
@@ -320,14 +329,15 @@ class LineSetHandler {
       const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior);
   // Counts a malformed message and logs `kind`'s drop.
   void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
-  enum class Confirmation { kConfirmed, kFirst, kDisagrees };
-  // A found pose's confirmation, for the search's log line; a confirmed one
-  // too wide to track from (needsAcquisition) says so, since the robot's
-  // frames are then searched for on.
+  enum class Confirmation { kConfirmed, kConfirmedTooWide, kFirst, kDisagrees };
+  // A found pose's confirmation, for the search's log line.
   std::string describe(Confirmation confirmation, const PoseWithCovariance& found) const;
   // Whether `acquired` at `line_set`'s time confirms the robot's previous
   // search result (kFirst: there is none recent); remembers it for the next
-  // one either way, and a confirmed one for carriedSearch.
+  // one either way, and a confirmed one for carriedSearch. A confirmed one
+  // too wide to track from (needsAcquisition) starts no tracking and leaves
+  // a robot whose tracking a proof search ended searched for: its own
+  // prediction stands on the fixes that proof disproved.
   Confirmation confirmPreviousSearch(const LineSetData& line_set, const OdometryPose& odometry,
                                      const PoseWithCovariance& acquired);
   // The robot's confirmed search result moved to `line_set`'s time, when
@@ -335,11 +345,12 @@ class LineSetHandler {
   std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
-  // pose_acquisition.h) to an OK fix's covariance until proof searches have
-  // agreed with tracking, stating it as the fix's unproven part (one offset
-  // the robot's fixes share until then), and submits the next proof search
-  // when it is due. A robot with no tracking start, or one of another
-  // odometry epoch, has it set at `fix`.
+  // pose_acquisition.h), or the farthest rival, or before any proof search has
+  // aligned around tracking the proof search's own prior sigmas, to an OK
+  // fix's covariance until proof searches have agreed with tracking, stating
+  // it as the fix's unproven part (one offset the robot's fixes share until
+  // then), and submits the next proof search when it is due. A robot with no tracking start, or one
+  // of another odometry epoch, has it set at `fix`.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
   enum class Proof { kAgrees, kUndecided, kContradicts };
@@ -399,6 +410,9 @@ class LineSetHandler {
   MessageLimits limits_;
   PipelineOptions options_;
   const int64_t silence_ns_;  // forget_robot_after_s
+  // The proof search's prior sigmas (proof_position_sigma_m,
+  // confirm_rotation_rad): the unproven part before one has looked around.
+  const PoseOffset proof_reach_;
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
   // The arrival of each robot's last LineSet, and when silent robots are next
@@ -430,6 +444,9 @@ class LineSetHandler {
     // The farthest rival undecided proofs found, which the unproven part of
     // the fixes covers until tracking is proven.
     PoseOffset rival;
+    // Whether a proof search has aligned around tracking (OK or ambiguous):
+    // until one has, no basin within its reach is ruled out.
+    bool looked_around = false;
   };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;

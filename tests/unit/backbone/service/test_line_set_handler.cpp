@@ -387,34 +387,40 @@ TEST_F(LineSetHandlerTest, ASearchIsCarriedAcrossACorrectionOfTheRobotsPredictio
 }
 
 // Frames `first_sequence` on of a robot at `truth`, its prediction moving
-// alike, tracked from there without a search: widened by the search's
-// resolution, and stating it as their unproven part, until, once the robot
-// has moved acquisition_proven_after_m, a proof search from there agrees with
-// tracking, and a second one proof_retry_m further on does too. The proof
-// search from the tracking start's own viewpoint, which its first frame
-// runs, proves nothing by agreeing.
+// alike, tracked from there without a search: widened by the proof search's
+// prior until the first one, which its first frame runs from the tracking
+// start's own viewpoint, has looked around, then by the search's resolution,
+// stating each as their unproven part, until, once the robot has moved
+// acquisition_proven_after_m, a proof search from there agrees with
+// tracking, and a second one proof_retry_m further on does too. The first
+// proves nothing by agreeing.
 void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::string& conninfo,
                                          const PipelineOptions& options, PoseWithCovariance truth,
                                          PoseWithCovariance predicted, uint32_t first_sequence) {
   const AcquisitionOptions& acquisition = options.localizer.acquisition;
   const double acquired_variance = std::pow(acquisition.acquired_position_sigma_m, 2);
   uint32_t sequence = first_sequence;
-  const auto expectFix = [&](bool widened) {
+  const auto expectFix = [&](double unproven_position_sigma_m, double unproven_rotation_sigma_rad) {
     const auto fix = handler.handle(
         lineSetMessage(observedEdges(conninfo, truth), predicted, sequence)->message());
     ASSERT_TRUE(fix.has_value());
     ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
     expectWithinThreeSigma(fix->T_world_camera, truth);
     for (int axis = 0; axis < 3; ++axis) {
-      EXPECT_EQ(fix->T_world_camera.covariance(axis, axis) >= acquired_variance, widened)
+      EXPECT_EQ(fix->T_world_camera.covariance(axis, axis) >= acquired_variance,
+                unproven_position_sigma_m > 0.0)
           << "frame " << sequence << ", axis " << axis;
     }
-    EXPECT_EQ(fix->unproven_position_sigma_m, widened ? acquisition.acquired_position_sigma_m : 0.0)
-        << "frame " << sequence;
-    EXPECT_EQ(fix->unproven_rotation_sigma_rad,
-              widened ? acquisition.acquired_rotation_sigma_rad : 0.0)
+    EXPECT_EQ(fix->unproven_position_sigma_m, unproven_position_sigma_m) << "frame " << sequence;
+    EXPECT_EQ(fix->unproven_rotation_sigma_rad, unproven_rotation_sigma_rad)
         << "frame " << sequence;
     ++sequence;
+  };
+  const auto expectUnlookedFix = [&] {
+    expectFix(options.proof_position_sigma_m, options.confirm_rotation_rad);
+  };
+  const auto expectUnprovenFix = [&] {
+    expectFix(acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad);
   };
   const auto driveNorth = [&](double distance_m) {
     truth.pose.translation().y() += distance_m;
@@ -422,25 +428,25 @@ void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::str
   };
   const uint64_t searches = handler.counters().searches;
 
-  expectFix(true);
+  expectUnlookedFix();
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, searches + 1);
-  expectFix(true);
+  expectUnprovenFix();
   EXPECT_EQ(handler.counters().searches, searches + 1);
   // 1.5 m further north: the first proof search from elsewhere is due;
   // agreeing, it leaves the fixes widened.
   driveNorth(1.5);
-  expectFix(true);
+  expectUnprovenFix();
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, searches + 2);
-  expectFix(true);
+  expectUnprovenFix();
   EXPECT_EQ(handler.counters().searches, searches + 2);
   // A metre further on, the second one is due; agreeing too, it proves tracking.
   driveNorth(options.proof_retry_m);
-  expectFix(true);
+  expectUnprovenFix();
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, searches + 3);
-  expectFix(false);
+  expectFix(0.0, 0.0);
   EXPECT_EQ(handler.counters().searches, searches + 3);
 }
 
@@ -480,9 +486,12 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
   ASSERT_TRUE(fix.has_value());
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   expectWithinThreeSigma(fix->T_world_camera, truth);
-  EXPECT_EQ(fix->unproven_position_sigma_m,
-            options.localizer.acquisition.acquired_position_sigma_m);
+  EXPECT_EQ(fix->unproven_position_sigma_m, options.proof_position_sigma_m);
 }
+
+// Where the second view the camera sees lies, in tests that track beside the
+// truth.
+const Eigen::Vector3d kBeside(1.2, 0.0, 0.0);
 
 // The same start, then the robot drives 1.5 m north, but its odometry says
 // 1.2 m east too, and its image holds the view from the truth and, shortened
@@ -505,24 +514,34 @@ void expectCoversTheTruthAsItsUnprovenPart(const PoseFixData& fix,
   expectWithinThreeSigma(fix.T_world_camera, truth);
 }
 
+// The view from `truth` and, shortened to `beside_length` of its lines, the
+// view from 1.2 m east of it.
+std::vector<ImageSegment> seenWithTheViewBeside(const std::string& conninfo,
+                                                const PoseWithCovariance& truth,
+                                                float beside_length) {
+  PoseWithCovariance beside = truth;
+  beside.pose.translation() += kBeside;
+  std::vector<ImageSegment> seen = observedEdges(conninfo, truth);
+  for (ImageSegment segment : observedEdges(conninfo, beside)) {
+    segment.end = segment.start + beside_length * (segment.end - segment.start);
+    seen.push_back(segment);
+  }
+  return seen;
+}
+
 TrackedBeside trackBesideTheTruth(LineSetHandler& handler, const std::string& conninfo,
                                   float beside_length) {
   const PoorStart start;
   confirmPoorStart(handler, conninfo, start);
   TrackedBeside frame{start.truth, start.predicted, {}};
   frame.truth.pose.translation().y() += 1.5;
-  PoseWithCovariance beside = frame.truth;
-  beside.pose.translation() += Eigen::Vector3d(1.2, 0.0, 0.0);
-  frame.seen = observedEdges(conninfo, frame.truth);
-  for (ImageSegment segment : observedEdges(conninfo, beside)) {
-    segment.end = segment.start + beside_length * (segment.end - segment.start);
-    frame.seen.push_back(segment);
-  }
-  frame.predicted.pose.translation() += Eigen::Vector3d(1.2, 1.5, 0.0);
+  const Eigen::Vector3d beside = frame.truth.pose.translation() + kBeside;
+  frame.seen = seenWithTheViewBeside(conninfo, frame.truth, beside_length);
+  frame.predicted.pose.translation() += kBeside + Eigen::Vector3d(0.0, 1.5, 0.0);
   const auto tracked = handler.handle(lineSetMessage(frame.seen, frame.predicted, 5)->message());
   EXPECT_TRUE(tracked.has_value());
   EXPECT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
-  EXPECT_LT((tracked->T_world_camera.pose.translation() - beside.pose.translation()).norm(), 0.3);
+  EXPECT_LT((tracked->T_world_camera.pose.translation() - beside).norm(), 0.3);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 3u);
   return frame;
@@ -544,6 +563,37 @@ TEST_F(LineSetHandlerTest, TrackingThatASearchFromElsewhereContradictsStops) {
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   EXPECT_LT((fix->T_world_camera.pose.translation() - frame.truth.pose.translation()).norm(), 0.1);
   EXPECT_EQ(handler.counters().searches, 5u);
+}
+
+// A robot tracked from its own narrow prediction beside the truth, whose
+// proof search ends the tracking: searches that confirm each other on a pose
+// too wide to track from leave its frames searched for, as its prediction
+// stands on the disproven fixes. Found poses carry the searches' 0.15 m
+// resolution (acquired_position_sigma_m), so with tracking limited to a
+// 0.12 m sigma every one is too wide, and the 0.05 m prediction is not.
+TEST_F(LineSetHandlerTest, AfterAContradictionOnlyASearchNarrowEnoughToTrackFromResumesTracking) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.localizer.max_tracking_position_sigma_m = 0.12;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  const PoseWithCovariance truth = lookingNorth({13, -28.5, 1.5});
+  const PoseWithCovariance predicted =
+      lookingNorth(truth.pose.translation() + kBeside, 0.05, 0.003);
+  const std::vector<ImageSegment> seen = seenWithTheViewBeside(database_.conninfo(), truth, 0.4f);
+  const auto tracked = handler.handle(lineSetMessage(seen, predicted, 3)->message());
+  ASSERT_TRUE(tracked.has_value());
+  ASSERT_EQ(tracked->status, lineloc_msg_FIX_OK) << toString(tracked->status);
+  EXPECT_LT((tracked->T_world_camera.pose.translation() - predicted.pose.translation()).norm(),
+            0.3);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 1u);
+
+  expectSearched(handler, seen, predicted, 4);
+  expectSearched(handler, seen, predicted, 5);
+  expectSearched(handler, seen, predicted, 6);
+  EXPECT_EQ(handler.counters().searches, 4u);
+  EXPECT_EQ(handler.counters().fixes_ok, 1u);
 }
 
 // Tracked beside the truth with the view beside at 0.8 of its length, frame

@@ -284,23 +284,23 @@ LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_
 }
 
 void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
-                           const Eigen::Isometry3d& tracked, double moved_m) {
+                           const Eigen::Isometry3d& tracked, const SearchResult& origin,
+                           double moved_m) {
   const int64_t start_ns = steadyClockNs();
   PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
                                                            options_.confirm_rotation_rad)};
   prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
   const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
                                              line_set.camera, localizerOptions(line_set));
-  const ProofVerdict verdict = judgeProof(line_set, map, tracked, localization);
+  ProofVerdict verdict = judgeProof(line_set, map, tracked, localization);
   const int64_t search_ns = steadyClockNs() - start_ns;
   countSearch();
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     const auto start = tracking_start_.find(line_set.robot_id);
-    if (start == tracking_start_.end()) {
-      return;
-    }
-    if (verdict.proof == Proof::kContradicts) {
+    if (start == tracking_start_.end() || !start->second.startedAt(origin)) {
+      verdict.outcome += "; dropped, as the robot no longer tracks from the start it judged";
+    } else if (verdict.proof == Proof::kContradicts) {
       tracking_start_.erase(start);
       searching_again_.insert(line_set.robot_id);
     } else {
@@ -384,7 +384,7 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
     return Confirmation::kConfirmedTooWide;
   }
   tracking_start_.insert_or_assign(line_set.robot_id,
-                                   TrackingStart{current, true, 0, 0.0, {}, false});
+                                   TrackingStart{.origin = current, .searched = true});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
 }
@@ -420,17 +420,16 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
   bool proof_due = false;
   double moved_m = 0.0;
   PoseOffset rival;
+  SearchResult origin;
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
     auto start = tracking_start_.find(line_set.robot_id);
     if (start == tracking_start_.end() || start->second.origin.odometry.epoch != odometry.epoch) {
-      start =
-          tracking_start_
-              .insert_or_assign(
-                  line_set.robot_id,
-                  TrackingStart{
-                      {line_set.stamp_ns, fix.T_world_camera, odometry}, false, 0, 0.0, {}, false})
-              .first;
+      start = tracking_start_
+                  .insert_or_assign(
+                      line_set.robot_id,
+                      TrackingStart{.origin = {line_set.stamp_ns, fix.T_world_camera, odometry}})
+                  .first;
       spdlog::info(
           "tracking {} from #{} on from its own prediction, which no search here found: its "
           "fixes stay widened until proof searches agree",
@@ -445,11 +444,12 @@ void LineSetHandler::widenUntilProven(const LineSetData& line_set, const Odometr
                   .norm();
     proof_due = moved_m >= tracking.proof_due_m;
     rival = tracking.looked_around ? tracking.rival : tracking.rival.farthest(proof_reach_);
+    origin = tracking.origin;
   }
   if (proof_due) {
     submitSearch("proof search", line_set,
-                 [this, line_set, map, tracked = fix.T_world_camera.pose, moved_m] {
-                   prove(line_set, *map, tracked, moved_m);
+                 [this, line_set, map, tracked = fix.T_world_camera.pose, origin, moved_m] {
+                   prove(line_set, *map, tracked, origin, moved_m);
                  });
   }
   const AcquisitionOptions& acquisition = options_.localizer.acquisition;

@@ -68,27 +68,28 @@
 // the robot's frames are then searched for again, over at least
 // proof_position_sigma_m, until two searches confirm each other on a pose
 // narrow enough to track from: the robot's own prediction, however narrow,
-// stands on the fixes the proof disproved. A search
-// may miss the tracked pose's basin among its hypotheses; over 50 simulated
-// Delft drives, both proof searches that ended tracking within 9 cm of the
-// truth had found a pose 0.75 m and 0.9 m off that the truth outscored
-// (17.1 to 14.1, 8.1 to 8.0). A pose elsewhere that scores within that
-// fraction of the tracked one, found OK or as either pose of an ambiguous
-// search, is a rival the view cannot tell from tracking: until tracking is
-// proven, the unproven part of the fixes grows to the farthest such rival's
-// distance and rotation from the tracked pose, so that a wrong basin is no
-// precise answer. Simulated Delft seed 39 had two searches 13.07 and 13.27 s
-// into its drive confirm a pose 1.75 m along its street (scoring 17.2
-// against a rival of 9.4; the truth was not among their hypotheses), and
-// tracking followed it for 6 s: four proof searches were ambiguous, each with
-// the truth as its best and the tracked pose as its rival (17.3 to 14.4 and
-// alike), and 138 fixes lay beyond three sigma of covariances 0.15 m wide.
-// With the rivals widening the fixes, 4 still did: two tracked before the
-// first proof search had returned, and two tracked from the robot's own
-// prediction, still on the disproven fixes, after two searches had confirmed
-// the truth too wide to track from; none since.
+// stands on the fixes the proof disproved. A search may miss the tracked pose's
+// basin among its hypotheses; over 50 simulated Delft drives, both proof
+// searches that ended tracking within 9 cm of the truth had found a pose 0.75 m
+// and 0.9 m off that the truth outscored (17.1 to 14.1, 8.1 to 8.0). A pose
+// elsewhere that scores within that fraction of the tracked one, found OK or as
+// either pose of an ambiguous search, is a rival the view cannot tell from
+// tracking: until tracking is proven, the unproven part of the fixes grows to
+// the farthest such rival's distance and rotation from the tracked pose, so
+// that a wrong basin is no precise answer. Simulated Delft seed 39 had two
+// searches 13.07 and 13.27 s into its drive confirm a pose 1.75 m along its
+// street (scoring 17.2 against a rival of 9.4; the truth was not among their
+// hypotheses), and tracking followed it for 6 s: four proof searches were
+// ambiguous, each with the truth as its best and the tracked pose as its rival
+// (17.3 to 14.4 and alike), and 138 fixes lay beyond three sigma of covariances
+// 0.15 m wide. With the rivals widening the fixes, 4 still did: two tracked
+// before the first proof search had returned, and two tracked from the robot's
+// own prediction, still on the disproven fixes, after two searches had
+// confirmed the truth too wide to track from; none since.
 // One that finds nothing, or only poses near the tracked one, is tried again
-// after proof_retry_m more.
+// after proof_retry_m more. A proof judges the tracking start it was submitted
+// for: a verdict that returns after the robot has started another (restarted
+// or forgotten meanwhile; its searches wait for the proof) is dropped.
 //
 // A robot tracked from its own prediction, without a search of this backbone
 // (one restarted mid-drive, a robot forgotten and back, a robot started from
@@ -345,14 +346,22 @@ class LineSetHandler {
   std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
-  // pose_acquisition.h), or the farthest rival, or before any proof search has
-  // aligned around tracking the proof search's own prior sigmas, to an OK
-  // fix's covariance until proof searches have agreed with tracking, stating
-  // it as the fix's unproven part (one offset the robot's fixes share until
-  // then), and submits the next proof search when it is due. A robot with no tracking start, or one
-  // of another odometry epoch, has it set at `fix`.
+  // pose_acquisition.h), or the farthest rival, or before any proof search
+  // has aligned around tracking the proof search's own prior sigmas, to an
+  // OK fix's covariance until proof searches have agreed with tracking,
+  // stating it as the fix's unproven part (one offset the robot's fixes
+  // share until then), and submits the next proof search when it is due. A
+  // robot with no tracking start, or one of another odometry epoch, has it
+  // set at `fix`.
   void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
                         const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
+  // A pose found at a frame (by a search, or by tracking a tracking start's
+  // first frame) and the robot's odometry there.
+  struct SearchResult {
+    int64_t stamp_ns = 0;
+    PoseWithCovariance T_world_camera_found;
+    OdometryPose odometry;
+  };
   enum class Proof { kAgrees, kUndecided, kContradicts };
   // How far one camera pose lies from another: the distance between the two
   // and the angle of the rotation between them.
@@ -367,7 +376,7 @@ class LineSetHandler {
     Proof proof;
     std::string outcome;
     // An undecided proof's farthest rival of the tracked pose (see below).
-    PoseOffset rival;
+    PoseOffset rival = {};
   };
   // What the poses a proof search `found` around `tracked` say of tracking:
   // an OK pose elsewhere contradicts it only when the tracked pose scores
@@ -378,10 +387,11 @@ class LineSetHandler {
   ProofVerdict judgeProof(const LineSetData& line_set, const PreparedMap& map,
                           const Eigen::Isometry3d& tracked, const Localization& found) const;
   // Runs on the search worker: searches around `tracked`, the frame's
-  // tracked pose, `moved_m` from its tracking start's viewpoint, and proves
-  // or ends the tracking of the robot.
+  // tracked pose, `moved_m` from the viewpoint of the tracking start at
+  // `origin`, and proves or ends that tracking. A verdict on a start the
+  // robot no longer tracks from is logged and dropped (see above).
   void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked,
-             double moved_m);
+             const SearchResult& origin, double moved_m);
   // Logs a search's outcome.
   static void logSearch(const char* kind, const LineSetData& line_set,
                         const Localization& localization, const std::string& outcome,
@@ -422,11 +432,6 @@ class LineSetHandler {
   std::map<std::string, StampedPosition> last_position_;
   std::map<std::string, PredictedMotion> motion_;
   std::map<std::string, FixScatter> fix_scatter_;
-  struct SearchResult {
-    int64_t stamp_ns;
-    PoseWithCovariance T_world_camera_found;
-    OdometryPose odometry;
-  };
   // A found at odometry O_A moved by the robot's motion to odometry O: A O_A^-1 O;
   // nullopt when the two are of different epochs.
   static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
@@ -443,10 +448,14 @@ class LineSetHandler {
     double proof_due_m = 0.0;
     // The farthest rival undecided proofs found, which the unproven part of
     // the fixes covers until tracking is proven.
-    PoseOffset rival;
+    PoseOffset rival = {};
     // Whether a proof search has aligned around tracking (OK or ambiguous):
     // until one has, no basin within its reach is ruled out.
     bool looked_around = false;
+    // Whether this start is the one that began at `other`'s frame.
+    bool startedAt(const SearchResult& other) const {
+      return origin.stamp_ns == other.stamp_ns && origin.odometry.epoch == other.odometry.epoch;
+    }
   };
   std::mutex searches_mutex_;
   std::map<std::string, SearchResult> last_search_;

@@ -489,6 +489,41 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
   EXPECT_EQ(fix->unproven_position_sigma_m, options.proof_position_sigma_m);
 }
 
+// A proof search judges the tracking start it was submitted for. A robot
+// restarted while its first proof search waits starts tracking anew: that
+// proof, returning after the restart, neither ends the new start's widening
+// by the proof search's prior nor takes the place of the new start's own
+// first proof. The searches step aside from a second before the robot's next
+// frame is due, which its first frame puts 0.95 s after it (its stamp): the
+// proof waits for the restarted robot's frame.
+TEST_F(LineSetHandlerTest, AProofThatReturnsAfterTheRobotRestartedIsDropped) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.quiet_before_frame_ms = 1000.0;
+  options.max_background_yield_ms = 1000.0;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  const PoseWithCovariance truth = lookingNorth({13, -30, 1.5});
+  const PoseWithCovariance predicted = lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003);
+  const std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
+  const auto expectFix = [&](uint32_t sequence, double unproven_position_sigma_m) {
+    const auto fix = handler.handle(lineSetMessage(seen, predicted, sequence)->message());
+    ASSERT_TRUE(fix.has_value());
+    ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+    EXPECT_EQ(fix->unproven_position_sigma_m, unproven_position_sigma_m) << "frame " << sequence;
+  };
+  // Frame 19 starts tracking and its proof search; frame 18, older, is the
+  // restarted robot's first.
+  expectFix(19, options.proof_position_sigma_m);
+  expectFix(18, options.proof_position_sigma_m);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 1u);
+  expectFix(19, options.proof_position_sigma_m);
+  handler.waitForSearches();
+  EXPECT_EQ(handler.counters().searches, 2u);
+  expectFix(20, options.localizer.acquisition.acquired_position_sigma_m);
+}
+
 // Where the second view the camera sees lies, in tests that track beside the
 // truth.
 const Eigen::Vector3d kBeside(1.2, 0.0, 0.0);

@@ -108,16 +108,17 @@ int64_t& counterOf(MeasurementCounters& counters, MeasurementOutcome outcome) {
   throw std::logic_error("a pending measurement has no counter");
 }
 
-// The part of a fix's unproven covariance (camera pose error [dp; dtheta],
-// dtheta in the world frame) the filter takes as a frame offset: all but the
-// tilt (rotation about the world's horizontal axes), which gravity makes
-// observable to the accelerometers and which stays noise on each fix.
-Matrix6d levelFrameOffset(Matrix6d unproven) {
+// The part of a fix's covariance (camera pose error [dp; dtheta], dtheta in
+// the world frame) the filter takes as an offset of the fixes' frame (the
+// unproven part, the error the fixes share): all but the tilt (rotation about
+// the world's horizontal axes), which gravity makes observable to the
+// accelerometers and which stays noise on each fix.
+Matrix6d levelFrameOffset(Matrix6d covariance) {
   for (const int tilt_axis : {3, 4}) {
-    unproven.row(tilt_axis).setZero();
-    unproven.col(tilt_axis).setZero();
+    covariance.row(tilt_axis).setZero();
+    covariance.col(tilt_axis).setZero();
   }
-  return unproven;
+  return covariance;
 }
 
 // The covariance the filter reports: its own, of the pose relative to the
@@ -181,6 +182,9 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   if (config.vision_error_correlation_m != 0.0) {
     requirePositive(config.vision_error_correlation_m, "vision_error_correlation_m");
     requirePositive(config.vision_error_correlation_rad, "vision_error_correlation_rad");
+  }
+  if (config.shared_fix_error_length_m != 0.0) {
+    requirePositive(config.shared_fix_error_length_m, "shared_fix_error_length_m");
   }
   if (!config.R_body_imu.isUnitary(1e-6) || config.R_body_imu.determinant() < 0.0) {
     throw std::invalid_argument("inertial navigator: R_body_imu is not a rotation");
@@ -357,12 +361,12 @@ void InertialNavigator::process(const BufferedImu& imu) {
   const auto end = measurements_.upper_bound(imu.sample.stamp_ns);
   for (auto it = measurements_.upper_bound(start.stamp_ns); it != end; ++it) {
     const ImuSample at_measurement = interpolateImu(start, imu.sample, it->first);
-    strapdown_.propagate(current, at_measurement, snapshot.state, snapshot.covariance);
+    propagate(current, at_measurement, snapshot);
     current = at_measurement;
     recordOutcome(it->second, apply(it->second, at_measurement, snapshot));
   }
   if (imu.sample.stamp_ns > current.stamp_ns) {
-    strapdown_.propagate(current, imu.sample, snapshot.state, snapshot.covariance);
+    propagate(current, imu.sample, snapshot);
   }
   const bool slow = snapshot.state.v_world_body.norm() < config_.zero_velocity_max_speed_mps;
   if (imu.still && slow && snapshot.velocity_known &&
@@ -377,6 +381,24 @@ void InertialNavigator::process(const BufferedImu& imu) {
   }
   snapshot.imu = imu.sample;
   snapshots_.push_back(std::move(snapshot));
+}
+
+void InertialNavigator::propagate(const ImuSample& from, const ImuSample& to,
+                                  Snapshot& snapshot) const {
+  const Eigen::Vector3d p_before = snapshot.state.p_world_body;
+  strapdown_.propagate(from, to, snapshot.state, snapshot.covariance);
+  if (config_.shared_fix_error_length_m == 0.0 || !snapshot.at_last_vision) {
+    return;
+  }
+  // rho^2 = exp(-2 d / L_s) at the distance d from the last applied fix.
+  const auto correlationSquared = [&](const Eigen::Vector3d& p_world_body) {
+    return std::exp(-2.0 * (p_world_body - snapshot.at_last_vision->p_world_body).norm() /
+                    config_.shared_fix_error_length_m);
+  };
+  const double decorrelated =
+      std::max(0.0, correlationSquared(p_before) - correlationSquared(snapshot.state.p_world_body));
+  setPoseBlock(poseBlock(snapshot.covariance) + decorrelated * snapshot.shared_fix_error,
+               snapshot.covariance);
 }
 
 MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuSample& imu,
@@ -400,6 +422,10 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
       snapshot.fix_offset_covariance =
           config_.shared_fix_error_fraction *
           bodyCovarianceOf(vision->T_world_camera.pose, vision->T_world_camera.covariance);
+      snapshot.shared_fix_error =
+          config_.shared_fix_error_fraction *
+          bodyCovarianceOf(vision->T_world_camera.pose,
+                           levelFrameOffset(z.noise - vision->unproven_covariance));
     }
     return fromUpdate(outcome.status);
   }
@@ -568,11 +594,10 @@ void InertialNavigator::tryInitialiseFromSensors() {
   state.stamp_ns = latest.stamp_ns;
   state.q_world_body =
       quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
-  const Eigen::Vector3d position_sigma_m =
-      placeAtDgps(startup_gps_ ? &*startup_gps_ : nullptr, state);
   // Without DGPS only the IMU says the robot stands (see the header): the
   // velocity is unknown, and the window's mean rate may be the body pitching.
   const bool with_dgps = startup_gps_.has_value();
+  const Eigen::Vector3d position_sigma_m = placeAtDgps(with_dgps ? &*startup_gps_ : nullptr, state);
   double gyro_bias_sigma = 0.0;
   state.gyro_bias_radps = initialGyroBias(with_dgps, gyro_bias_sigma);
   // A tilt error of b_a / g hides behind an accelerometer bias b_a.

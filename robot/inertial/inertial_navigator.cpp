@@ -411,6 +411,7 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
     measurement.vision_residual = z.residual;
     const Matrix6d update_noise =
         correlatedFixInflation(snapshot) * (z.noise - vision->unproven_covariance);
+    const double prior_position_variance = covariance.block<3, 3>(kPosition, kPosition).trace();
     const UpdateOutcome outcome =
         applyUpdate(z, gate_by_dimension_[6], state, covariance, update_noise);
     if (outcome.status == UpdateStatus::kAccepted) {
@@ -422,10 +423,19 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
       snapshot.fix_offset_covariance =
           config_.shared_fix_error_fraction *
           bodyCovarianceOf(vision->T_world_camera.pose, vision->T_world_camera.covariance);
+      // The fix's share w of the state: the part of its position variance
+      // the update took out.
+      const double share =
+          prior_position_variance > 0.0
+              ? std::clamp(1.0 - covariance.block<3, 3>(kPosition, kPosition).trace() /
+                                     prior_position_variance,
+                           0.0, 1.0)
+              : 0.0;
       snapshot.shared_fix_error =
-          config_.shared_fix_error_fraction *
-          bodyCovarianceOf(vision->T_world_camera.pose,
-                           levelFrameOffset(z.noise - vision->unproven_covariance));
+          (1.0 - share) * snapshot.shared_fix_error +
+          share * config_.shared_fix_error_fraction *
+              bodyCovarianceOf(vision->T_world_camera.pose,
+                               levelFrameOffset(z.noise - vision->unproven_covariance));
     }
     return fromUpdate(outcome.status);
   }

@@ -133,11 +133,17 @@
 // L_s = 2.5 m fits the correlations above (exp(-0.5 / 2.5) = 0.82,
 // exp(-1.5 / 2.5) = 0.55). The filter estimates the pose in the fixes' frame,
 // the truth plus b, as it does for the unproven offset below, so as it moves
-// d from the last applied fix its pose covariance grows by (1 - rho_s^2) f
-// (R - U) of that fix, the level part (the tilt stays on gravity): a standing
-// robot forgets nothing, one that drove L_s most of it. With L_s = 2 m, three
-// seconds of fixes switching between two wrong poses 0.6 m apart (a unit
-// test) grew the covariance of the dead-reckoning filter until it took one.
+// d from the last applied fix its pose covariance grows by (1 - rho_s^2) S,
+// S the variance of the shared error the state holds: each applied fix, of
+// covariance R, takes a share w of it, S = (1 - w) S + w f (R - U), level
+// part (the tilt stays on gravity), w the part of the position variance its
+// update took out. A standing robot forgets nothing, one that drove L_s most
+// of it. S from the last fix alone left a state whose last fix was a wide
+// one (seed 50: a fix along a featureless street) as wide as that fix after
+// L_s, too wide to track from: 88 frames searched for instead. With L_s =
+// 2 m, three seconds of fixes switching between two wrong poses 0.6 m apart
+// (a unit test) grew the covariance of the dead-reckoning filter until it
+// took one.
 //
 // Unproven fixes. A fix tracked from a search the backbone has not yet proven
 // (line_set_handler.h) carries the search's resolution as an unproven part U
@@ -429,8 +435,7 @@ class InertialNavigator {
     // That fix's covariance, likewise, times shared_fix_error_fraction: the
     // least the filter reports (see above).
     Matrix6d fix_offset_covariance = Matrix6d::Zero();
-    // The level part of that fix's R - U, times shared_fix_error_fraction: the
-    // error it shares with the fixes around it, which travel decorrelates.
+    // S, the fixes' shared error the state holds (see above).
     Matrix6d shared_fix_error = Matrix6d::Zero();
   };
   struct BufferedImu {

@@ -139,8 +139,8 @@
 // part (the tilt stays on gravity), w the part of the position variance its
 // update took out. A standing robot forgets nothing, one that drove L_s most
 // of it. S from the last fix alone left a state whose last fix was a wide
-// one (seed 50: a fix along a featureless street) as wide as that fix after
-// L_s, too wide to track from: 88 frames searched for instead. With L_s =
+// one (seed 50: a fix whose R - U was 0.66 m in height) as wide as that fix
+// after L_s, too wide to track from: 88 frames searched for instead. With L_s =
 // 2 m, three seconds of fixes switching between two wrong poses 0.6 m apart
 // (a unit test) grew the covariance of the dead-reckoning filter until it
 // took one.

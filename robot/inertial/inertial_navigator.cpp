@@ -276,8 +276,14 @@ void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {
     return;
   }
   // A robot cruising on a smooth road can look as still to the IMU as a
-  // standing one; a speed the receiver measures beyond its noise is motion.
-  moved_since_start_ = moved_since_start_ || isMotion(velocity);
+  // standing one; a speed the receiver measures beyond its noise on two
+  // consecutive epochs is motion, one the next epoch denies multipath.
+  const bool claimed = motionClaimed();
+  if (isMotion(velocity)) {
+    moved_since_start_ = moved_since_start_ || claimed;
+  } else if (claimed) {
+    ++counters_.gps_velocity.gated;
+  }
   startup_velocities_.push_back(velocity);
   if (startup_velocities_.size() > 2) {
     startup_velocities_.pop_front();
@@ -287,6 +293,14 @@ void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {
 
 bool InertialNavigator::isMotion(const GpsVelocity& velocity) const {
   return velocity.v_world_mps.norm() > kMovingSpeedSigmas * config_.gps_velocity_sigma_mps;
+}
+
+bool InertialNavigator::motionClaimed() const {
+  return !startup_velocities_.empty() && isMotion(startup_velocities_.back());
+}
+
+bool InertialNavigator::mayHaveMoved() const {
+  return moved_since_start_ || motionClaimed();
 }
 
 void InertialNavigator::addCompass(const CompassReading& reading) {
@@ -589,7 +603,7 @@ void InertialNavigator::tryInitialiseFromSensors() {
   // Only while standing still since power-on: the start covariance assumes it,
   // and a robot cruising on a smooth road can be as quiet as a standing one.
   const auto alignment = alignment_detector_.alignment();
-  if (moved_since_start_ || !alignment || startup_compass_.size() < kMinStartupCompassReadings) {
+  if (mayHaveMoved() || !alignment || startup_compass_.size() < kMinStartupCompassReadings) {
     return;
   }
   std::vector<double> compass_yaws_rad;
@@ -708,7 +722,7 @@ Matrix6d InertialNavigator::bodyCovarianceOf(const Eigen::Isometry3d& T_world_ca
 
 std::optional<InertialNavigator::StartVelocity> InertialNavigator::startVelocity(
     const BodyFix& fix, const std::optional<BodyFix>& previous) const {
-  if (!moved_since_start_ && alignment_detector_.isStill()) {
+  if (!mayHaveMoved() && alignment_detector_.isStill()) {
     return StartVelocity{Eigen::Vector3d::Zero(), kStillVelocitySigma_mps};
   }
   const int64_t baseline_ns = previous ? fix.stamp_ns - previous->stamp_ns : 0;
@@ -736,7 +750,7 @@ MeasurementOutcome InertialNavigator::startFromVision(const BodyFix& fix,
   state.q_world_body = Eigen::Quaterniond(fix.T_world_body.linear()).normalized();
   state.v_world_body = velocity.v_world_mps;
   double gyro_bias_sigma = 0.0;
-  state.gyro_bias_radps = initialGyroBias(!moved_since_start_, gyro_bias_sigma);
+  state.gyro_bias_radps = initialGyroBias(!mayHaveMoved(), gyro_bias_sigma);
   ErrorCovariance covariance = ErrorCovariance::Zero();
   setPoseBlock(fix.covariance, covariance);
   covariance.block<3, 3>(kVelocity, kVelocity)

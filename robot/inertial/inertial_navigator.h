@@ -49,16 +49,26 @@
 // speed; position the DGPS fix of the same epoch, or unknown as above; gyro
 // and accelerometer biases zero within their turn-on spread.
 //
-// DGPS velocities. Before a start, one beyond kMovingSpeedSigmas of its noise
-// says the robot moves, and bars the standstill start: a robot cruising
-// straight at constant speed is as quiet to the IMU as a standing one. After
-// the start each one updates the filter as the antenna's horizontal velocity
-// over ground (measurement_models.h; the receiver's Doppler error is white,
-// unlike its position's). That bounds the velocity, and so the position's
-// drift, while vision has no fix, and keeps the filter's speed from falling
-// below zero_velocity_max_speed_mps on such a road, where zero-velocity
-// updates would hold it at zero (with DGPS positions alone, simulated route
-// 39 was held there 0.72 m/s off).
+// DGPS velocities. Before a start, two consecutive ones beyond
+// kMovingSpeedSigmas of their noise say the robot moves, and bar the standstill
+// start: a robot cruising straight at constant speed is as quiet to the IMU as
+// a standing one. One alone may be multipath (a signal reflected off a facade
+// throws the receiver's Doppler by a metre per second): it holds the standstill
+// start until the next epoch confirms it or denies it, and a denied one is
+// counted gated. Taken as motion at once, one such epoch in simulated route 1's
+// first second barred the standing robot's start, the navigator started in
+// motion from it, and the filter ended beyond its covariance (1.5 m/s off: 63
+// of the next 66 velocities gated). Two consecutive epochs thrown alike still
+// start a standing robot in motion, and a start in motion from a thrown epoch
+// (the IMU saw the robot move) takes a tilt as wrong as the epoch is (1 m/s: 6
+// degrees); only a third epoch could tell. After the start each one updates the
+// filter as the antenna's horizontal velocity over ground
+// (measurement_models.h; the receiver's Doppler error is white, unlike its
+// position's). That bounds the velocity, and so the position's drift, while
+// vision has no fix, and keeps the filter's speed from falling below
+// zero_velocity_max_speed_mps on such a road, where zero-velocity updates would
+// hold it at zero (with DGPS positions alone, simulated route 39 was held there
+// 0.72 m/s off).
 //
 // Vision fixes before any start (the window not yet full, or a robot that
 // never stood still and has no DGPS velocity) start the filter from their
@@ -341,7 +351,8 @@ struct NavigatorHealth {
   double yaw_sigma_rad = 0.0;
   MeasurementCounters vision;
   MeasurementCounters gps;
-  // Accepted: those fused and the two a start in motion took.
+  // Accepted: those fused and the two a start in motion took; gated, also
+  // those before a start that claimed motion the next epoch denied.
   MeasurementCounters gps_velocity;
   MeasurementCounters compass;
   int64_t zero_velocity_updates = 0;
@@ -504,6 +515,11 @@ class InertialNavigator {
   Eigen::Vector3d placeAtDgps(const GpsFix* fix, NavigationState& state) const;
   // A speed beyond kMovingSpeedSigmas of the DGPS velocity's noise.
   bool isMotion(const GpsVelocity& velocity) const;
+  // Before a start, the newest DGPS velocity claims motion that no later
+  // epoch has confirmed or denied yet (see the header).
+  bool motionClaimed() const;
+  // Moved since power-on, or a DGPS velocity says so unconfirmed.
+  bool mayHaveMoved() const;
   BodyFix bodyFixOf(int64_t stamp_ns, const VisionPayload& vision) const;
   // A covariance of the camera pose's error [dp; dtheta] as the body pose's.
   Matrix6d bodyCovarianceOf(const Eigen::Isometry3d& T_world_camera,

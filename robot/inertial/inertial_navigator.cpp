@@ -928,17 +928,17 @@ PosePrediction InertialNavigator::predictAt(int64_t stamp_ns) const {
   if (!from.position_known) {
     return prediction;
   }
-  NavigationState state = from.state;
-  ErrorCovariance covariance = from.covariance;
+  Snapshot predicted = from;
   // Between two snapshots the next sample is known; past the last, hold its rates.
   ImuSample target =
       after != snapshots_.end() ? interpolateImu(from.imu, after->imu, stamp_ns) : from.imu;
   target.stamp_ns = stamp_ns;
-  if (stamp_ns > state.stamp_ns) {
-    strapdown_.propagate(from.imu, target, state, covariance);
+  if (stamp_ns > predicted.state.stamp_ns) {
+    propagate(from.imu, target, predicted);
   }
   prediction.status = PredictionStatus::kOk;
-  prediction.T_world_camera = cameraPoseOf(state, covariance, config_.T_body_camera);
+  prediction.T_world_camera =
+      cameraPoseOf(predicted.state, predicted.covariance, config_.T_body_camera);
   return prediction;
 }
 

@@ -196,11 +196,13 @@ void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odo
   const int64_t search_ns = steadyClockNs() - start_ns;
   countSearch();
   const Alignment& alignment = localization.alignment;
-  const std::string outcome =
-      alignment.status == AlignmentStatus::kOk
-          ? describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera),
-                     alignment.T_world_camera)
-          : alignment.message;
+  std::string outcome = alignment.message;
+  if (alignment.status == AlignmentStatus::kOk) {
+    outcome = describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera),
+                       alignment.T_world_camera);
+  } else if (outranksPreviousSearch(line_set, odometry, localization)) {
+    outcome += "; ranks the previous search's pose second to another, so none confirms it";
+  }
   logSearch("search", line_set, localization, outcome, search_ns);
 }
 
@@ -387,6 +389,26 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
                                    TrackingStart{.origin = current, .searched = true});
   searching_again_.erase(line_set.robot_id);
   return Confirmation::kConfirmed;
+}
+
+bool LineSetHandler::outranksPreviousSearch(const LineSetData& line_set,
+                                            const OdometryPose& odometry,
+                                            const Localization& found) {
+  const std::vector<Eigen::Isometry3d> poses = foundPoses(found);
+  if (found.alignment.status != AlignmentStatus::kAmbiguous || poses.size() < 2) {
+    return false;
+  }
+  const std::lock_guard<std::mutex> lock(searches_mutex_);
+  const auto previous = last_search_.find(line_set.robot_id);
+  if (previous == last_search_.end()) {
+    return false;
+  }
+  const std::optional<PoseWithCovariance> moved = movedByOdometry(previous->second, odometry);
+  if (!moved || agrees(moved->pose, poses[0]) || !agrees(moved->pose, poses[1])) {
+    return false;
+  }
+  last_search_.erase(previous);
+  return true;
 }
 
 bool LineSetHandler::agrees(const Eigen::Isometry3d& expected,

@@ -749,6 +749,31 @@ TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed
   EXPECT_EQ(handler.counters().fixes_ok, 0u);
 }
 
+// Two searches that find the pose beside the truth, with a search between
+// them ambiguous between the truth (its best) and that pose (its rival): the
+// search between votes against the pose, so the second confirms nothing and
+// the robot's next frame is searched for, not tracked from the pose beside.
+// No edge counts as sky, as in the ambiguous proof above.
+TEST_F(LineSetHandlerTest, ASearchThatRanksTheAwaitingPoseSecondLeavesItUnconfirmed) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.localizer.acquisition.sky_edges.min_elevation_rad = M_PI / 2;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  prepareMapAt(handler, {13, -30, 1.5});
+  const PoseWithCovariance truth = lookingNorth({13, -28.5, 1.5});
+  PoseWithCovariance beside = truth;
+  beside.pose.translation() += kBeside;
+  const PoseWithCovariance predicted =
+      lookingNorth(truth.pose.translation() + 0.5 * kBeside, 0.6, 0.02);
+  const std::vector<ImageSegment> seen_beside = observedEdges(database_.conninfo(), beside);
+  expectSearched(handler, seen_beside, predicted, 2);
+  expectSearched(handler, seenWithTheViewBeside(database_.conninfo(), truth, 0.8f), predicted, 3);
+  expectSearched(handler, seen_beside, predicted, 4);
+  expectSearched(handler, seen_beside, predicted, 5);
+  EXPECT_EQ(handler.counters().searches, 4u);
+  EXPECT_EQ(handler.counters().fixes_ok, 0u);
+}
+
 TEST_F(LineSetHandlerTest, SaysWhyWhenThereIsNothingToAlign) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});

@@ -33,10 +33,10 @@
 // their pose as its rival; in the logs of nine runs of simulated Delft drives,
 // such a search fell between the two of 9 of 290 confirmations, each that
 // one). Once confirmed, the robot's next frames are tracked from the
-// confirmed pose moved the same way, A2 O2^-1 O, for carry_search_s. O is the robot's
-// odometry pose, read from its predictions with the jumps of its DGPS
-// corrections left out (predicted_motion.h): right after a start those move
-// the prediction of a robot standing still by decimetres, and over 16
+// confirmed pose moved the same way, A2 O2^-1 O, for carry_search_s. O is
+// the robot's odometry pose, read from its predictions with the jumps of its
+// DGPS corrections left out (predicted_motion.h): right after a start those
+// move the prediction of a robot standing still by decimetres, and over 16
 // simulated Delft drives all 6 searches that disagreed with the one before
 // were both within 0.2 m of the truth.
 //

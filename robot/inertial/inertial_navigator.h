@@ -153,7 +153,17 @@
 // after L_s, too wide to track from: 88 frames searched for instead. With L_s =
 // 2 m, three seconds of fixes switching between two wrong poses 0.6 m apart
 // (a unit test) grew the covariance of the dead-reckoning filter until it
-// took one.
+// took one. It is off by default (shared_fix_error_length_m 0): on the
+// README's two-minute drive, forgetting over L_s = 2.5 m grew the
+// predictions at 37.7 s, entering the narrow street, from 4.5 cm to 0.32 m
+// in height, too wide to track from; the backbone answered no frame for the
+// next 14 s, the robot's height drifted 2 m on the IMU, and its position
+// RMSE from the first fix went from 3.6 cm to 0.32 m (2884 frames OK of
+// 3546, against 3267). Over seeds 1-50, 20 s each, it had kept seed 16's
+// one fix beyond three sigma away and cost seed 50 12 of its 315 answers.
+// Taking each direction's own share of a fix instead of the position's,
+// so that a fix wide in height hands S nothing of it, did not win the drive
+// back (0.33 m).
 //
 // Unproven fixes. A fix tracked from a search the backbone has not yet proven
 // (line_set_handler.h) carries the search's resolution as an unproven part U
@@ -284,7 +294,7 @@ struct InertialNavigatorConfig {
   double shared_fix_error_fraction = 0.5;
   // Correlation length L_s of that shared error in travel, over which the
   // filter forgets it (see above); 0: never.
-  double shared_fix_error_length_m = 2.5;
+  double shared_fix_error_length_m = 0.0;
 
   int64_t tracking_timeout_ns = 1'000'000'000;
   double lost_position_sigma_m = 10.0;

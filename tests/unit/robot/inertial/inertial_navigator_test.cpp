@@ -925,26 +925,30 @@ TEST(InertialNavigator, FixesSwitchingBetweenTwoWrongPosesDoNotRestartIt) {
 // backbone's floor of the scatter of fixes flipping between two basins,
 // fix_scatter.h; simulated Delft seed 16). Fused nearly as independent fixes
 // (a moving robot's), the first shrink the filter's covariance around their
-// shared error. Forgetting the share of it that travel decorrelates, the
-// filter has taken the true fixes back within that second, to within three
+// shared error. Forgetting the share of it that travel decorrelates (L_s =
+// 2.5 m; off by default, see the header), the filter has taken the true
+// fixes back within that second, to within three
 // sigma of their own noise (3 cm); holding on to it, it has not.
 TEST(InertialNavigator, ForgetsTheErrorARunOfFixesSharedAsItTravels) {
   const auto sharedErrorThenNone = [](int k, PoseWithCovariance& fix) {
     fix.pose.translation().y() += k < 90 ? 0.2 : 0.0;
     fix.covariance.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * 0.13 * 0.13;
   };
-  const WrongFixesOutcome forgetting = driveWithWrongFixes(4.0, sharedErrorThenNone);
+  InertialNavigatorConfig forgetting_config;
+  forgetting_config.shared_fix_error_length_m = 2.5;
+  const WrongFixesOutcome forgetting =
+      driveWithWrongFixes(4.0, sharedErrorThenNone, forgetting_config);
   EXPECT_LT(forgetting.error_as_wrong_fixes_end_m, 0.09);
   EXPECT_LE(forgetting.worst_error_in_3_sigma, 1.0);
   EXPECT_EQ(forgetting.health.restarts, 0);
 
-  InertialNavigatorConfig holding;
-  holding.shared_fix_error_length_m = 0.0;
+  const InertialNavigatorConfig holding;
+  ASSERT_EQ(holding.shared_fix_error_length_m, 0.0);
   const WrongFixesOutcome held = driveWithWrongFixes(4.0, sharedErrorThenNone, holding);
   EXPECT_GT(held.error_as_wrong_fixes_end_m, 0.09);
 
-  holding.shared_fix_error_length_m = -1.0;
-  EXPECT_THROW(InertialNavigator{holding}, std::invalid_argument);
+  forgetting_config.shared_fix_error_length_m = -1.0;
+  EXPECT_THROW(InertialNavigator{forgetting_config}, std::invalid_argument);
 }
 
 // The largest position error over the standstill in units of the filter's

@@ -394,8 +394,11 @@ LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
 bool LineSetHandler::outranksPreviousSearch(const LineSetData& line_set,
                                             const OdometryPose& odometry,
                                             const Localization& found) {
+  if (found.alignment.status != AlignmentStatus::kAmbiguous) {
+    return false;
+  }
   const std::vector<Eigen::Isometry3d> poses = foundPoses(found);
-  if (found.alignment.status != AlignmentStatus::kAmbiguous || poses.size() < 2) {
+  if (poses.size() < 2) {
     return false;
   }
   const std::lock_guard<std::mutex> lock(searches_mutex_);

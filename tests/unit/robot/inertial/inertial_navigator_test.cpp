@@ -927,8 +927,8 @@ TEST(InertialNavigator, FixesSwitchingBetweenTwoWrongPosesDoNotRestartIt) {
 // (a moving robot's), the first shrink the filter's covariance around their
 // shared error. Forgetting the share of it that travel decorrelates (L_s =
 // 2.5 m; off by default, see the header), the filter has taken the true
-// fixes back within that second, to within three
-// sigma of their own noise (3 cm); holding on to it, it has not.
+// fixes back within that second, to within three sigma of their own noise
+// (3 cm); holding on to it, it has not.
 TEST(InertialNavigator, ForgetsTheErrorARunOfFixesSharedAsItTravels) {
   const auto sharedErrorThenNone = [](int k, PoseWithCovariance& fix) {
     fix.pose.translation().y() += k < 90 ? 0.2 : 0.0;

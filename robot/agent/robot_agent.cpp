@@ -290,6 +290,15 @@ void runFrontEndRealtime(int priority, bool paced) {
 
 }  // namespace
 
+FeatureExtractorOptions frontEndOptions(const RobotConfig& config) {
+  FeatureExtractorOptions options;
+  options.lines.min_length_px = config.min_segment_length_px;
+  options.edges.min_gradient = static_cast<float>(config.min_edge_gradient);
+  options.lines.min_contrast = config.min_segment_contrast;
+  options.corners_on_own_thread = config.corners_on_own_thread;
+  return options;
+}
+
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop) {
   if (!isValidRobotId(config.robot_id)) {
     throw std::runtime_error(
@@ -316,10 +325,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   if (!streams.imu.empty()) {
     navigator.emplace(navigatorConfig(config, gps.get(), streams));
   }
-  FeatureExtractorOptions extractor_options;
-  extractor_options.lines.min_length_px = config.min_segment_length_px;
-  extractor_options.corners_on_own_thread = config.corners_on_own_thread;
-  FeatureExtractor extractor(calibration, extractor_options);
+  FeatureExtractor extractor(calibration, frontEndOptions(config));
 
   RobotRunSummary summary;
   summary.sensor_lines_dropped = streams.dropped_lines;

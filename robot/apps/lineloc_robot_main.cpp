@@ -59,6 +59,10 @@ int main(int argc, char** argv) {
               "replay the dataset from this many seconds in (a restart mid-drive)");
   options.add("min_segment_length_px", config.min_segment_length_px,
               "shortest segment sent (pixels)");
+  options.add("min_edge_gradient", config.min_edge_gradient,
+              "edge threshold of the line extraction (grey levels per pixel)");
+  options.add("min_segment_contrast", config.min_segment_contrast,
+              "weakest segment sent (mean grey-level step across it)");
   options.add("corners_on_own_thread", config.corners_on_own_thread,
               "detect each frame's corners on a second thread while its lines are fitted; false "
               "on a one-core robot");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
@@ -46,6 +47,17 @@ double scorePose(const CoverageVerifier& verifier, const std::vector<ImageSegmen
                  const AcquisitionOptions& options) {
   return verifiedScore(verifier.coverage(visible, T_world_camera),
                        skyEdgeLength(image, T_world_camera, camera, scene, options.sky_edges));
+}
+
+// The image segments a search takes (AcquisitionOptions::min_segment_contrast).
+std::vector<ImageSegment> searchedSegments(const std::vector<ImageSegment>& segments,
+                                           const AcquisitionOptions& options) {
+  std::vector<ImageSegment> searched;
+  std::copy_if(segments.begin(), segments.end(), std::back_inserter(searched),
+               [&](const ImageSegment& segment) {
+                 return segment.contrast >= options.min_segment_contrast;
+               });
+  return searched;
 }
 
 bool byScore(const Verified& a, const Verified& b) {
@@ -116,10 +128,11 @@ Coverage CoverageVerifier::coverage(const std::vector<VisibleSegment>& visible,
   return measureCoverage(visible, T_world_camera, camera_, map_, options_);
 }
 
-Acquisition acquirePose(const std::vector<ImageSegment>& image,
+Acquisition acquirePose(const std::vector<ImageSegment>& segments,
                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
                         const AcquisitionOptions& options) {
+  const std::vector<ImageSegment> image = searchedSegments(segments, options);
   Acquisition acquisition;
   acquisition.alignment.T_world_camera = prior;
   const int64_t search_start_ns = steadyClockNs();
@@ -197,10 +210,11 @@ Acquisition acquirePose(const std::vector<ImageSegment>& image,
   return acquisition;
 }
 
-double verificationScore(const std::vector<ImageSegment>& image,
+double verificationScore(const std::vector<ImageSegment>& segments,
                          const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
                          const AcquisitionOptions& options) {
+  const std::vector<ImageSegment> image = searchedSegments(segments, options);
   const std::vector<VisibleSegment> visible = visibleSegments(
       lines, scene, hypothesisStart(T_world_camera, options), camera, options.visibility);
   return scorePose(CoverageVerifier(image, camera, options), image, visible, scene, T_world_camera,

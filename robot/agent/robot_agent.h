@@ -47,24 +47,21 @@ struct RobotConfig {
   // The front end's edge threshold (grey levels per pixel) and the weakest
   // segment it sends (mean grey-level step across it): EdgeDetectorOptions,
   // LineExtractorOptions. A step of h grey levels, blurred by the 1 px
-  // smoothing, peaks at a gradient of 0.34 h, so 8 drops every step under 24,
-  // and walls in shade meet each other and the shaded street in smaller ones
-  // (13 at the foot of the wall the README's two-minute drive faces as it
-  // turns, 41 against 28). 4 and 5 keep them, and a camera's noise stays far
-  // below (pixel noise sigma_n leaves 0.14 sigma_n per smoothed Sobel
-  // component: 4 is 14 sigma at lineloc-sim's 2 grey levels). On that drive
-  // (seed 1) 4 and 5 had 96.9 % of the answers from the first fix OK instead
-  // of 92.5 % (97 frames of its narrow street without a fix instead of 220),
-  // position RMSE 2.2 cm instead of 3.6 cm, exposure -> fix p99 6.2 ms against
-  // 5.8 ms; over seeds 1-50 (20 s each), first OK fix within 5 s on 39 drives
-  // instead of 29 and 86.4 % of all answers OK instead of 80.3 %. But the
-  // searches, given the weaker window edges too, confirmed poses half a metre
-  // off: seed 6 one 0.45 m off (two fixes beyond three sigma), seed 9 one 0.5
-  // m off that tracking kept 0.8 m off to the end, seed 31 one 0.48 m off (the
-  // robot 0.3 m off for 4 s). So the defaults stay until the searches can
-  // take the weak edges.
-  double min_edge_gradient = 8.0;
-  double min_segment_contrast = 10.0;
+  // smoothing, peaks at a gradient of 0.34 h, so the vision library's 8 drops
+  // every step under 24, and walls in shade meet each other and the shaded
+  // street in smaller ones (13 at the foot of the wall the README's two-minute
+  // drive faces as it turns, 41 against 28). 4 and 5 keep them, and a
+  // camera's noise stays far below (pixel noise sigma_n leaves 0.14 sigma_n
+  // per smoothed Sobel component: 4 is 14 sigma at lineloc-sim's 2 grey
+  // levels). On that drive (seed 1) 4 and 5 had 96.9 % of the answers from
+  // the first fix OK instead of 92.5 % (97 frames of its narrow street without
+  // a fix instead of 220), position RMSE 2.2 cm instead of 3.6 cm, exposure ->
+  // fix p99 6.7 ms (5.8 ms with 8 and 10). The backbone's searches take only the
+  // segments of 20 grey levels and over (AcquisitionOptions::
+  // min_segment_contrast): given the faint window frames too, they confirmed
+  // poses half a metre off.
+  double min_edge_gradient = 4.0;
+  double min_segment_contrast = 5.0;
   // Detect each frame's corners on a second thread while its lines are linked
   // and fitted (FeatureExtractorOptions::corners_on_own_thread); off on a
   // one-core robot, where that thread only shares the core.

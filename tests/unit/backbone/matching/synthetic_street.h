@@ -18,6 +18,9 @@ using test::normalizedErrorSquared;
 
 inline const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
 inline constexpr double kPixelSigma = 0.5;
+// Grey-level step across every rendered segment (ImageSegment::contrast): a
+// building edge in daylight, which searches take (AcquisitionOptions).
+inline constexpr float kEdgeContrast = 40.0f;
 
 // Each box is a building of its own.
 struct Street {
@@ -72,6 +75,7 @@ inline ImageSegment observe(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
   segment.end = (b + Eigen::Vector2d(noise(random), noise(random))).cast<float>();
   segment.start_covariance = Eigen::Matrix2f::Identity() * kPixelSigma * kPixelSigma;
   segment.end_covariance = segment.start_covariance;
+  segment.contrast = kEdgeContrast;
   return segment;
 }
 

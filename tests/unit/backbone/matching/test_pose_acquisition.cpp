@@ -139,6 +139,68 @@ TEST(PoseAcquisition, ABestScoringUnderTheFloorIsNotAnswered) {
   EXPECT_EQ(weak.summary.best_score, found.summary.best_score);
 }
 
+// A step half as strong as the faintest a search takes.
+float faintContrast(const AcquisitionOptions& options) {
+  return 0.5f * static_cast<float>(options.min_segment_contrast);
+}
+
+// The same view with every step fainter than searches take (walls in shade
+// meeting each other and the street): a search takes none of it, tracking
+// from a prior it can track from aligns on all of it.
+TEST(PoseAcquisition, FaintSegmentsAreLeftToTracking) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(21);
+  Scene scene = render(street, occlusion, 0, random);
+  const LocalizerOptions options;
+  for (ImageSegment& segment : scene.image) {
+    segment.contrast = faintContrast(options.acquisition);
+  }
+  const Acquisition searched =
+      acquirePose(scene.image, street.edges, occlusion, nearPrior(Eigen::Vector3d::Zero()), kCamera,
+                  options.acquisition);
+  EXPECT_EQ(searched.alignment.status, AlignmentStatus::kTooFewMatches)
+      << searched.alignment.message;
+  const PoseWithCovariance trackable = perturbedPrior(truePose(), random, 0.03, 0.001);
+  ASSERT_FALSE(needsAcquisition(trackable, options));
+  const Localization tracked =
+      localize(scene.image, street.edges, occlusion, trackable, kCamera, options);
+  ASSERT_EQ(tracked.alignment.status, AlignmentStatus::kOk) << tracked.alignment.message;
+  EXPECT_LT(normalizedErrorSquared(tracked.alignment.T_world_camera, truePose().pose), kChi2Six999);
+}
+
+// The view, and faint lines of the view from 1.2 m along the street (window
+// frames, shadows, parked cars: things in no model that a front end keeping
+// the walls in shade keeps too): the search answers the camera, and does not
+// when it takes the faint lines as well.
+TEST(PoseAcquisition, FaintLinesOfAViewBesideDoNotRivalTheCamera) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(21);
+  Scene scene = render(street, occlusion, 0, random);
+  const AcquisitionOptions options;
+  PoseWithCovariance beside = truePose();
+  beside.pose.translation() += Eigen::Vector3d(0.0, 1.2, 0.0);
+  for (const VisibleSegment& segment :
+       visibleSegments(street.edges, occlusion, beside, kCamera, {})) {
+    const ProjectedSegment p =
+        projectSegment(segment.start_world, segment.end_world, beside, kCamera);
+    ImageSegment faint = observe(p.start_px, p.end_px, random);
+    faint.contrast = faintContrast(options);
+    scene.image.push_back(faint);
+  }
+  const PoseWithCovariance prior = nearPrior(Eigen::Vector3d(0.0, 0.6, 0.0));
+  const Acquisition found =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, options);
+  ASSERT_EQ(found.alignment.status, AlignmentStatus::kOk) << found.alignment.message;
+  EXPECT_LT(normalizedErrorSquared(found.alignment.T_world_camera, truePose().pose), kChi2Six999);
+  AcquisitionOptions taking_all = options;
+  taking_all.min_segment_contrast = 0.0;
+  const Acquisition confused =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, taking_all);
+  EXPECT_NE(confused.alignment.status, AlignmentStatus::kOk) << confused.alignment.message;
+}
+
 TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
   const Street street = makeStreet();
   const OcclusionScene occlusion(street.faces, street.face_building_ids);

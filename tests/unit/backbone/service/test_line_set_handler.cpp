@@ -18,6 +18,9 @@ namespace lineloc {
 namespace {
 
 const PinholeCamera kCamera{500, 500, 320, 240, 0, 640, 480};
+// Grey-level step across each observed edge: a building edge in daylight,
+// which searches take (AcquisitionOptions::min_segment_contrast).
+constexpr float kEdgeContrast = 40.0f;
 
 // Camera looking north; by default with a covariance too wide to track from.
 PoseWithCovariance lookingNorth(const Eigen::Vector3d& position, double position_sigma_m = 0.3,
@@ -101,6 +104,7 @@ std::vector<ImageSegment> observedEdges(const std::string& conninfo,
     segment.end = (p.end_px + Eigen::Vector2d(noise(random), noise(random))).cast<float>();
     segment.start_covariance = Eigen::Matrix2f::Identity() * 0.09f;
     segment.end_covariance = segment.start_covariance;
+    segment.contrast = kEdgeContrast;
     segments.push_back(segment);
   }
   return segments;

@@ -35,6 +35,7 @@ struct TrackConfig {
   std::string overlay_dir;
   std::vector<double> sun_deg;
   double ambient = 0.35;
+  lineloc::FeatureExtractorOptions extractor = lineloc::trackingFrontEndOptions();
 };
 
 int run(const TrackConfig& config) {
@@ -69,7 +70,7 @@ int run(const TrackConfig& config) {
         Sunlight::fromAzimuthElevation(config.sun_deg[0], config.sun_deg[1], config.ambient);
   }
   ModelTracker tracker(local.model, calibration.camera, start, tracker_options);
-  FeatureExtractor extractor(calibration);
+  FeatureExtractor extractor(calibration, config.extractor);
   TumWriter trajectory(config.out);
   if (!config.overlay_dir.empty()) {
     std::filesystem::create_directories(config.overlay_dir);
@@ -124,6 +125,10 @@ int main(int argc, char** argv) {
                        "sun azimuth clockwise from grid north and elevation (deg): corners "
                        "between walls it lights alike are no edges (default: sun unknown)");
   options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
+  options.add("min_edge_gradient", config.extractor.edges.min_gradient,
+              "edge threshold of the line extraction (grey levels per pixel)");
+  options.add("min_segment_contrast", config.extractor.lines.min_contrast,
+              "weakest segment tracked (mean grey-level step across it)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

@@ -60,8 +60,8 @@ struct RobotConfig {
   // segments of 20 grey levels and over (AcquisitionOptions::
   // min_segment_contrast): given the faint window frames too, they confirmed
   // poses half a metre off.
-  double min_edge_gradient = 4.0;
-  double min_segment_contrast = 5.0;
+  double min_edge_gradient = trackingFrontEndOptions().edges.min_gradient;
+  double min_segment_contrast = trackingFrontEndOptions().lines.min_contrast;
   // Detect each frame's corners on a second thread while its lines are linked
   // and fitted (FeatureExtractorOptions::corners_on_own_thread); off on a
   // one-core robot, where that thread only shares the core.

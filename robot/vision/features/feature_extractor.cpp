@@ -26,6 +26,13 @@ const CameraCalibration& checkedSize(const CameraCalibration& calibration) {
 
 }  // namespace
 
+FeatureExtractorOptions trackingFrontEndOptions() {
+  FeatureExtractorOptions options;
+  options.edges.min_gradient = 4.0f;
+  options.lines.min_contrast = 5.0;
+  return options;
+}
+
 FeatureExtractor::FeatureExtractor(const CameraCalibration& calibration,
                                    const FeatureExtractorOptions& options)
     : calibration_(checkedSize(calibration)),

@@ -43,6 +43,14 @@ struct FeatureExtractorOptions {
   double junction_radius_px = 3.0;
 };
 
+// The options of a front end for model-based tracking, the robot's: the
+// defaults with the edge threshold lowered to 4 grey levels per pixel and the
+// weakest segment to a mean step of 5, which keep the steps down to about 12
+// grey levels where walls in shade meet each other and the street
+// (robot_agent.h gives why and what it measured); the defaults keep the steps
+// of about 24 and over.
+FeatureExtractorOptions trackingFrontEndOptions();
+
 // Fit quality of segments[i], beyond what ImageSegment carries.
 struct SegmentFitQuality {
   float sigma_offset_px;  // normal offset at the centroid

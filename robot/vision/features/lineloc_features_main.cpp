@@ -21,7 +21,7 @@ struct FeaturesConfig {
   std::string image;
   std::string calib;
   std::string out;
-  lineloc::FeatureExtractorOptions extractor;
+  lineloc::FeatureExtractorOptions extractor = lineloc::trackingFrontEndOptions();
 };
 
 // Without a calibration file: an ideal camera of the image's size.

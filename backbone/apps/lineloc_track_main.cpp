@@ -83,7 +83,7 @@ int run(const TrackConfig& config) {
       throw std::runtime_error(fmt::format("cannot read image '{}'", frames[index].path));
     }
     const FrameFeatures& features = extractor.extract(image);
-    const TrackedFrame frame = tracker.track(features.segments);
+    const TrackedFrame frame = tracker.track(features.segments, features.corners);
     aligned += frame.alignment.status == AlignmentStatus::kOk ? 1 : 0;
     spdlog::info("frame {}: {}{} ({} inliers){}", index, toString(frame.alignment.status),
                  frame.acquired ? " after a search" : "", frame.alignment.inliers,

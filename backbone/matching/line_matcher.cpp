@@ -4,12 +4,9 @@
 #include <cmath>
 
 namespace lineloc {
-namespace {
 
-// Pixel of a world point and its 2x2 covariance under the pose covariance.
-std::pair<Eigen::Vector2d, Eigen::Matrix2d> projectWithCovariance(
-    const Eigen::Vector3d& p_world, const PoseWithCovariance& T_world_camera,
-    const PinholeCamera& camera) {
+ProjectedPoint projectPoint(const Eigen::Vector3d& p_world,
+                            const PoseWithCovariance& T_world_camera, const PinholeCamera& camera) {
   const Eigen::Matrix3d R = T_world_camera.pose.linear();
   const Eigen::Vector3d x = p_world - T_world_camera.pose.translation();
   const Eigen::Vector3d p_camera = R.transpose() * x;
@@ -24,16 +21,13 @@ std::pair<Eigen::Vector2d, Eigen::Matrix2d> projectWithCovariance(
   return {camera.project(p_camera), J * T_world_camera.covariance * J.transpose()};
 }
 
-}  // namespace
-
 ProjectedSegment projectSegment(const Eigen::Vector3d& start_world,
                                 const Eigen::Vector3d& end_world,
                                 const PoseWithCovariance& T_world_camera,
                                 const PinholeCamera& camera) {
-  const auto [start_px, start_covariance] =
-      projectWithCovariance(start_world, T_world_camera, camera);
-  const auto [end_px, end_covariance] = projectWithCovariance(end_world, T_world_camera, camera);
-  return {start_px, end_px, start_covariance, end_covariance};
+  const ProjectedPoint start = projectPoint(start_world, T_world_camera, camera);
+  const ProjectedPoint end = projectPoint(end_world, T_world_camera, camera);
+  return {start.pixel, end.pixel, start.covariance, end.covariance};
 }
 
 namespace {

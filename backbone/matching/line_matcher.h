@@ -43,6 +43,16 @@ struct LineMatch {
   double chi2 = 0.0;
 };
 
+// A projected model point: its pixel and that pixel's 2x2 covariance under
+// the pose covariance, J Sigma J^T.
+struct ProjectedPoint {
+  Eigen::Vector2d pixel;
+  Eigen::Matrix2d covariance;
+};
+
+ProjectedPoint projectPoint(const Eigen::Vector3d& p_world,
+                            const PoseWithCovariance& T_world_camera, const PinholeCamera& camera);
+
 // Projected model segment with the pixel covariance of its endpoints.
 struct ProjectedSegment {
   Eigen::Vector2d start_px;

@@ -47,17 +47,17 @@ std::vector<PoseWithCovariance> trackingStarts(const PoseWithCovariance& prior, 
 
 // Narrow gates around the start's centre first; its whole covariance when
 // they do not give an OK alignment.
-Alignment alignFromCentre(const std::vector<ImageSegment>& image,
-                          const std::vector<VisibleSegment>& visible,
-                          const PoseWithCovariance& start, const PinholeCamera& camera,
-                          const LocalizerOptions& options) {
+Alignment alignFromCentre(const AlignmentFeatures& features, const PoseWithCovariance& start,
+                          const PinholeCamera& camera, const LocalizerOptions& options) {
   PoseWithCovariance trusted_centre = start;
   trusted_centre.covariance *= options.first_gate_scale * options.first_gate_scale;
-  Alignment narrow = alignModel(image, visible, trusted_centre, camera, options.alignment);
+  Alignment narrow = alignModel(features.image_segments, features.model_segments, trusted_centre,
+                                camera, options.alignment);
   if (narrow.status == AlignmentStatus::kOk) {
     return narrow;
   }
-  Alignment wide = alignModel(image, visible, start, camera, options.alignment);
+  Alignment wide = alignModel(features.image_segments, features.model_segments, start, camera,
+                              options.alignment);
   wide.matching_ns += narrow.matching_ns;
   wide.pose_ns += narrow.pose_ns;
   return wide;
@@ -151,11 +151,9 @@ bool reaches(const PoseWithCovariance& start, const Alignment& alignment,
 
 // The alignment from one start, kInconsistent when it is OK but out of the
 // start's reach.
-Alignment alignWithinReach(const std::vector<ImageSegment>& image,
-                           const std::vector<VisibleSegment>& visible,
-                           const PoseWithCovariance& start, const PinholeCamera& camera,
-                           const LocalizerOptions& options) {
-  Alignment alignment = alignFromCentre(image, visible, start, camera, options);
+Alignment alignWithinReach(const AlignmentFeatures& features, const PoseWithCovariance& start,
+                           const PinholeCamera& camera, const LocalizerOptions& options) {
+  Alignment alignment = alignFromCentre(features, start, camera, options);
   if (isOk(alignment) && !reaches(start, alignment, options)) {
     alignment.status = AlignmentStatus::kInconsistent;
     alignment.message =
@@ -166,15 +164,31 @@ Alignment alignWithinReach(const std::vector<ImageSegment>& image,
   return alignment;
 }
 
+// The centre's ill-conditioned alignment completed with the corners
+// (completeWithCorners) when that is OK and within the prior's reach; the
+// lines' alignment, with the completion's time, otherwise.
+Alignment completeWithinReach(const Alignment& centre, const AlignmentFeatures& features,
+                              const PoseWithCovariance& prior, const PinholeCamera& camera,
+                              const LocalizerOptions& options) {
+  const Alignment completed =
+      completeWithCorners(centre, features, prior, camera, options.alignment);
+  if (isOk(completed) && reaches(prior, completed, options)) {
+    return completed;
+  }
+  Alignment lines = centre;
+  lines.matching_ns = completed.matching_ns;
+  lines.pose_ns = completed.pose_ns;
+  return lines;
+}
+
 // The settled alignments from the prior and its sigma points, the OK ones
 // within reach of their start: the first OK one when every other lies within
 // its covariance, else the best covered, with its rivals (coverRivals). The
 // centre's own answer when it is ill-conditioned or none is OK. The starts
 // align without the façade-side cut; the OK one answered takes it
 // (leaveOutFacadeSideDetail), before its rivals widen it.
-Alignment track(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& visible,
-                const PoseWithCovariance& prior, const PinholeCamera& camera,
-                const LocalizerOptions& options) {
+Alignment track(const AlignmentFeatures& features, const PoseWithCovariance& prior,
+                const PinholeCamera& camera, const LocalizerOptions& options) {
   const std::vector<PoseWithCovariance> starts =
       trackingStarts(prior, options.start_sigma, options.min_start_step_m);
   LocalizerOptions uncut = options;
@@ -182,7 +196,7 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
   std::vector<Alignment> from_starts(starts.size());
   const int64_t aligning_start_ns = steadyClockNs();
   parallelFor(static_cast<int>(starts.size()), options.threads, [&](int i) {
-    from_starts[i] = alignWithinReach(image, visible, starts[i], camera, uncut);
+    from_starts[i] = alignWithinReach(features, starts[i], camera, uncut);
   });
   const int64_t aligning_ns = steadyClockNs() - aligning_start_ns;
   const Alignment& centre = from_starts.front();
@@ -210,15 +224,24 @@ Alignment track(const std::vector<ImageSegment>& image, const std::vector<Visibl
     const bool agree = std::none_of(aligned.begin(), aligned.end(), outsideFirst);
     const int64_t scoring_start_ns = steadyClockNs();
     const std::vector<double> scores =
-        agree ? std::vector<double>{} : coverageScores(aligned, image, visible, camera, options);
+        agree ? std::vector<double>{}
+              : coverageScores(aligned, features.image_segments, features.model_segments, camera,
+                               options);
     matching_ns += steadyClockNs() - scoring_start_ns;
     const size_t chosen = agree ? first_ok - aligned.begin() : bestCovered(aligned, scores);
-    answer = leaveOutFacadeSideDetail(aligned[chosen], image, visible, camera, options.alignment);
+    answer = leaveOutFacadeSideDetail(aligned[chosen], features.image_segments,
+                                      features.model_segments, camera, options.alignment);
     matching_ns += answer.matching_ns - aligned[chosen].matching_ns;
     pose_ns += answer.pose_ns - aligned[chosen].pose_ns;
     if (!agree) {
       answer = coverRivals(answer, aligned, scores, scores[chosen], options);
     }
+  }
+  if (answer.status == AlignmentStatus::kIllConditioned ||
+      answer.status == AlignmentStatus::kTooFewMatches) {
+    answer = completeWithinReach(answer, features, prior, camera, options);
+    matching_ns += answer.matching_ns - centre.matching_ns;
+    pose_ns += answer.pose_ns - centre.pose_ns;
   }
   answer.matching_ns = matching_ns;
   answer.pose_ns = pose_ns;
@@ -243,14 +266,16 @@ std::vector<VisibleSegment> visibleFromPrior(const std::vector<ModelSegment>& li
   return visibleSegments(lines, scene, prior, camera, visibility);
 }
 
-Localization localize(const std::vector<ImageSegment>& image,
+Localization localize(const std::vector<ImageSegment>& image_segments,
+                      const std::vector<ImageCorner>& image_corners,
                       const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                       const PoseWithCovariance& prior, const PinholeCamera& camera,
                       const LocalizerOptions& options,
                       const std::vector<VisibleSegment>* visible_from_prior) {
   Localization localization;
   if (needsAcquisition(prior, options)) {
-    Acquisition acquisition = acquirePose(image, lines, scene, prior, camera, options.acquisition);
+    Acquisition acquisition =
+        acquirePose(image_segments, lines, scene, prior, camera, options.acquisition);
     localization.search = acquisition.summary;
     localization.alignment = std::move(acquisition.alignment);
     localization.visible = std::move(acquisition.visible);
@@ -261,8 +286,12 @@ Localization localize(const std::vector<ImageSegment>& image,
   localization.visible = visible_from_prior
                              ? *visible_from_prior
                              : visibleFromPrior(lines, scene, prior, camera, options);
+  const std::vector<VisibleCorner> visible_corners =
+      visibleCorners(localization.visible, options.corners);
   localization.visibility_ns = steadyClockNs() - visibility_start_ns;
-  localization.alignment = track(image, localization.visible, prior, camera, options);
+  localization.alignment =
+      track({image_segments, image_corners, localization.visible, visible_corners}, prior, camera,
+            options);
   widenForConfidence(localization.alignment, options.alignment.confidence);
   return localization;
 }

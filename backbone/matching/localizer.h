@@ -60,6 +60,19 @@
 // from the truth, reporting 0.16 m. When the centre's alignment is out of its
 // reach and no sigma point's is within, the answer is kInconsistent.
 //
+// Where the lines leave the pose open (the centre's alignment ill-conditioned,
+// or too few matched, and no start's OK), the model's corners complete the
+// centre's alignment (completeWithCorners, model_alignment.h), and the
+// completion is the answer when it is OK and within the prior's reach. Corners
+// serve nowhere else. Matched from the truth on the README's two-minute Delft
+// drive, two thirds of the corners lay 1-3.8 px off: window corners standing
+// in for building vertices the image does not show. In every alignment they
+// answered 98.1 % of that drive's frames OK from the first fix, where lines
+// alone answer 96.9 %, but raised the position RMSE from 2.2 to 3.7 cm; in
+// every alignment the lines left open, the narrow first rounds included, 98.5 %
+// and 3.8 cm. Completing the answer only: 98.7 % OK, 2.3 cm, none beyond three
+// sigma.
+//
 // The starts align without the façade-side cut (model_alignment.h), and only
 // the OK alignment answered takes its round, before its rivals widen it: a
 // round in every start's alignment made a tracking frame on one core a third
@@ -118,6 +131,8 @@ struct LocalizerOptions {
   // acquisition's inlier rule) and started one (seed 2) 0.3 m and 0.8
   // degrees off.
   VisibilityOptions visibility;
+  // Tracking's model corners, from its visible pieces (visible_corners.h).
+  CornerOptions corners;
   AlignmentOptions alignment;
   AcquisitionOptions acquisition;
 };
@@ -151,7 +166,8 @@ std::vector<VisibleSegment> visibleFromPrior(const std::vector<ModelSegment>& li
 // `visible_from_prior`, when given, is visibleFromPrior's answer for these
 // lines, scene, prior, camera and options, which tracking then takes instead
 // of removing the hidden lines itself; a search ignores it.
-Localization localize(const std::vector<ImageSegment>& image,
+Localization localize(const std::vector<ImageSegment>& image_segments,
+                      const std::vector<ImageCorner>& image_corners,
                       const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                       const PoseWithCovariance& prior, const PinholeCamera& camera,
                       const LocalizerOptions& options,

@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "common/pose/pose_estimator.h"
 #include "common/stats/confidence_scale.h"
@@ -14,20 +15,26 @@
 namespace lineloc {
 namespace {
 
+// The problem's lines are the matches, in order, and its points the corner
+// matches.
 struct MatchedProblem {
   PoseProblem problem;
   std::vector<LineMatch> matches;
+  std::vector<CornerMatch> corner_matches;
 };
 
-// Survey error of a model line: a building's foot is less certain than the
+// Survey error of a model line or vertex: a building's foot is less certain than the
 // rest of it (AlignmentOptions::ground_line_sigma_m).
-double modelSigmaM(const VisibleSegment& line, const AlignmentOptions& options) {
-  return line.kind == static_cast<int>(citymodel::LineKind::kGround) ? options.ground_line_sigma_m
-                                                                     : options.model_sigma_m;
+double modelSigmaM(bool on_ground, const AlignmentOptions& options) {
+  return on_ground ? options.ground_line_sigma_m : options.model_sigma_m;
 }
 
-// Isotropic pixel variance of edge bias and model error for a point of a
-// model line seen from the pose: floor^2 + (f sigma_model / z)^2.
+double modelSigmaM(const VisibleSegment& line, const AlignmentOptions& options) {
+  return modelSigmaM(line.kind == static_cast<int>(citymodel::LineKind::kGround), options);
+}
+
+// Isotropic pixel variance of edge bias and model error for a model point
+// seen from the pose: floor^2 + (f sigma_model / z)^2.
 Eigen::Matrix2d floorCovariance(const Eigen::Vector3d& point_world, double model_sigma_m,
                                 const Eigen::Isometry3d& T_camera_world,
                                 const PinholeCamera& camera, const AlignmentOptions& options) {
@@ -58,9 +65,30 @@ double facadeSideOffsetSigma(const LineCorrespondence& correspondence, int facad
                 offsetSigma(correspondence.end_pixel, correspondence.end_covariance));
 }
 
-MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
-                            const std::vector<VisibleSegment>& model,
+// Each matched corner as a point correspondence, its covariance the image
+// corner's plus the floor, inflated by 1 / weight as a line's.
+void addCorners(const AlignmentFeatures& features, std::vector<CornerMatch> corner_matches,
+                const Eigen::Isometry3d& T_camera_world, const PinholeCamera& camera,
+                const AlignmentOptions& options, MatchedProblem& matched) {
+  for (const CornerMatch& match : corner_matches) {
+    const ImageCorner& seen = features.image_corners[match.image_index];
+    const VisibleCorner& vertex = features.model_corners[match.model_index];
+    const double model_sigma_m = modelSigmaM(vertex.on_ground, options);
+    PointCorrespondence correspondence;
+    correspondence.p_world = vertex.p_world;
+    correspondence.pixel = seen.position.cast<double>();
+    correspondence.covariance =
+        (seen.covariance.cast<double>() +
+         floorCovariance(vertex.p_world, model_sigma_m, T_camera_world, camera, options)) /
+        vertex.weight;
+    matched.problem.points.push_back(correspondence);
+  }
+  matched.corner_matches = std::move(corner_matches);
+}
+
+MatchedProblem buildProblem(const AlignmentFeatures& features,
                             const std::vector<std::vector<LineMatch>>& candidates,
+                            const std::vector<CornerMatch>& corner_matches,
                             const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
                             bool cut_facade_side, const AlignmentOptions& options) {
   MatchedProblem matched;
@@ -77,8 +105,8 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
       continue;
     }
     const LineMatch& best = gated.front();
-    const ImageSegment& seen = image[best.image_index];
-    const VisibleSegment& line = model[best.model_index];
+    const ImageSegment& seen = features.image_segments[best.image_index];
+    const VisibleSegment& line = features.model_segments[best.model_index];
     LineCorrespondence correspondence;
     correspondence.start_world = line.start_world;
     correspondence.end_world = line.end_world;
@@ -103,11 +131,12 @@ MatchedProblem buildProblem(const std::vector<ImageSegment>& image,
     matched.problem.lines.push_back(correspondence);
     matched.matches.push_back(best);
   }
+  addCorners(features, corner_matches, T_camera_world, camera, options, matched);
   return matched;
 }
 
-// The a-posteriori variance factor s^2 = chi^2 / (2 n - 6) of n line
-// correspondences (two residuals each, six pose parameters), when the
+// The a-posteriori variance factor s^2 = chi^2 / (2 n - 6) of n line or
+// corner correspondences (two residuals each, six pose parameters), when the
 // residuals are larger than their stated noise; 1 otherwise, or with too few.
 double varianceFactor(double chi2, int correspondences) {
   const int redundancy = 2 * correspondences - 6;
@@ -171,15 +200,19 @@ PoseOptions refinementOptions(const AlignmentOptions& options) {
 // round's matches, inliers, residual and time, and its pose, the covariance
 // scaled by the inliers' variance factor. False, with the status and message
 // set and the pose left alone, when too few matches or the refinement fails.
-bool alignRound(const std::vector<ImageSegment>& image, const std::vector<VisibleSegment>& model,
-                const PoseWithCovariance& gate, const PinholeCamera& camera, bool cut_facade_side,
-                const AlignmentOptions& options, Alignment& alignment, MatchedProblem& matched) {
+bool alignRound(const AlignmentFeatures& features, const PoseWithCovariance& gate,
+                const PinholeCamera& camera, bool cut_facade_side, const AlignmentOptions& options,
+                Alignment& alignment, MatchedProblem& matched) {
   ++alignment.rounds;
   const int64_t matching_start_ns = steadyClockNs();
-  const auto candidates = gateCandidates(image, model, gate, camera, options.matching);
-  matched = buildProblem(image, model, candidates, gate.pose, camera, cut_facade_side, options);
+  const auto candidates = gateCandidates(features.image_segments, features.model_segments, gate,
+                                         camera, options.matching);
+  matched = buildProblem(
+      features, candidates,
+      matchCorners(features.image_corners, features.model_corners, gate, camera, options.corners),
+      gate.pose, camera, cut_facade_side, options);
   alignment.matching_ns += steadyClockNs() - matching_start_ns;
-  alignment.matches = static_cast<int>(matched.matches.size());
+  alignment.matches = static_cast<int>(matched.matches.size() + matched.corner_matches.size());
   if (alignment.matches < options.min_inliers) {
     alignment.status = AlignmentStatus::kTooFewMatches;
     alignment.message =
@@ -199,10 +232,12 @@ bool alignRound(const std::vector<ImageSegment>& image, const std::vector<Visibl
   }
   alignment.inliers = 0;
   double inlier_chi2 = 0.0;
-  for (const CorrespondenceResidual& residual : estimate.line_residuals) {
-    if (residual.normalized_residual < options.inlier_threshold_sigma) {
-      ++alignment.inliers;
-      inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
+  for (const auto* residuals : {&estimate.line_residuals, &estimate.point_residuals}) {
+    for (const CorrespondenceResidual& residual : *residuals) {
+      if (residual.normalized_residual < options.inlier_threshold_sigma) {
+        ++alignment.inliers;
+        inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
+      }
     }
   }
   alignment.rms_residual_px = estimate.rms_residual_px;
@@ -244,20 +279,20 @@ void conclude(const MatchedProblem& last_round, const std::vector<VisibleSegment
   alignment.status = AlignmentStatus::kOk;
 }
 
-// Rounds until the pose stops moving, at most max_rounds, without the cut.
-// A round that fails leaves the predicted pose.
-Alignment alignRounds(const std::vector<ImageSegment>& image,
-                      const std::vector<VisibleSegment>& model,
+// Rounds from `first_gate` until the pose stops moving, at most max_rounds,
+// without the cut; each later round gates at the prediction fused with the
+// last pose. A round that fails leaves the predicted pose.
+Alignment alignRounds(const AlignmentFeatures& features,
                       const PoseWithCovariance& predicted_T_world_camera,
-                      const PinholeCamera& camera, const AlignmentOptions& options) {
+                      const PoseWithCovariance& first_gate, const PinholeCamera& camera,
+                      const AlignmentOptions& options) {
   Alignment alignment;
   alignment.T_world_camera = predicted_T_world_camera;
-  alignment.next_gate = predicted_T_world_camera;
+  alignment.next_gate = first_gate;
   MatchedProblem last_round;
   for (int round = 0; round < options.max_rounds; ++round) {
     const Eigen::Isometry3d previous = alignment.T_world_camera.pose;
-    if (!alignRound(image, model, alignment.next_gate, camera, false, options, alignment,
-                    last_round)) {
+    if (!alignRound(features, alignment.next_gate, camera, false, options, alignment, last_round)) {
       alignment.T_world_camera = predicted_T_world_camera;
       return alignment;
     }
@@ -268,8 +303,16 @@ Alignment alignRounds(const std::vector<ImageSegment>& image,
       break;
     }
   }
-  conclude(last_round, model, options, alignment);
+  conclude(last_round, features.model_segments, options, alignment);
   return alignment;
+}
+
+// The segments alone, without corners.
+AlignmentFeatures lineFeatures(const std::vector<ImageSegment>& image,
+                               const std::vector<VisibleSegment>& model) {
+  static const std::vector<ImageCorner> kNoImageCorners;
+  static const std::vector<VisibleCorner> kNoModelCorners;
+  return {image, kNoImageCorners, model, kNoModelCorners};
 }
 
 }  // namespace
@@ -296,9 +339,26 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
                      const std::vector<VisibleSegment>& model,
                      const PoseWithCovariance& predicted_T_world_camera,
                      const PinholeCamera& camera, const AlignmentOptions& options) {
-  return leaveOutFacadeSideDetail(
-      alignRounds(image, model, predicted_T_world_camera, camera, options), image, model, camera,
-      options);
+  return leaveOutFacadeSideDetail(alignRounds(lineFeatures(image, model), predicted_T_world_camera,
+                                              predicted_T_world_camera, camera, options),
+                                  image, model, camera, options);
+}
+
+Alignment completeWithCorners(const Alignment& lines, const AlignmentFeatures& features,
+                              const PoseWithCovariance& predicted_T_world_camera,
+                              const PinholeCamera& camera, const AlignmentOptions& options) {
+  if ((lines.status != AlignmentStatus::kIllConditioned &&
+       lines.status != AlignmentStatus::kTooFewMatches) ||
+      features.image_corners.empty() || features.model_corners.empty()) {
+    return lines;
+  }
+  Alignment completed =
+      alignRounds(features, predicted_T_world_camera, lines.next_gate, camera, options);
+  Alignment answer = completed.status == AlignmentStatus::kOk ? completed : lines;
+  answer.rounds = lines.rounds + completed.rounds;
+  answer.matching_ns = lines.matching_ns + completed.matching_ns;
+  answer.pose_ns = lines.pose_ns + completed.pose_ns;
+  return answer;
 }
 
 Alignment leaveOutFacadeSideDetail(const Alignment& aligned, const std::vector<ImageSegment>& image,
@@ -309,7 +369,8 @@ Alignment leaveOutFacadeSideDetail(const Alignment& aligned, const std::vector<I
   }
   Alignment cut = aligned;
   MatchedProblem last_round;
-  if (alignRound(image, model, aligned.next_gate, camera, true, options, cut, last_round)) {
+  if (alignRound(lineFeatures(image, model), aligned.next_gate, camera, true, options, cut,
+                 last_round)) {
     conclude(last_round, model, options, cut);
   }
   if (cut.status == AlignmentStatus::kOk) {

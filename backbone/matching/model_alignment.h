@@ -53,12 +53,18 @@
 // sigma, for two seconds); fused at 30 Hz as the robot fuses fixes, they left
 // it 5.7-8.7 cm RMS off over 35-50 s, where dead reckoning alone gave
 // 2.5-3.9 cm, and three were beyond three sigma.
+//
+// Where the lines leave the pose open, completeWithCorners adds the model's
+// corners, matched with the robot's as point correspondences (the projected
+// vertex's pixel offset, two residuals), under the same loss and noise model
+// as the lines.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "backbone/matching/corner_matcher.h"
 #include "backbone/matching/line_matcher.h"
 #include "common/pose/pose_refinement.h"
 
@@ -79,6 +85,7 @@ const char* toString(AlignmentStatus status);
 
 struct AlignmentOptions {
   MatchingOptions matching;
+  CornerMatchingOptions corners;
   int max_rounds = 6;
   int min_inliers = 6;
   // An inlier's final normalized residual is below this (standard deviations).
@@ -209,6 +216,28 @@ Alignment alignModel(const std::vector<ImageSegment>& image,
                      const std::vector<VisibleSegment>& model,
                      const PoseWithCovariance& predicted_T_world_camera,
                      const PinholeCamera& camera, const AlignmentOptions& options);
+
+// What completeWithCorners matches: the robot's segments and corners
+// (undistorted pixels) and the model's pieces and corners visible from the
+// prediction. The caller keeps the four alive while it aligns.
+struct AlignmentFeatures {
+  const std::vector<ImageSegment>& image_segments;
+  const std::vector<ImageCorner>& image_corners;
+  const std::vector<VisibleSegment>& model_segments;
+  const std::vector<VisibleCorner>& model_corners;
+};
+
+// An alignment the lines leave open (ill-conditioned, or too few matches)
+// completed with the corners: the rounds again, with the model corners (visible_corners.h) matched
+// with the image corners (corner_matcher.h) as point correspondences, the first gated at the lines'
+// next_gate: as narrow as the lines' pose in every direction they determine, as wide as the
+// prediction along those they leave open (the prediction itself when too few matched). Each matched
+// corner is a jackknife group of its own (conclude), so one corner alone leaves the pose
+// ill-conditioned: only two or more agreeing corners make it OK. The completed alignment is
+// returned when OK, the lines' otherwise; any other alignment is returned as it is.
+Alignment completeWithCorners(const Alignment& lines, const AlignmentFeatures& features,
+                              const PoseWithCovariance& predicted_T_world_camera,
+                              const PinholeCamera& camera, const AlignmentOptions& options);
 
 // One more round for an OK alignment, gated at its next_gate, that leaves out
 // the matches lying beyond facade_side_cut_sigma on their façade's side. The

@@ -170,8 +170,9 @@ void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odom
                            const PoseWithCovariance& prior, const LocalizerOptions& options,
                            PoseFixData& fix,
                            const std::vector<VisibleSegment>* visible_from_prior) {
-  const Localization localization = localize(line_set.segments, map->segments, map->scene, prior,
-                                             line_set.camera, options, visible_from_prior);
+  const Localization localization =
+      localize(line_set.segments, line_set.corners, map->segments, map->scene, prior,
+               line_set.camera, options, visible_from_prior);
   const Alignment& alignment = localization.alignment;
   fix.timings.visibility += localization.visibility_ns;
   fix.timings.matching = alignment.matching_ns;
@@ -191,8 +192,9 @@ void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odom
 void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odometry,
                             const PreparedMap& map, const PoseWithCovariance& prior) {
   const int64_t start_ns = steadyClockNs();
-  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, localizerOptions(line_set));
+  const Localization localization =
+      localize(line_set.segments, line_set.corners, map.segments, map.scene, prior, line_set.camera,
+               localizerOptions(line_set));
   const int64_t search_ns = steadyClockNs() - start_ns;
   countSearch();
   const Alignment& alignment = localization.alignment;
@@ -292,8 +294,9 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
   PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
                                                            options_.confirm_rotation_rad)};
   prior.covariance(2, 2) = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
-  const Localization localization = localize(line_set.segments, map.segments, map.scene, prior,
-                                             line_set.camera, localizerOptions(line_set));
+  const Localization localization =
+      localize(line_set.segments, line_set.corners, map.segments, map.scene, prior, line_set.camera,
+               localizerOptions(line_set));
   ProofVerdict verdict = judgeProof(line_set, map, tracked, localization);
   const int64_t search_ns = steadyClockNs() - start_ns;
   countSearch();

@@ -12,13 +12,14 @@ ModelTracker::ModelTracker(TrackedModel model, const PinholeCamera& camera,
       options_(options),
       current_(start) {}
 
-TrackedFrame ModelTracker::track(const std::vector<ImageSegment>& segments) {
+TrackedFrame ModelTracker::track(const std::vector<ImageSegment>& segments,
+                                 const std::vector<ImageCorner>& corners) {
   PoseWithCovariance predicted = current_;
   predicted.covariance += diagonalPoseCovariance(options_.process_position_sigma_m,
                                                  options_.process_rotation_sigma_rad);
   TrackedFrame frame;
   Localization localization =
-      localize(segments, model_.lines, scene_, predicted, camera_, options_.localizer);
+      localize(segments, corners, model_.lines, scene_, predicted, camera_, options_.localizer);
   frame.alignment = std::move(localization.alignment);
   frame.acquired = localization.search.has_value();
   frame.visible = std::move(localization.visible);

@@ -39,7 +39,9 @@ class ModelTracker {
   ModelTracker(TrackedModel model, const PinholeCamera& camera, const PoseWithCovariance& start,
                const TrackerOptions& options);
 
-  TrackedFrame track(const std::vector<ImageSegment>& segments);
+  // One image's segments and Förstner corners (undistorted pixels).
+  TrackedFrame track(const std::vector<ImageSegment>& segments,
+                     const std::vector<ImageCorner>& corners);
 
  private:
   TrackedModel model_;

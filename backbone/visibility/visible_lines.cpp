@@ -190,6 +190,31 @@ bool clipTo(const HalfSpaces& frustum, Eigen::Vector3d& start_camera, Eigen::Vec
   return true;
 }
 
+// A model line in the camera frame, clipped to the frustum: a -> b, and
+// whether each is still the line's own end.
+struct ClippedLine {
+  Eigen::Vector3d a_camera;
+  Eigen::Vector3d b_camera;
+  bool a_is_start = false;
+  bool b_is_end = false;
+};
+
+std::optional<ClippedLine> clipLine(const HalfSpaces& frustum,
+                                    const Eigen::Isometry3d& T_camera_world,
+                                    const ModelSegment& line) {
+  const Eigen::Vector3d start_camera = T_camera_world * line.start_world;
+  const Eigen::Vector3d end_camera = T_camera_world * line.end_world;
+  ClippedLine clipped{start_camera, end_camera};
+  if (!clipTo(frustum, clipped.a_camera, clipped.b_camera)) {
+    return std::nullopt;
+  }
+  // An end the frustum keeps moves by rounding only (t = 0 or 1).
+  constexpr double kSameEndM = 1e-6;
+  clipped.a_is_start = (clipped.a_camera - start_camera).norm() < kSameEndM;
+  clipped.b_is_end = (clipped.b_camera - end_camera).norm() < kSameEndM;
+  return clipped;
+}
+
 // Samples a line clipped to the frustum every sample_spacing_px, keeps the
 // samples the camera centre sees where the line can show as an edge, weighs
 // each by the fraction of viewpoints that see it, and cuts the line into runs
@@ -205,9 +230,10 @@ class LineSampler {
         viewpoints_(viewpoints(T_world_camera)),
         contrast_(scene, T_world_camera.pose, camera, options) {}
 
-  void appendVisiblePieces(const ModelSegment& line, const Eigen::Vector3d& a_camera,
-                           const Eigen::Vector3d& b_camera,
+  void appendVisiblePieces(const ModelSegment& line, const ClippedLine& clipped,
                            std::vector<VisibleSegment>& visible) const {
+    const Eigen::Vector3d& a_camera = clipped.a_camera;
+    const Eigen::Vector3d& b_camera = clipped.b_camera;
     const Eigen::Vector2d a_px = camera_.project(a_camera);
     const Eigen::Vector2d b_px = camera_.project(b_camera);
     const double length_px = (b_px - a_px).norm();
@@ -245,7 +271,8 @@ class LineSampler {
       if (run_start >= 0 && (i - 1 - run_start) * step_px >= options_.min_visible_length_px) {
         visible.push_back({line.id, line.kind, at(run_start), at(i - 1),
                            run_weight / (i - run_start), polarity_votes.side(),
-                           facade_side_votes.side()});
+                           facade_side_votes.side(), clipped.a_is_start && run_start == 0,
+                           clipped.b_is_end && i == samples});
       }
       run_start = -1;
       run_weight = 0.0;
@@ -342,10 +369,9 @@ std::vector<VisibleSegment> visibleSegments(const std::vector<ModelSegment>& lin
   parallelFor(chunks, options.threads, [&](int chunk) {
     const size_t end = std::min(lines.size(), (chunk + 1) * lines_per_chunk);
     for (size_t i = chunk * lines_per_chunk; i < end; ++i) {
-      Eigen::Vector3d a = T_camera_world * lines[i].start_world;
-      Eigen::Vector3d b = T_camera_world * lines[i].end_world;
-      if (clipTo(frustum, a, b)) {
-        sampler.appendVisiblePieces(lines[i], a, b, pieces[chunk]);
+      const std::optional<ClippedLine> clipped = clipLine(frustum, T_camera_world, lines[i]);
+      if (clipped) {
+        sampler.appendVisiblePieces(lines[i], *clipped, pieces[chunk]);
       }
     }
   });

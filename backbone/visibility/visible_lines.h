@@ -84,6 +84,10 @@ struct VisibleSegment {
   // The side, read the same way, that the line's own façade is on: +1 left,
   // -1 right, 0 both (a crease) or unknown.
   int facade_side = 0;
+  // The piece runs to its model line's own start (end): that vertex is inside
+  // the frustum and seen, not cut off by the frustum or by a face in front.
+  bool reaches_line_start = false;
+  bool reaches_line_end = false;
 };
 
 struct VisibilityOptions {

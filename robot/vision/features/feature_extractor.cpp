@@ -140,7 +140,9 @@ void FeatureExtractor::exportCorners() {
     const Eigen::Matrix2f J = undistortion_.jacobian(found.position);
     ImageCorner corner;
     corner.position = undistortion_.undistort(found.position);
-    corner.covariance = J * found.covariance * J.transpose();
+    // J C J^T, symmetric as a covariance is (float products round apart).
+    const Eigen::Matrix2f covariance = J * found.covariance * J.transpose();
+    corner.covariance = 0.5f * (covariance + covariance.transpose());
     corner.strength = found.weight;
     if (const Junction* junction = nearestJunction(corner.position)) {
       corner.position = junction->position.cast<float>();

@@ -48,6 +48,7 @@ struct Frame {
   cv::Mat image;
   Eigen::Isometry3d truth;
   std::vector<ImageSegment> segments;
+  std::vector<ImageCorner> corners;
 };
 
 // A simulated drive's frames, the Delft model in the same site frame and its
@@ -64,8 +65,11 @@ struct Drive {
     calibration = simulated.calibration;
     FeatureExtractor extractor(calibration);
     for (size_t i = 0; i < simulated.images.size(); ++i) {
-      Frame frame{cv::imread(simulated.images[i], cv::IMREAD_GRAYSCALE), simulated.truth[i], {}};
-      frame.segments = extractor.extract(frame.image).segments;
+      Frame frame{
+          cv::imread(simulated.images[i], cv::IMREAD_GRAYSCALE), simulated.truth[i], {}, {}};
+      FrameFeatures features = extractor.extract(frame.image);
+      frame.segments = std::move(features.segments);
+      frame.corners = std::move(features.corners);
       frames.push_back(std::move(frame));
     }
     fs::remove_all(folder);
@@ -119,7 +123,9 @@ void BM_LineSetEncoding(benchmark::State& state) {
   for (auto _ : state) {
     LineSetData data;
     data.camera = drive().calibration.camera;
-    data.segments = frameAt(iteration++).segments;
+    const Frame& frame = frameAt(iteration++);
+    data.segments = frame.segments;
+    data.corners = frame.corners;
     LineSetMessage message(data);
     benchmark::DoNotOptimize(fromMessage(message.message()));
   }
@@ -182,8 +188,9 @@ void localizeFrames(benchmark::State& state, double position_sigma_m, double rot
     const Frame& frame = frameAt(iteration++);
     const PoseWithCovariance prior =
         drive().predicted(frame, position_sigma_m, rotation_sigma_rad, random);
-    const Localization localization = localize(frame.segments, drive().model.lines, *drive().scene,
-                                               prior, drive().calibration.camera, options);
+    const Localization localization =
+        localize(frame.segments, frame.corners, drive().model.lines, *drive().scene, prior,
+                 drive().calibration.camera, options);
     ok += localization.alignment.status == AlignmentStatus::kOk ? 1 : 0;
     search_ms += localization.search ? toMilliseconds(localization.search->search_ns) : 0.0;
   }

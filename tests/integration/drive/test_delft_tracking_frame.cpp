@@ -151,7 +151,7 @@ LocalizedFrame localizeRecordedFrame(const std::string& name,
       readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt).model;
   const OcclusionScene scene(model.faces, model.face_building_ids);
   result.localization =
-      localize(frame.segments, model.lines, scene, frame.predicted, frame.camera, options);
+      localize(frame.segments, {}, model.lines, scene, frame.predicted, frame.camera, options);
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backbone/matching/line_matcher.h"
+#include "backbone/visibility/visible_corners.h"
 #include "backbone/visibility/visible_lines.h"
 #include "tests/support/pose_error.h"
 
@@ -105,6 +106,31 @@ inline Scene render(const Street& street, const OcclusionScene& occlusion, int c
     scene.image.push_back(observe(a, b, random));
   }
   return scene;
+}
+
+inline constexpr double kCornerSigmaPx = 0.5;
+
+// An image corner at `pixel`, as uncertain as the noise the street's corners
+// are seen with.
+inline ImageCorner cornerAt(const Eigen::Vector2d& pixel) {
+  ImageCorner corner;
+  corner.position = pixel.cast<float>();
+  corner.covariance = Eigen::Matrix2f::Identity() * kCornerSigmaPx * kCornerSigmaPx;
+  corner.strength = 100.0f;
+  return corner;
+}
+
+// The image corners of the model `corners` seen from the truth: the i-th at
+// the i-th's projection, with noise.
+inline std::vector<ImageCorner> observeCorners(const std::vector<VisibleCorner>& corners,
+                                               std::mt19937& random) {
+  std::normal_distribution<double> noise(0.0, kCornerSigmaPx);
+  std::vector<ImageCorner> image;
+  for (const VisibleCorner& corner : corners) {
+    const Eigen::Vector2d pixel = projectPoint(corner.p_world, truePose(), kCamera).pixel;
+    image.push_back(cornerAt(pixel + Eigen::Vector2d(noise(random), noise(random))));
+  }
+  return image;
 }
 
 inline PoseWithCovariance perturbedPrior(const PoseWithCovariance& truth, std::mt19937& random,

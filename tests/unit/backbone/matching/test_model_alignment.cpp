@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "backbone/matching/model_alignment.h"
+#include "backbone/visibility/visible_corners.h"
 #include "db/citymodel/line_extraction.h"
 #include "synthetic_street.h"
 
@@ -43,6 +44,77 @@ TEST(ModelAlignment, ClutterNotInTheModelDoesNotPullThePose) {
     const Alignment alignment = alignModel(scene.image, scene.visible, prior, kCamera, {});
     ASSERT_EQ(alignment.status, AlignmentStatus::kOk) << alignment.message;
     EXPECT_LT(normalizedErrorSquared(alignment.T_world_camera, truePose().pose), kChi2Six999);
+  }
+}
+
+// The scene's segments along the street (y) and one vertical edge, which
+// alone fixes the position along the street, a few decimetres at best.
+std::vector<ImageSegment> segmentsAlongTheStreet(const Scene& scene) {
+  std::vector<ImageSegment> kept;
+  bool vertical_kept = false;
+  for (size_t i = 0; i < scene.visible.size(); ++i) {
+    const VisibleSegment& piece = scene.visible[i];
+    const Eigen::Vector3d direction = (piece.end_world - piece.start_world).normalized();
+    const bool vertical = std::abs(direction.z()) > 0.98;
+    if (std::abs(direction.y()) > 0.98 || (vertical && !vertical_kept)) {
+      kept.push_back(scene.image[i]);
+      vertical_kept = vertical_kept || vertical;
+    }
+  }
+  return kept;
+}
+
+// Options under which that street's lines alone are ill-conditioned.
+AlignmentOptions alongTheStreetOptions() {
+  AlignmentOptions options;
+  options.max_position_sigma_m = 0.2;
+  return options;
+}
+
+TEST(ModelAlignment, CornersFixThePositionTheLinesLeaveOpen) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> u(0, 640), v(0, 480);
+  const AlignmentOptions options = alongTheStreetOptions();
+  for (int trial = 0; trial < 10; ++trial) {
+    Scene scene = render(street, occlusion, 0, random);
+    scene.image = segmentsAlongTheStreet(scene);
+    const std::vector<VisibleCorner> model_corners = visibleCorners(scene.visible, {});
+    std::vector<ImageCorner> image_corners = observeCorners(model_corners, random);
+    while (image_corners.size() < model_corners.size() * 10 / 7) {
+      image_corners.push_back(cornerAt({u(random), v(random)}));
+    }
+    const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.1, 0.003);
+    const Alignment lines_only = alignModel(scene.image, scene.visible, prior, kCamera, options);
+    ASSERT_EQ(lines_only.status, AlignmentStatus::kIllConditioned) << lines_only.message;
+    const Alignment alignment =
+        completeWithCorners(lines_only, {scene.image, image_corners, scene.visible, model_corners},
+                            prior, kCamera, options);
+    ASSERT_EQ(alignment.status, AlignmentStatus::kOk) << alignment.message;
+    EXPECT_LT(normalizedErrorSquared(alignment.T_world_camera, truePose().pose), kChi2Six999);
+  }
+}
+
+TEST(ModelAlignment, CornersLeaveAPoseTheLinesDetermineAlone) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(17);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Scene scene = render(street, occlusion, 0, random);
+    const std::vector<VisibleCorner> model_corners = visibleCorners(scene.visible, {});
+    // Every corner 3 px to the right of its vertex: matched, they would pull.
+    std::vector<ImageCorner> image_corners = observeCorners(model_corners, random);
+    for (ImageCorner& corner : image_corners) {
+      corner.position.x() += 3.0f;
+    }
+    const PoseWithCovariance prior = perturbedPrior(truePose(), random, 0.1, 0.003);
+    const Alignment lines_only = alignModel(scene.image, scene.visible, prior, kCamera, {});
+    ASSERT_EQ(lines_only.status, AlignmentStatus::kOk) << lines_only.message;
+    const Alignment alignment = completeWithCorners(
+        lines_only, {scene.image, image_corners, scene.visible, model_corners}, prior, kCamera, {});
+    EXPECT_TRUE(alignment.T_world_camera.pose.isApprox(lines_only.T_world_camera.pose));
+    EXPECT_EQ(alignment.inliers, lines_only.inliers);
   }
 }
 

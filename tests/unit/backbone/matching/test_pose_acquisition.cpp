@@ -164,7 +164,7 @@ TEST(PoseAcquisition, FaintSegmentsAreLeftToTracking) {
   const PoseWithCovariance trackable = perturbedPrior(truePose(), random, 0.03, 0.001);
   ASSERT_FALSE(needsAcquisition(trackable, options));
   const Localization tracked =
-      localize(scene.image, street.edges, occlusion, trackable, kCamera, options);
+      localize(scene.image, {}, street.edges, occlusion, trackable, kCamera, options);
   ASSERT_EQ(tracked.alignment.status, AlignmentStatus::kOk) << tracked.alignment.message;
   EXPECT_LT(normalizedErrorSquared(tracked.alignment.T_world_camera, truePose().pose), kChi2Six999);
 }

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <map>
 
+#include "backbone/visibility/visible_corners.h"
 #include "backbone/visibility/visible_lines.h"
+#include "db/citymodel/line_extraction.h"
 
 namespace lineloc {
 namespace {
@@ -325,6 +327,91 @@ TEST(Visibility, LinesWithoutFacesStayVisible) {
   const auto visible =
       visibleSegments(cube.edges, empty, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
   EXPECT_EQ(visible.size(), 12u);
+}
+
+// The corners' positions, sorted (x, then y, then z).
+std::vector<Eigen::Vector3d> cornerPoints(const std::vector<VisibleCorner>& corners) {
+  std::vector<Eigen::Vector3d> points;
+  for (const VisibleCorner& corner : corners) {
+    points.push_back(corner.p_world);
+  }
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return points;
+}
+
+// Head-on, the front wall's four edges run to its four vertices, where each
+// meets another at a right angle.
+TEST(VisibleCorners, HeadOnCubeShowsTheFrontWallsFourCorners) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene scene = sceneOf({&cube});
+  const auto visible =
+      visibleSegments(cube.edges, scene, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
+  for (const VisibleSegment& s : visible) {
+    EXPECT_TRUE(s.reaches_line_start && s.reaches_line_end) << s.model_line_id;
+  }
+  const std::vector<VisibleCorner> corners = visibleCorners(visible, {});
+  EXPECT_EQ(cornerPoints(corners),
+            (std::vector<Eigen::Vector3d>{{0, 0, 0}, {0, 0, 10}, {10, 0, 0}, {10, 0, 10}}));
+  for (const VisibleCorner& corner : corners) {
+    EXPECT_DOUBLE_EQ(corner.weight, 1.0);
+  }
+}
+
+// Behind the low wall of LowWallCutsTheVerticalsAtTheSightLine the verticals
+// end at the sight line and the foot is hidden: only the roof's two corners
+// are in view.
+TEST(VisibleCorners, AVertexBehindAFaceIsNoCorner) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  Box wall = makeBox(-20, -5.2, 30, -5, 4, 100);
+  const OcclusionScene scene = sceneOf({&cube, &wall});
+  const auto visible =
+      visibleSegments(cube.edges, scene, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
+  EXPECT_EQ(cornerPoints(visibleCorners(visible, {})),
+            (std::vector<Eigen::Vector3d>{{0, 0, 10}, {10, 0, 10}}));
+}
+
+// From (18, -12, 5) the cube's west wall (x = 0) lies left of the image, more
+// than the margin beyond it (u = 320 + 500 (x - 18) / (12 + y) < -400): the
+// front wall's roof and foot lines are cut there, and no corner is at x = 0.
+// Its east wall shows, and the vertices at x = 10 are corners.
+TEST(VisibleCorners, AVertexOutsideTheFrustumIsNoCorner) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const OcclusionScene scene = sceneOf({&cube});
+  const auto visible =
+      visibleSegments(cube.edges, scene, lookingNorth({18, -12, 5}, 0.01), kCamera, {});
+  const std::vector<Eigen::Vector3d> corners = cornerPoints(visibleCorners(visible, {}));
+  EXPECT_EQ(corners,
+            (std::vector<Eigen::Vector3d>{{10, 0, 0}, {10, 0, 10}, {10, 10, 0}, {10, 10, 10}}));
+}
+
+// Lines without faces: a roof line split in two at (5, 0, 10) runs on
+// straight there, no corner; it turns down a vertical at (10, 0, 10).
+TEST(VisibleCorners, ALineRunningOnIsNoCorner) {
+  const std::vector<ModelSegment> lines = {{0, 0, {0, 0, 10}, {5, 0, 10}},
+                                           {1, 0, {5, 0, 10}, {10, 0, 10}},
+                                           {2, 0, {10, 0, 0}, {10, 0, 10}}};
+  const OcclusionScene empty({}, {});
+  const auto visible = visibleSegments(lines, empty, lookingNorth({5, -20, 5}, 0.01), kCamera, {});
+  ASSERT_EQ(visible.size(), 3u);
+  EXPECT_EQ(cornerPoints(visibleCorners(visible, {})), (std::vector<Eigen::Vector3d>{{10, 0, 10}}));
+}
+
+// A ground line ending at a corner makes it a building's foot; the weight is
+// the least of the pieces meeting there. A piece cut short of its line's end
+// (the vertical's top, hidden) leaves the roof line alone at (0, 0, 10).
+TEST(VisibleCorners, TakesTheGroundAndTheLeastWeightOfItsLines) {
+  constexpr int kGround = static_cast<int>(citymodel::LineKind::kGround);
+  const std::vector<VisibleSegment> pieces = {
+      {0, kGround, {0, 0, 0}, {10, 0, 0}, 0.5, 0, 0, true, false},
+      {1, 0, {0, 0, 9}, {0, 0, 0}, 0.8, 0, 0, false, true},
+      {2, 0, {0, 0, 10}, {10, 0, 10}, 1.0, 0, 0, true, false}};
+  const std::vector<VisibleCorner> corners = visibleCorners(pieces, {});
+  ASSERT_EQ(corners.size(), 1u);
+  EXPECT_EQ(corners[0].p_world, Eigen::Vector3d(0, 0, 0));
+  EXPECT_TRUE(corners[0].on_ground);
+  EXPECT_DOUBLE_EQ(corners[0].weight, 0.5);
 }
 
 TEST(OcclusionScene, FirstSurfaceGivesThePlaneAndBuildingOfTheNearestFace) {

@@ -71,7 +71,8 @@
 // alone answer 96.9 %, but raised the position RMSE from 2.2 to 3.7 cm; in
 // every alignment the lines left open, the narrow first rounds included, 98.5 %
 // and 3.8 cm. Completing the answer only: 98.7 % OK, 2.3 cm, none beyond three
-// sigma.
+// sigma, with the alignment's position limit at 0.5 m; 99.6 % and 2.4 cm at
+// 0.75 m (max_position_sigma_m, model_alignment.h).
 //
 // The starts align without the façade-side cut (model_alignment.h), and only
 // the OK alignment answered takes its round, before its rivals widen it: a

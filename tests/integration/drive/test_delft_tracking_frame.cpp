@@ -215,12 +215,13 @@ TEST(DelftTrackingFrame, CornersTheSunLightsAlikeDoNotHoldAPredictionThatSlidBac
 }
 
 // The alignment these frames were recorded with (a wide loss, ground lines
-// as sure as the rest, no façade-side cut), under which they fail as
-// described; tracking's narrower loss answers both right (3 and 1 cm off),
+// as sure as the rest, no façade-side cut, a position sigma limit of 0.5 m),
+// under which they fail as described; tracking's narrower loss answers both right (3 and 1 cm off),
 // which the second half of each test checks.
 LocalizerOptions asRecorded() {
   LocalizerOptions options = sunlit();
   options.alignment.loss_scale_sigma = 2.0;
+  options.alignment.max_position_sigma_m = 0.5;
   options.alignment.ground_line_sigma_m = options.alignment.model_sigma_m;
   options.alignment.facade_side_cut_sigma = std::numeric_limits<double>::infinity();
   return options;

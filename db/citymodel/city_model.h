@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -34,8 +35,9 @@ struct Building {
   std::vector<Face> faces;
 };
 
-// Objects a reader or validator left out, counted by reason ("not a building
-// (Road)", "non-planar polygon"), with the first few full messages.
+// What a reader or validator left out or repaired, counted by reason ("not a
+// building (Road)", "non-planar polygon", "non-planar face triangulated"), with
+// the first few full messages.
 struct SkippedObjects {
   std::map<std::string, int> count_by_reason;
   std::vector<std::string> messages;
@@ -44,9 +46,15 @@ struct SkippedObjects {
   int total() const;
 };
 
+// One triangle of the terrain, counter-clockwise seen from above.
+using TerrainTriangle = std::array<Eigen::Vector3d, 3>;
+
 struct CityModel {
   std::optional<int> epsg;  // CRS named by the file, if any
   std::vector<Building> buildings;
+  // The ground the buildings stand on (CityJSON TINRelief), empty when the
+  // model has none.
+  std::vector<TerrainTriangle> terrain;
   SkippedObjects skipped;
 };
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "common/geometry/polygon_triangulation.h"
 #include "db/citymodel/polygon_geometry.h"
 
 namespace lineloc::citymodel {
@@ -165,7 +166,7 @@ class GeometryReader {
 
  private:
   static int nestingDepth(const std::string& type) {
-    if (type == "MultiSurface" || type == "CompositeSurface")
+    if (type == "MultiSurface" || type == "CompositeSurface" || type == "TIN")
       return 0;
     if (type == "Solid")
       return 1;
@@ -254,6 +255,49 @@ bool isBuilding(const std::string& type) {
   return type == "Building" || type == "BuildingPart";
 }
 
+// The triangles of a TINRelief's geometry of the highest level of detail,
+// each turned counter-clockwise seen from above; faces with more than three
+// vertices are triangulated, vertical ones carry no height and are left out.
+std::vector<TerrainTriangle> readTerrain(const Json& object,
+                                         const std::vector<Eigen::Vector3d>& vertices) {
+  const auto geometries = object.find("geometry");
+  if (geometries == object.end() || !geometries->is_array()) {
+    throw ObjectDefect{"malformed geometry", "'geometry' must be an array"};
+  }
+  const Json* highest = nullptr;
+  double highest_lod = -1.0;
+  for (const Json& geometry : *geometries) {
+    if (!geometry.is_object() || !geometry.contains("lod")) {
+      throw ObjectDefect{"malformed geometry", "a geometry must be an object with a 'lod'"};
+    }
+    const double lod = lodValue(lodName(geometry["lod"]));
+    if (highest == nullptr || lod > highest_lod) {
+      highest = &geometry;
+      highest_lod = lod;
+    }
+  }
+  std::vector<TerrainTriangle> triangles;
+  if (highest == nullptr) {
+    return triangles;
+  }
+  for (const Face& face : GeometryReader(vertices).read(*highest)) {
+    const std::vector<Eigen::Vector3d>& ring = face.rings.front();
+    for (const std::array<int, 3>& corners : triangulatePolygon(ring)) {
+      TerrainTriangle triangle{ring[corners[0]], ring[corners[1]], ring[corners[2]]};
+      const Eigen::Vector3d ab = triangle[1] - triangle[0];
+      const Eigen::Vector3d ac = triangle[2] - triangle[0];
+      const double up = ab.x() * ac.y() - ab.y() * ac.x();
+      if (up < 0.0) {
+        std::swap(triangle[1], triangle[2]);
+      }
+      if (up != 0.0) {
+        triangles.push_back(triangle);
+      }
+    }
+  }
+  return triangles;
+}
+
 ParsedObject parseObject(const std::string& id, const Json& object,
                          const std::vector<Eigen::Vector3d>& vertices) {
   ParsedObject parsed;
@@ -297,16 +341,28 @@ ParsedObject parseObject(const std::string& id, const Json& object,
   return parsed;
 }
 
-// Parses the CityObjects of one document or feature into `objects`; other
-// object types and invalid objects go to `skipped` (or throw, by policy).
+// Parses the CityObjects of one document or feature into `objects` and the
+// model's terrain; other object types and invalid objects go to its skipped
+// objects (or throw, by policy).
 void parseObjects(const Json& city_objects, const std::vector<Eigen::Vector3d>& vertices,
                   const std::string& source, const ReadOptions& options,
-                  std::vector<ParsedObject>& objects, SkippedObjects& skipped) {
+                  std::vector<ParsedObject>& objects, CityModel& model) {
+  SkippedObjects& skipped = model.skipped;
   if (!city_objects.is_object()) {
     throw ModelError(source, "", "malformed CityJSON", "'CityObjects' must be an object");
   }
   for (const auto& [id, object] : city_objects.items()) {
     const std::string type = object.is_object() ? object.value("type", "") : "";
+    if (type == "TINRelief") {
+      try {
+        const std::vector<TerrainTriangle> triangles = readTerrain(object, vertices);
+        model.terrain.insert(model.terrain.end(), triangles.begin(), triangles.end());
+      } catch (const ObjectDefect& defect) {
+        handleInvalidObject(ModelError(source, id, defect.reason, defect.detail),
+                            options.invalid_objects, skipped);
+      }
+      continue;
+    }
     if (!isBuilding(type)) {
       skipped.add(fmt::format("not a building ({})", type),
                   fmt::format("{}: object '{}': not a building ({})", source, id, type));
@@ -400,7 +456,7 @@ CityModel readDocument(std::string_view text, const std::string& source,
   }
   const std::vector<Eigen::Vector3d> points = readVertices(*vertices, transform, source);
   std::vector<ParsedObject> objects;
-  parseObjects(*city_objects, points, source, options, objects, model.skipped);
+  parseObjects(*city_objects, points, source, options, objects, model);
   return assemble(std::move(objects), source, options, std::move(model));
 }
 
@@ -439,7 +495,7 @@ CityModel readLines(std::string_view text, const std::string& source, const Read
       }
       const std::vector<Eigen::Vector3d> points =
           readVertices(feature["vertices"], *transform, feature_source);
-      parseObjects(feature["CityObjects"], points, feature_source, options, objects, model.skipped);
+      parseObjects(feature["CityObjects"], points, feature_source, options, objects, model);
     } catch (const ModelError& error) {
       handleInvalidObject(error, options.invalid_objects, model.skipped);
     }

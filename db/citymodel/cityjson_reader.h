@@ -2,8 +2,9 @@
 // streaming form: a first line with the metadata and `transform`, then one
 // CityJSONFeature per line with its own vertices). Reads Building and
 // BuildingPart objects at one level of detail, with their semantic surfaces
-// (faces without semantics get their kind from the normal); quantised
-// vertices are decoded as v = scale * i + translate (CityJSON §transform).
+// (faces without semantics get their kind from the normal), and the terrain
+// (TINRelief, CityJSON §TINRelief) as triangles; quantised vertices are
+// decoded as v = scale * i + translate (CityJSON §transform).
 #pragma once
 
 #include <string>

@@ -85,6 +85,17 @@ void CrsTransform::apply(CityModel& model, const std::string& source,
     }
   }
   model.buildings = std::move(transformed);
+  try {
+    for (TerrainTriangle& triangle : model.terrain) {
+      for (Eigen::Vector3d& point : triangle) {
+        point = apply(point);
+      }
+    }
+  } catch (const std::domain_error& error) {
+    handleInvalidObject(ModelError(source, "terrain", "outside the CRS", error.what()), policy,
+                        model.skipped);
+    model.terrain.clear();
+  }
 }
 
 }  // namespace lineloc::citymodel

@@ -24,8 +24,9 @@ class CrsTransform {
   // Throws std::domain_error when the point is outside the transformation's domain.
   Eigen::Vector3d apply(const Eigen::Vector3d& point) const;
 
-  // Transforms every vertex of every building; a building whose vertex cannot
-  // be transformed is an invalid object (ModelError naming `source` and it).
+  // Transforms every vertex of every building and of the terrain; a building
+  // whose vertex cannot be transformed is an invalid object (ModelError naming
+  // `source` and it), and so is the terrain as a whole.
   void apply(CityModel& model, const std::string& source, InvalidObjectPolicy policy) const;
 
  private:

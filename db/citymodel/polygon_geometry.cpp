@@ -29,6 +29,24 @@ int countDistinctVertices(const std::vector<Eigen::Vector3d>& ring) {
   return distinct;
 }
 
+// The largest distance of a vertex of any ring from the plane through the
+// exterior ring's centroid with its Newell normal.
+double planarityDeviation_m(const Face& face) {
+  const Eigen::Vector3d normal = newellNormal(face.rings.front()).normalized();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& vertex : face.rings.front()) {
+    centroid += vertex;
+  }
+  centroid /= static_cast<double>(face.rings.front().size());
+  double deviation_m = 0.0;
+  for (const auto& ring : face.rings) {
+    for (const Eigen::Vector3d& vertex : ring) {
+      deviation_m = std::max(deviation_m, std::abs(normal.dot(vertex - centroid)));
+    }
+  }
+  return deviation_m;
+}
+
 void validateFace(const Face& face, const FaceValidation& validation) {
   if (face.rings.empty()) {
     throw FaceDefect{"polygon without rings", ""};
@@ -48,21 +66,11 @@ void validateFace(const Face& face, const FaceValidation& validation) {
   if (!(area_m2 >= validation.min_area_m2)) {
     throw FaceDefect{"degenerate polygon", fmt::format("area {:.3g} m²", area_m2)};
   }
-  const Eigen::Vector3d normal = area_vector.normalized();
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& vertex : face.rings.front()) {
-    centroid += vertex;
-  }
-  centroid /= static_cast<double>(face.rings.front().size());
-  for (const auto& ring : face.rings) {
-    for (const Eigen::Vector3d& vertex : ring) {
-      const double distance_m = std::abs(normal.dot(vertex - centroid));
-      if (distance_m > validation.planarity_tolerance_m) {
-        throw FaceDefect{"non-planar polygon",
-                         fmt::format("a vertex is {:.3f} m off its plane, tolerance {} m",
-                                     distance_m, validation.planarity_tolerance_m)};
-      }
-    }
+  const double distance_m = planarityDeviation_m(face);
+  if (distance_m > validation.planarity_tolerance_m) {
+    throw FaceDefect{"non-planar polygon",
+                     fmt::format("a vertex is {:.3f} m off its plane, tolerance {} m", distance_m,
+                                 validation.planarity_tolerance_m)};
   }
 }
 
@@ -119,6 +127,36 @@ void dropDegenerateFaces(Building& building, const FaceValidation& validation,
     throw ModelError(source, building.id, "degenerate polygon", "every face is degenerate");
   }
   building.faces = std::move(kept);
+}
+
+void triangulateNonPlanarFaces(Building& building, const FaceValidation& validation,
+                               const std::string& source, SkippedObjects& skipped) {
+  std::vector<Face> repaired;
+  repaired.reserve(building.faces.size());
+  for (size_t index = 0; index < building.faces.size(); ++index) {
+    Face& face = building.faces[index];
+    if (planarityDeviation_m(face) <= validation.planarity_tolerance_m) {
+      repaired.push_back(std::move(face));
+      continue;
+    }
+    if (face.rings.size() > 1) {
+      skipped.add("non-planar face with holes dropped",
+                  fmt::format("{}: object '{}': face {} is non-planar and has holes, dropped",
+                              source, building.id, index));
+      continue;
+    }
+    const std::vector<Eigen::Vector3d>& ring = face.rings.front();
+    for (const std::array<int, 3>& corners : triangulatePolygon(ring)) {
+      Face triangle{face.kind, {{ring[corners[0]], ring[corners[1]], ring[corners[2]]}}};
+      if (!isDegenerate(triangle, validation)) {
+        repaired.push_back(std::move(triangle));
+      }
+    }
+    skipped.add("non-planar face triangulated",
+                fmt::format("{}: object '{}': face {} is non-planar ({:.3f} m), triangulated",
+                            source, building.id, index, planarityDeviation_m(face)));
+  }
+  building.faces = std::move(repaired);
 }
 
 void validateFaces(const std::vector<Face>& faces, const FaceValidation& validation,

@@ -36,6 +36,16 @@ bool isDegenerate(const Face& face, const FaceValidation& validation);
 void dropDegenerateFaces(Building& building, const FaceValidation& validation,
                          const std::string& source, SkippedObjects& skipped);
 
+// Replaces each face whose vertices lie farther than the planarity tolerance
+// from its plane (real models carry roofs and grounds bent by tens of
+// centimetres) by the triangles of its ear-clipping triangulation, which are
+// planar and keep its outline and kind; the line extraction drops the diagonals
+// between nearly coplanar triangles. A non-planar face with holes is dropped.
+// Each is recorded in `skipped` ("non-planar face triangulated" or "... dropped").
+// Call after dropDegenerateFaces.
+void triangulateNonPlanarFaces(Building& building, const FaceValidation& validation,
+                               const std::string& source, SkippedObjects& skipped);
+
 // Throws ModelError naming `source` and `object_id` when a face has a
 // non-finite coordinate, fewer than 3 distinct vertices, no area, or a vertex
 // farther than the tolerance from its plane.

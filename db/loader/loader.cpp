@@ -68,6 +68,7 @@ void validateAll(CityModel& model, const std::string& source, const LoadOptions&
   for (citymodel::Building& building : model.buildings) {
     try {
       citymodel::dropDegenerateFaces(building, options.validation, source, model.skipped);
+      citymodel::triangulateNonPlanarFaces(building, options.validation, source, model.skipped);
       citymodel::validateFaces(building.faces, options.validation, source, building.id);
       valid.push_back(std::move(building));
     } catch (const ModelError& error) {
@@ -165,6 +166,7 @@ LoadReport summarise(const std::string& source, const PreparedModel& prepared) {
   report.site_epsg = prepared.model.epsg.value_or(prepared.source_epsg);
   report.skipped = prepared.model.skipped;
   report.buildings = static_cast<int>(prepared.model.buildings.size());
+  report.terrain_triangles = static_cast<int>(prepared.model.terrain.size());
   for (const citymodel::Building& building : prepared.model.buildings) {
     if (report.lod.empty())
       report.lod = building.lod;

@@ -48,6 +48,7 @@ struct LoadReport {
   int buildings = 0;
   int faces = 0;
   int lines = 0;
+  int terrain_triangles = 0;
   citymodel::SkippedObjects skipped;
 };
 

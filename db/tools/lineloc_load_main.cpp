@@ -36,11 +36,12 @@ void showProgress(const std::string& source, size_t done, size_t total) {
 void printReport(const LoadReport& report, bool dry_run, double seconds) {
   const char* verb = dry_run ? "would load" : (report.unchanged ? "unchanged," : "loaded");
   std::cout << fmt::format(
-      "{}: {} {} buildings, {} faces, {} lines (LoD {}, EPSG:{} -> EPSG:{}) in {:.2f} s\n",
-      report.source, verb, report.buildings, report.faces, report.lines,
+      "{}: {} {} buildings, {} faces, {} lines, {} terrain triangles (LoD {}, EPSG:{} -> "
+      "EPSG:{}) in {:.2f} s\n",
+      report.source, verb, report.buildings, report.faces, report.lines, report.terrain_triangles,
       report.lod.empty() ? "-" : report.lod, report.source_epsg, report.site_epsg, seconds);
   for (const auto& [reason, count] : report.skipped.count_by_reason) {
-    std::cout << fmt::format("  skipped {} object(s): {}\n", count, reason);
+    std::cout << fmt::format("  {} x {}\n", count, reason);
   }
   for (const std::string& message : report.skipped.messages) {
     if (message.find("not a building") == std::string::npos) {

@@ -118,6 +118,46 @@ TEST(CityJsonReader, SkipInvalidCountsTheBadObjectAndKeepsTheRest) {
   EXPECT_EQ(model.skipped.count_by_reason.at("vertex index out of range"), 1);
 }
 
+TEST(CityJsonReader, ATinReliefIsReadAsTrianglesFacingUp) {
+  // Vertices 8-12 hold the terrain: a clockwise triangle (seen from above) and
+  // a quad, which becomes two triangles.
+  const std::string text = withReplaced(
+      withReplaced(
+          kOneCube, "\"CityObjects\":{",
+          R"("CityObjects":{"ground":{"type":"TINRelief","geometry":[{"type":"CompositeSurface","lod":"1","boundaries":[[[8,10,9]],[[8,9,11,12]]]}]},)"),
+      "[0,1,1]]", "[0,1,1],[0,0,0],[10,0,1],[0,10,2],[10,10,3],[0,-10,4]]");
+  const CityModel model = readCityJson(text, "terrain.json", {});
+  ASSERT_EQ(model.buildings.size(), 1u);
+  ASSERT_EQ(model.terrain.size(), 3u);
+  for (const TerrainTriangle& triangle : model.terrain) {
+    const Eigen::Vector3d ab = triangle[1] - triangle[0];
+    const Eigen::Vector3d ac = triangle[2] - triangle[0];
+    EXPECT_GT(ab.x() * ac.y() - ab.y() * ac.x(), 0.0) << "counter-clockwise seen from above";
+  }
+  EXPECT_EQ(model.terrain[0][0], Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(model.skipped.total(), 0);
+}
+
+TEST(CityJsonReader, DenHaagKeepsEveryBuildingAndItsWholeTerrain) {
+  const std::string name = "denhaag_01.city.json";
+  const std::string text = test::readSharedCityModel(name);
+  const CityModel model = readCityJson(text, name, {});
+  EXPECT_EQ(static_cast<int>(model.buildings.size()), test::countCityModel(name, "2").buildings);
+  // Independently: each TINRelief surface's exterior ring of n vertices holds
+  // n - 2 triangles.
+  const nlohmann::json document = nlohmann::json::parse(text);
+  size_t triangles = 0;
+  for (const auto& [id, object] : document["CityObjects"].items()) {
+    if (object["type"] == "TINRelief") {
+      for (const nlohmann::json& surface : object["geometry"][0]["boundaries"]) {
+        triangles += surface[0].size() - 2;
+      }
+    }
+  }
+  EXPECT_GT(triangles, 5000u);
+  EXPECT_EQ(model.terrain.size(), triangles);
+}
+
 TEST(WavefrontObjReader, ReadsObjectsWithOffsetAndRejectsBadIndices) {
   const std::string obj =
       "# a unit square wall and a roof triangle\n"

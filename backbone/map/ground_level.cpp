@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <vector>
 
 namespace lineloc {
+namespace {
 
-std::optional<double> groundLevel(const MapView& view) {
+std::optional<double> buildingFeetMedian(const MapView& view) {
   std::map<int64_t, double> lowest_by_building;
   for (const db::ModelFaceRecord& face : view.faces) {
     const auto entry =
@@ -30,6 +30,27 @@ std::optional<double> groundLevel(const MapView& view) {
   const auto median = lowest.begin() + static_cast<std::ptrdiff_t>(lowest.size() / 2);
   std::nth_element(lowest.begin(), median, lowest.end());
   return *median;
+}
+
+std::vector<TerrainSurface::Triangle> terrainTriangles(const MapView& view) {
+  std::vector<TerrainSurface::Triangle> triangles;
+  triangles.reserve(view.terrain.size());
+  for (const db::TerrainTriangleRecord& triangle : view.terrain) {
+    triangles.push_back(triangle.corners_world);
+  }
+  return triangles;
+}
+
+}  // namespace
+
+GroundLevel::GroundLevel(const MapView& view)
+    : terrain_(terrainTriangles(view)), building_feet_median_(buildingFeetMedian(view)) {}
+
+std::optional<double> GroundLevel::at(const Eigen::Vector2d& position_world) const {
+  if (const std::optional<double> height = terrain_.heightAt(position_world)) {
+    return height;
+  }
+  return building_feet_median_;
 }
 
 }  // namespace lineloc

@@ -100,6 +100,7 @@ std::shared_ptr<const MapView> MapTileCache::merged(
   auto view = std::make_shared<MapView>();
   std::set<int64_t> line_ids;
   std::set<int64_t> face_ids;
+  std::set<int64_t> terrain_ids;
   for (const auto& tile : tiles) {
     for (const db::ModelLine& line : tile->lines) {
       if (line_ids.insert(line.id).second)
@@ -108,6 +109,10 @@ std::shared_ptr<const MapView> MapTileCache::merged(
     for (const db::ModelFaceRecord& face : tile->faces) {
       if (face_ids.insert(face.id).second)
         view->faces.push_back(face);
+    }
+    for (const db::TerrainTriangleRecord& triangle : tile->terrain) {
+      if (terrain_ids.insert(triangle.id).second)
+        view->terrain.push_back(triangle);
     }
   }
   recent_views_.push_front({keys, {std::move(tiles), view}});

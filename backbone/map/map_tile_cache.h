@@ -1,4 +1,4 @@
-// The backbone's in-memory map: square tiles of model lines and faces, read
+// The backbone's in-memory map: square tiles of model lines, faces and terrain, read
 // from the database once and kept (least recently used first out), and loaded
 // ahead of the robots along their motion so that steady-state frames never wait
 // for the database (paper §3.1: latency-sensitive queries).
@@ -31,7 +31,8 @@ namespace lineloc {
 
 using MapTile = db::TileContents;
 
-// Everything near a position: each line and face once, even when it spans tiles.
+// Everything near a position: each line, face and terrain triangle once, even
+// when it spans tiles.
 using MapView = MapTile;
 
 // Loads the lines and faces whose 2D bounding box meets `bounds_world`.

@@ -136,11 +136,13 @@ PoseWithCovariance LineSetHandler::groundedPrior(const LineSetData& line_set,
                                                  const PreparedMap& map) const {
   PoseWithCovariance prior = line_set.predicted_T_world_camera;
   const double ground_variance = options_.ground_level_sigma_m * options_.ground_level_sigma_m;
-  if (line_set.camera_height_m <= 0.0 || !map.ground_level ||
+  const std::optional<double> ground_level =
+      map.ground_level.at(prior.pose.translation().head<2>());
+  if (line_set.camera_height_m <= 0.0 || !ground_level ||
       !(prior.covariance(2, 2) > ground_variance)) {
     return prior;
   }
-  prior.pose.translation().z() = *map.ground_level + line_set.camera_height_m;
+  prior.pose.translation().z() = *ground_level + line_set.camera_height_m;
   prior.covariance.row(2).setZero();
   prior.covariance.col(2).setZero();
   prior.covariance(2, 2) = ground_variance;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <utility>
 
-#include "backbone/map/ground_level.h"
 #include "backbone/service/map_geometry.h"
 #include "common/time/clock.h"
 
@@ -22,7 +21,7 @@ PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view, const Eigen::V
       centre_world(centre),
       segments(modelSegments(view->lines)),
       scene(occlusionScene(view->faces)),
-      ground_level(groundLevel(*view)) {}
+      ground_level(*view) {}
 
 PreparedMaps::PreparedMaps(MapTileCache& tiles, double query_radius_m, double reuse_distance_m,
                            ForegroundGate* gate)

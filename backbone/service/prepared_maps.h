@@ -1,6 +1,6 @@
 // What localization needs of the model near a robot (paper §3.1:
 // latency-sensitive queries): a map view's model segments, the ray-casting
-// scene of its faces and its ground level, built once per view on a thread
+// scene of its faces and its ground level (ground_level.h), built once per view on a thread
 // of its own, so that no frame waits for the database or for a scene to be
 // built. The tile cache hands out the same view object while its tiles stay
 // the same (map_tile_cache.h), so steady frames find theirs prepared. A frame
@@ -20,6 +20,7 @@
 #include <optional>
 #include <vector>
 
+#include "backbone/map/ground_level.h"
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/service/search_worker.h"
 #include "backbone/visibility/occlusion_scene.h"
@@ -35,7 +36,7 @@ struct PreparedMap {
   Eigen::Vector3d centre_world;
   std::vector<ModelSegment> segments;
   OcclusionScene scene;
-  std::optional<double> ground_level;
+  GroundLevel ground_level;
 };
 
 class PreparedMaps {

@@ -189,11 +189,12 @@ bool storeModel(Connection& connection, const LoadOptions& options, const Source
     const Site site = ensureSite(
         connection, options.site, srid,
         existing ? existing->origin : options.site_origin.value_or(defaultOrigin(prepared.model)));
-    const WriteSummary written = writeModel(connection, site, record, prepared.model.buildings,
-                                            prepared.lines, [&](size_t done) {
-                                              if (progress)
-                                                progress(done, total);
-                                            });
+    const WriteSummary written =
+        writeModel(connection, site, record, prepared.model.buildings, prepared.lines,
+                   prepared.model.terrain, [&](size_t done) {
+                     if (progress)
+                       progress(done, total);
+                   });
     unchanged = written.unchanged;
   });
   return !unchanged;

@@ -176,11 +176,27 @@ int copyLines(Connection& connection, const Site& site,
   return static_cast<int>(next_id);
 }
 
+int copyTerrain(Connection& connection, const Site& site, const SourceRecord& source,
+                const std::vector<citymodel::TerrainTriangle>& terrain) {
+  BinaryCopyIn copy(connection, "terrain_triangle (site_id, source, geom)");
+  for (const citymodel::TerrainTriangle& triangle : terrain) {
+    copy.beginRow(3);
+    copy.value<int32_t>(site.id);
+    copy.bytes(source.name);
+    copy.field([&](std::string& out) {
+      appendEwkbPolygonZ(out, site.srid, {{triangle[0], triangle[1], triangle[2]}});
+    });
+  }
+  copy.finish();
+  return static_cast<int>(terrain.size());
+}
+
 }  // namespace
 
 WriteSummary writeModel(Connection& connection, const Site& site, const SourceRecord& source,
                         const std::vector<Building>& buildings,
                         const std::vector<std::vector<ExtractedLine>>& lines,
+                        const std::vector<citymodel::TerrainTriangle>& terrain,
                         const std::function<void(size_t)>& progress) {
   connection.execParams("SELECT pg_advisory_xact_lock(hashtext($1))",
                         {fmt::format("lineloc-load {} {}", site.id, source.name)});
@@ -193,6 +209,8 @@ WriteSummary writeModel(Connection& connection, const Site& site, const SourceRe
   const std::string site_id = std::to_string(site.id);
   connection.execParams("DELETE FROM building WHERE site_id = $1 AND source = $2",
                         {site_id, source.name});
+  connection.execParams("DELETE FROM terrain_triangle WHERE site_id = $1 AND source = $2",
+                        {site_id, source.name});
   size_t line_count = 0;
   for (const auto& building_lines : lines) {
     line_count += building_lines.size();
@@ -204,14 +222,17 @@ WriteSummary writeModel(Connection& connection, const Site& site, const SourceRe
   summary.faces = copyFaces(connection, site, buildings, building_ids);
   copyLinePacks(connection, site, lines, building_ids, line_ids);
   summary.lines = copyLines(connection, site, lines, building_ids, line_ids, progress);
+  summary.terrain_triangles = copyTerrain(connection, site, source, terrain);
   summary.buildings = static_cast<int>(buildings.size());
   connection.execParams(
-      "INSERT INTO source_file (site_id, name, hash, options, buildings, faces, lines) "
-      "VALUES ($1, $2, $3, $4, $5, $6, $7) ON CONFLICT (site_id, name) DO UPDATE SET "
-      "hash = EXCLUDED.hash, options = EXCLUDED.options, buildings = EXCLUDED.buildings, "
-      "faces = EXCLUDED.faces, lines = EXCLUDED.lines, loaded_at = now()",
+      "INSERT INTO source_file (site_id, name, hash, options, buildings, faces, lines, "
+      "terrain_triangles) VALUES ($1, $2, $3, $4, $5, $6, $7, $8) ON CONFLICT (site_id, name) "
+      "DO UPDATE SET hash = EXCLUDED.hash, options = EXCLUDED.options, buildings = "
+      "EXCLUDED.buildings, faces = EXCLUDED.faces, lines = EXCLUDED.lines, terrain_triangles = "
+      "EXCLUDED.terrain_triangles, loaded_at = now()",
       {site_id, source.name, source.hash, source.options, std::to_string(summary.buildings),
-       std::to_string(summary.faces), std::to_string(summary.lines)});
+       std::to_string(summary.faces), std::to_string(summary.lines),
+       std::to_string(summary.terrain_triangles)});
   return summary;
 }
 

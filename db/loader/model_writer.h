@@ -1,6 +1,6 @@
-// Writes a validated city model with its extracted lines into a site, in the
-// caller's transaction: the source's previous buildings (and through them
-// their faces and lines) are replaced, never duplicated, and nothing is
+// Writes a validated city model with its extracted lines and its terrain into
+// a site, in the caller's transaction: the source's previous buildings (and
+// through them their faces and lines) and terrain are replaced, never duplicated, and nothing is
 // written when the same file was already loaded with the same options. Rows
 // go in through binary COPY (geometry as EWKB), building and line ids reserved
 // up front so faces, lines and each building's line pack (db/line_pack.h)
@@ -30,14 +30,17 @@ struct WriteSummary {
   int buildings = 0;
   int faces = 0;
   int lines = 0;
+  int terrain_triangles = 0;
 };
 
-// `lines[i]` are the lines of `buildings[i]`, in the site's CRS like the faces.
+// `lines[i]` are the lines of `buildings[i]`, in the site's CRS like the faces
+// and the `terrain`, which replaces the source's terrain triangles.
 // `progress(done)` is called as buildings are written. Must run inside a
 // transaction (see inTransaction) so a failure leaves the database as it was.
 WriteSummary writeModel(Connection& connection, const Site& site, const SourceRecord& source,
                         const std::vector<citymodel::Building>& buildings,
                         const std::vector<std::vector<citymodel::ExtractedLine>>& lines,
+                        const std::vector<citymodel::TerrainTriangle>& terrain,
                         const std::function<void(size_t)>& progress);
 
 }  // namespace lineloc::db

@@ -18,6 +18,16 @@ WHERE site_id = $1::int4
   AND geom && ST_MakeEnvelope($2::float8, $3::float8, $4::float8, $5::float8)
 )sql";
 
+constexpr const char* kTerrainStatement = "lineloc_tile_terrain";
+
+// $1 site, $2..$5 as above.
+constexpr const char* kTerrainSql = R"sql(
+SELECT id, geom
+FROM terrain_triangle
+WHERE site_id = $1::int4
+  AND geom && ST_MakeEnvelope($2::float8, $3::float8, $4::float8, $5::float8)
+)sql";
+
 std::string number(double value) {
   return fmt::format("{:.17g}", value);
 }
@@ -27,6 +37,7 @@ std::string number(double value) {
 MapTileQuery::MapTileQuery(Connection& connection, const Site& site)
     : connection_(connection), site_(site), lines_(connection, site) {
   connection_.prepareOnce(kFacesStatement, kFacesSql);
+  connection_.prepareOnce(kTerrainStatement, kTerrainSql);
 }
 
 TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
@@ -51,6 +62,19 @@ TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
       face.ring_world.push_back(closed[i] - site_.origin);
     }
     contents.faces.push_back(std::move(face));
+  }
+  const Result terrain = connection_.execPrepared(kTerrainStatement, params, true);
+  contents.terrain.reserve(static_cast<size_t>(terrain.rows()));
+  for (int row = 0; row < terrain.rows(); ++row) {
+    const auto rings = decodeEwkbZ(terrain.bytes(row, 1), terrain.length(row, 1));
+    if (!rings || rings->size() != 1 || rings->front().size() != 4) {
+      throw DatabaseError(
+          fmt::format("terrain triangle {} is not a triangle Z", terrain.binaryInt8(row, 0)));
+    }
+    const std::vector<Eigen::Vector3d>& closed = rings->front();
+    contents.terrain.push_back(
+        {terrain.binaryInt8(row, 0),
+         {closed[0] - site_.origin, closed[1] - site_.origin, closed[2] - site_.origin}});
   }
   return contents;
 }

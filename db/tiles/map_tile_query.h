@@ -1,10 +1,11 @@
 // The backbone's tile query: the model lines of every building whose box meets
 // a square of the ground plane (ModelLineQuery's line packs), and every face
-// whose bounding box meets it (2D GiST index, binary EWKB), decoded into
-// world-frame (site CRS minus origin) Eigen values.
+// and terrain triangle whose bounding box meets it (2D GiST indexes, binary
+// EWKB), decoded into world-frame (site CRS minus origin) Eigen values.
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <vector>
 
 #include "db/connection.h"
@@ -21,9 +22,17 @@ struct ModelFaceRecord {
   std::vector<Eigen::Vector3d> ring_world;
 };
 
+// One triangle of the terrain, counter-clockwise seen from above.
+struct TerrainTriangleRecord {
+  int64_t id = 0;
+  std::array<Eigen::Vector3d, 3> corners_world;
+};
+
 struct TileContents {
   std::vector<ModelLine> lines;
   std::vector<ModelFaceRecord> faces;
+  // Empty where the model has no terrain.
+  std::vector<TerrainTriangleRecord> terrain;
 };
 
 class MapTileQuery {
@@ -32,7 +41,7 @@ class MapTileQuery {
   // outlive this object.
   MapTileQuery(Connection& connection, const Site& site);
 
-  // Lines and faces whose bounding box meets `bounds_world` (x, y; any height).
+  // Lines, faces and terrain triangles whose bounding box meets `bounds_world` (x, y; any height).
   TileContents within(const Eigen::AlignedBox2d& bounds_world);
 
  private:

@@ -16,6 +16,7 @@
 #include "db/loader/loader.h"
 #include "db/model_line_query.h"
 #include "db/site.h"
+#include "db/tiles/map_tile_query.h"
 #include "tests/support/test_database.h"
 #include "tests/unit/db/independent_counts.h"
 
@@ -74,6 +75,47 @@ TEST(Loader, AllFiveSharedFilesLoadWithTheirIndependentCounts) {
   // BuildingParts point at their Building: DH_01 has 8 parts, the 3D BAG file 1.
   EXPECT_EQ(count(connection, "SELECT count(*) FROM building WHERE parent_id IS NOT NULL"), 9);
   EXPECT_EQ(count(connection, "SELECT count(*) FROM source_file"), 5);
+}
+
+TEST(Loader, DenHaagLoadsWholeWithItsTerrainWithoutSkippingAnything) {
+  test::TestDatabase database("loader_denhaag");
+  Connection connection(database.conninfo());
+  LoadOptions options;
+  options.site = "denhaag";
+  const std::string name = "denhaag_01.city.json";
+  const LoadReport report =
+      loadFile(test::sharedCityModelPath(name), options, &connection, nullptr);
+  EXPECT_EQ(report.buildings, test::countCityModel(name, "2").buildings);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM building"), report.buildings);
+  EXPECT_GT(report.skipped.count_by_reason.at("non-planar face triangulated"), 0);
+  EXPECT_EQ(report.skipped.count_by_reason.count("non-planar polygon"), 0u);
+  EXPECT_GT(report.terrain_triangles, 5000);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM terrain_triangle"), report.terrain_triangles);
+  EXPECT_EQ(count(connection, "SELECT terrain_triangles FROM source_file"),
+            report.terrain_triangles);
+
+  // The tile query hands the triangles under a square back in the world frame,
+  // each one whose ground projection meets it.
+  const Site site = *findSite(connection, "denhaag");
+  MapTileQuery query(connection, site);
+  const Eigen::AlignedBox2d square(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20));
+  const TileContents tile = query.within(square);
+  ASSERT_FALSE(tile.terrain.empty());
+  for (const TerrainTriangleRecord& triangle : tile.terrain) {
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector3d& corner : triangle.corners_world) {
+      box.extend(corner.head<2>());
+      EXPECT_GT(corner.z() + site.origin.z(), 2.0) << "NAP heights of the Den Haag terrain";
+      EXPECT_LT(corner.z() + site.origin.z(), 16.5);
+    }
+    EXPECT_TRUE(box.intersects(square));
+  }
+
+  // Reloading a changed version replaces the terrain, never adds to it.
+  LoadOptions tighter = options;
+  tighter.validation.planarity_tolerance_m = 0.04;
+  loadFile(test::sharedCityModelPath(name), tighter, &connection, nullptr);
+  EXPECT_EQ(count(connection, "SELECT count(*) FROM terrain_triangle"), report.terrain_triangles);
 }
 
 TEST(Loader, ReloadingTheSameFileChangesNothing) {

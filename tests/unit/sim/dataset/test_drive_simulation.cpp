@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -164,6 +165,34 @@ TEST(DriveSimulation, SameSeedSameBytes) {
     }
   }
   EXPECT_GT(files, 10);
+}
+
+// FNV-1a (64 bit) of the pixel bytes of every image of a dataset, in stamp order.
+uint64_t imageFingerprint(const fs::path& root) {
+  std::vector<fs::path> images;
+  for (const auto& entry : fs::directory_iterator(root / "cam0" / "data")) {
+    images.push_back(entry.path());
+  }
+  std::sort(images.begin(), images.end());
+  uint64_t hash = 14'695'981'039'346'656'037ull;
+  for (const fs::path& path : images) {
+    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    for (int v = 0; v < image.rows; ++v) {
+      for (int u = 0; u < image.cols; ++u) {
+        hash = (hash ^ image.at<uint8_t>(v, u)) * 1'099'511'628'211ull;
+      }
+    }
+  }
+  return hash;
+}
+
+// The ideal camera's images of this drive are the renderer's 255 x radiance
+// plus Gaussian noise of noise_sigma, bytes that the fingerprint pins.
+TEST(DriveSimulation, IdealCameraKeepsTheRenderersImages) {
+  DriveSimulationConfig config = shortDelftDrive("ideal");
+  config.duration_s = 1.0;
+  simulateDrive(config);
+  EXPECT_EQ(imageFingerprint(config.output), 12'589'182'321'637'302'390ull);
 }
 
 TEST(DriveSimulation, MissingCityModelIsNamed) {

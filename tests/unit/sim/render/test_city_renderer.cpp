@@ -9,6 +9,7 @@
 
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
+#include "tests/unit/sim/render/quarter_camera.h"
 
 namespace lineloc {
 namespace {
@@ -58,15 +59,6 @@ SceneMesh meshOf(const Box& box) {
   SceneMesh mesh;
   mesh.addBox(box.T_world_box, box.half_size, SurfaceTag{SurfaceKind::kWall, 1, 0.2f, 3.8f});
   return mesh;
-}
-
-// The sample camera at a quarter of its resolution (160x120): the same lens,
-// 16 times fewer rays, for the tests that do not measure geometry.
-CameraCalibration quarterCamera() {
-  CameraCalibration calibration = opencvSampleCamera();
-  PinholeCamera& camera = calibration.camera;
-  camera = {camera.fx / 4, camera.fy / 4, camera.cx / 4, camera.cy / 4, 0.0, 160, 120};
-  return calibration;
 }
 
 RenderOptions noiselessOptions() {

@@ -191,6 +191,7 @@ uint64_t imageFingerprint(const fs::path& root) {
 TEST(DriveSimulation, IdealCameraKeepsTheRenderersImages) {
   DriveSimulationConfig config = shortDelftDrive("ideal");
   config.duration_s = 1.0;
+  config.ideal_camera = true;
   simulateDrive(config);
   EXPECT_EQ(imageFingerprint(config.output), 12'589'182'321'637'302'390ull);
 }

@@ -92,7 +92,8 @@ struct DriveSimulationSummary {
   double render_cpu_s = 0.0;
 };
 
-// Throws std::runtime_error naming the input that is missing or malformed.
+// Throws std::runtime_error naming the input that is missing or malformed,
+// std::invalid_argument naming a camera option out of its range.
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config);
 
 // The sun the drive's images are rendered under, given by its azimuth and

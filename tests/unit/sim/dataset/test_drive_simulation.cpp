@@ -196,6 +196,57 @@ TEST(DriveSimulation, IdealCameraKeepsTheRenderersImages) {
   EXPECT_EQ(imageFingerprint(config.output), 12'589'182'321'637'302'390ull);
 }
 
+TEST(DriveSimulation, TheRealisticCameraExposesEachFrameUnderAutoExposure) {
+  DriveSimulationConfig config = shortDelftDrive("realistic");
+  config.duration_s = 1.0;
+  simulateDrive(config);
+  const fs::path root(config.output);
+  std::istringstream rows(readAll(root / "cam0" / "exposure.csv"));
+  std::string row;
+  std::getline(rows, row);
+  EXPECT_EQ(row, "#timestamp [ns],exposure_time [s],gain [dB]");
+  int frames = 0;
+  while (std::getline(rows, row)) {
+    ++frames;
+    std::istringstream fields(row);
+    std::string stamp;
+    std::string exposure_time_s;
+    std::string gain_db;
+    std::getline(fields, stamp, ',');
+    std::getline(fields, exposure_time_s, ',');
+    std::getline(fields, gain_db);
+    EXPECT_GE(std::stod(exposure_time_s), config.auto_exposure.min_exposure_time_s) << row;
+    EXPECT_LE(std::stod(exposure_time_s), config.auto_exposure.max_exposure_time_s) << row;
+    EXPECT_GE(std::stod(gain_db), 0.0) << row;
+    // Auto-exposure settled on the first view and meters the noise-free
+    // render at the stamp: the image's mean is within the deadband, give or
+    // take what blur and noise move it (well under 1 DN over 307,200 pixels).
+    const cv::Mat image =
+        cv::imread((root / "cam0" / "data" / (stamp + ".png")).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(image.empty()) << stamp;
+    EXPECT_NEAR(cv::mean(image)[0], config.auto_exposure.target_mean_dn,
+                config.auto_exposure.tolerance * config.auto_exposure.target_mean_dn + 1.0)
+        << row;
+  }
+  EXPECT_EQ(frames, 3);
+}
+
+TEST(DriveSimulation, InvalidCameraOptionsAreNamed) {
+  DriveSimulationConfig config = shortDelftDrive("bad_sensor");
+  config.sensor.read_noise_e = -2.0;
+  try {
+    simulateDrive(config);
+    FAIL();
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("read_noise_e must be >= 0 (got -2)"),
+              std::string::npos)
+        << error.what();
+  }
+  config = shortDelftDrive("bad_auto_exposure");
+  config.auto_exposure.max_gain_db = -6.0;
+  EXPECT_THROW(simulateDrive(config), std::invalid_argument);
+}
+
 TEST(DriveSimulation, MissingCityModelIsNamed) {
   DriveSimulationConfig config = shortDelftDrive("missing");
   config.city_model = "no_such_city.json";

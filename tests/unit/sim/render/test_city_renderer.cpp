@@ -216,6 +216,22 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
 }
 
+TEST(CityRenderer, AnExposureTakesItsHalfwayRenderWhenGivenIt) {
+  RenderOptions options = noiselessOptions();
+  options.motion_blur_samples = 3;
+  const CityRenderer renderer(meshOf(rotatedBox()), quarterCamera(), options);
+  const Eigen::Isometry3d open = forwardLookingCamera(0.1);
+  const Eigen::Isometry3d close = forwardLookingCamera(0.14);
+  const cv::Mat centre = renderer.renderRadiance(forwardLookingCamera(0.12));
+  EXPECT_EQ(cv::norm(renderer.renderExposureRadiance(open, close, centre),
+                     renderer.renderExposureRadiance(open, close), cv::NORM_INF),
+            0.0);
+  // The given render is used, not a new one.
+  EXPECT_GT(cv::norm(renderer.renderExposureRadiance(open, close, cv::Mat(0.0f * centre)),
+                     renderer.renderExposureRadiance(open, close), cv::NORM_INF),
+            0.0);
+}
+
 // What a pixel on a wall's vertical edge sees beside the wall: each is an edge
 // by another clause of the edge rule.
 enum class BesideTheEdge {

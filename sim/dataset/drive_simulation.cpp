@@ -266,12 +266,6 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   const auto cameraPose = [&](int64_t stamp_ns) {
     return bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera;
   };
-  // The radiance over the exposure of `exposure_time_s` around image i's stamp.
-  const auto exposureRadiance = [&](size_t i, double exposure_time_s, const cv::Mat& centre) {
-    const int64_t half_exposure_ns = seconds_to_ns(0.5 * exposure_time_s);
-    return renderer.renderExposureRadiance(cameraPose(stamps_ns[i] - half_exposure_ns),
-                                           cameraPose(stamps_ns[i] + half_exposure_ns), centre);
-  };
   // Image i's noise is drawn from seed * 1000003 + i, so the bytes do not
   // depend on how many frames render at once.
   const auto noiseSeed = [&](size_t i) {
@@ -308,11 +302,11 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
       const std::vector<cv::Mat> centres = inParallel(
           first, count, [&](size_t i) { return renderer.renderRadiance(cameraPose(stamps_ns[i])); },
           summary.render_cpu_s);
+      for (int metering = 0; first == 0 && metering < kSettlingMeterings; ++metering) {
+        auto_exposure->update(sensor->meanSignal_dn(centres.front(), auto_exposure->settings()));
+      }
       std::vector<ExposureSettings> settings;
       for (size_t k = 0; k < count; ++k) {
-        for (int metering = 0; first + k == 0 && metering < kSettlingMeterings; ++metering) {
-          auto_exposure->update(sensor->meanSignal_dn(centres[k], auto_exposure->settings()));
-        }
         settings.push_back(auto_exposure->settings());
         auto_exposure->update(sensor->meanSignal_dn(centres[k], settings.back()));
       }
@@ -320,8 +314,11 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
           first, count,
           [&](size_t i) {
             const ExposureSettings& frame = settings[i - first];
-            return sensor->expose(exposureRadiance(i, frame.exposure_time_s, centres[i - first]),
-                                  frame, noiseSeed(i));
+            const int64_t half_exposure_ns = seconds_to_ns(0.5 * frame.exposure_time_s);
+            const cv::Mat radiance = renderer.renderExposureRadiance(
+                cameraPose(stamps_ns[i] - half_exposure_ns),
+                cameraPose(stamps_ns[i] + half_exposure_ns), centres[i - first]);
+            return sensor->expose(radiance, frame, noiseSeed(i));
           },
           summary.render_cpu_s);
       for (size_t k = 0; k < count; ++k) {

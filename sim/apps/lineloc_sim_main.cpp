@@ -48,10 +48,29 @@ int main(int argc, char** argv) {
               "camera clock minus true time (s)");
   options.add("imu_time_offset_s", config.imu_time_offset_s, "IMU clock minus true time (s)");
   options.add("shadows", config.shadows, "cast sun shadows");
-  options.add("noise_sigma", config.noise_sigma, "image sensor noise (grey levels)");
   options.add("motion_blur_samples", config.motion_blur_samples,
-              "renders averaged over the exposure (1: no motion blur)");
-  options.add("exposure_time_s", config.exposure_time_s, "exposure time for motion blur (s)");
+              fmt::format("renders averaged over each frame's exposure (1: no motion blur; 0: {} "
+                          "with the realistic camera, 1 with the ideal one)",
+                          lineloc::kRealisticMotionBlurSamples));
+  options.addFlag("ideal_camera", config.ideal_camera,
+                  "ideal camera: 255 x radiance plus flat Gaussian noise, a fixed exposure time, "
+                  "no vignetting (default: a CMOS sensor under auto-exposure)");
+  options.add("full_well_e", config.sensor.full_well_e, "sensor's saturation capacity (e-)");
+  options.add("read_noise_e", config.sensor.read_noise_e, "sensor's temporal dark noise (e-)");
+  options.add("saturation_exposure_time_s", config.sensor.saturation_exposure_time_s,
+              "exposure time in which a white surface in full sun fills the well (s)");
+  options.add("target_mean_dn", config.auto_exposure.target_mean_dn,
+              "mean grey level auto-exposure steers to (DN)");
+  options.add("auto_exposure_tolerance", config.auto_exposure.tolerance,
+              "auto-exposure's deadband around the target (fraction)");
+  options.add("auto_exposure_damping", config.auto_exposure.damping,
+              "fraction of the log error auto-exposure corrects per frame, 0..1");
+  options.add("max_exposure_time_s", config.auto_exposure.max_exposure_time_s,
+              "auto-exposure's longest exposure time, the frame period at most (s)");
+  options.add("max_gain_db", config.auto_exposure.max_gain_db,
+              "auto-exposure's highest analogue gain (dB)");
+  options.add("noise_sigma", config.noise_sigma, "ideal camera's noise (grey levels)");
+  options.add("exposure_time_s", config.exposure_time_s, "ideal camera's exposure time (s)");
   options.add("edge_pixel_samples", config.edge_pixel_samples,
               "rays averaged over each pixel a geometric edge crosses (1: one per pixel)");
   options.add("sun_azimuth_deg", config.sun_azimuth_deg, "sun bearing from grid north (deg)");

@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "common/geodesy/site_projection.h"
@@ -29,10 +30,9 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-struct RenderedFrame {
-  cv::Mat image;
-  double cpu_s = 0.0;
-};
+// Auto-exposure meets the first frame already settled on it, as a camera
+// switched on before the drive: at most this many meterings of it.
+constexpr int kSettlingMeterings = 64;
 
 double threadCpuSeconds() {
   return 1e-9 * static_cast<double>(threadCpuClockNs());
@@ -65,6 +65,28 @@ Eigen::Isometry3d bodyPose(const sim::TruthSample& sample) {
   return T_world_body;
 }
 
+// f(i) for i in [first, first + count), one thread each; adds the thread CPU
+// time they spent to cpu_s.
+template <typename F>
+auto inParallel(size_t first, size_t count, const F& f, double& cpu_s) {
+  using Result = decltype(f(first));
+  std::vector<std::future<std::pair<Result, double>>> running;
+  for (size_t i = first; i < first + count; ++i) {
+    running.push_back(std::async(std::launch::async, [&f, i] {
+      const double start_s = threadCpuSeconds();
+      Result result = f(i);
+      return std::pair{std::move(result), threadCpuSeconds() - start_s};
+    }));
+  }
+  std::vector<Result> results;
+  for (auto& result : running) {
+    auto [value, thread_cpu_s] = result.get();
+    results.push_back(std::move(value));
+    cpu_s += thread_cpu_s;
+  }
+  return results;
+}
+
 RenderOptions renderOptions(const DriveSimulationConfig& config, const Sunlight& sun,
                             double ground_z_m) {
   RenderOptions options;
@@ -73,7 +95,9 @@ RenderOptions renderOptions(const DriveSimulationConfig& config, const Sunlight&
   options.ground_z_m = static_cast<float>(ground_z_m);
   options.shadows = config.shadows;
   options.noise_sigma = static_cast<float>(config.noise_sigma);
-  options.motion_blur_samples = config.motion_blur_samples;
+  options.motion_blur_samples = config.motion_blur_samples != 0 ? config.motion_blur_samples
+                                : config.ideal_camera           ? 1
+                                                                : kRealisticMotionBlurSamples;
   options.edge_pixel_samples = config.edge_pixel_samples;
   return options;
 }
@@ -233,40 +257,79 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
 
   const CityRenderer renderer(scene, calibration, renderOptions(config, sun, city.ground_z_m));
   const int64_t period_ns = seconds_to_ns(1.0 / config.camera_rate_hz);
-  const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
   const int64_t camera_offset_ns = seconds_to_ns(config.camera_time_offset_s);
   std::vector<int64_t> stamps_ns;
   for (int64_t stamp_ns = trajectory.startStamp_ns(); stamp_ns <= trajectory.endStamp_ns();
        stamp_ns += period_ns) {
     stamps_ns.push_back(stamp_ns);
   }
-  // Image i, its CPU time and its noise drawn from seed * 1000003 + i, so
-  // the bytes do not depend on how many frames render at once.
-  const auto renderFrame = [&](size_t i) {
-    const double start_s = threadCpuSeconds();
-    const int64_t stamp_ns = stamps_ns[i];
-    RenderedFrame frame;
-    frame.image = renderer.renderImage(
-        bodyPose(trajectory.at(stamp_ns - half_exposure_ns)) * spec.T_body_camera,
-        bodyPose(trajectory.at(stamp_ns + half_exposure_ns)) * spec.T_body_camera,
-        config.seed * 1'000'003 + static_cast<uint64_t>(i));
-    frame.cpu_s = threadCpuSeconds() - start_s;
-    return frame;
+  const auto cameraPose = [&](int64_t stamp_ns) {
+    return bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera;
   };
-  // Frames render one per core at a time and are written in order.
+  // Image i's noise is drawn from seed * 1000003 + i, so the bytes do not
+  // depend on how many frames render at once.
+  const auto noiseSeed = [&](size_t i) {
+    return config.seed * 1'000'003 + static_cast<uint64_t>(i);
+  };
+  const auto renderIdeal = [&](size_t i) {
+    const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
+    return renderer.renderImage(cameraPose(stamps_ns[i] - half_exposure_ns),
+                                cameraPose(stamps_ns[i] + half_exposure_ns), noiseSeed(i));
+  };
+  std::optional<CameraSensor> sensor;
+  std::optional<AutoExposure> auto_exposure;
+  std::ofstream exposures;
+  if (!config.ideal_camera) {
+    sensor.emplace(renderer.rays(), config.sensor);
+    AutoExposureOptions options = config.auto_exposure;
+    options.max_exposure_time_s =
+        std::min(options.max_exposure_time_s, 1.0 / config.camera_rate_hz);
+    auto_exposure.emplace(options, ExposureSettings{options.max_exposure_time_s, 0.0});
+    exposures.open(std::filesystem::path(config.output) / "cam0" / "exposure.csv");
+    exposures << "#timestamp [ns],exposure_time [s],gain [dB]\n";
+  }
+  // Frames render one per core at a time and are written in order. The
+  // realistic camera's auto-exposure meters each frame, in order, by the
+  // noise-free mean DN of its render at the stamp; the exposure it sets then
+  // fixes the frame's motion blur and noise.
   const size_t cores = std::max(1u, std::thread::hardware_concurrency());
   for (size_t first = 0; first < stamps_ns.size(); first += cores) {
-    std::vector<std::future<RenderedFrame>> batch;
-    for (size_t i = first; i < std::min(first + cores, stamps_ns.size()); ++i) {
-      batch.push_back(std::async(std::launch::async, renderFrame, i));
+    const size_t count = std::min(cores, stamps_ns.size() - first);
+    std::vector<cv::Mat> images;
+    if (config.ideal_camera) {
+      images = inParallel(first, count, renderIdeal, summary.render_cpu_s);
+    } else {
+      const std::vector<cv::Mat> centres = inParallel(
+          first, count, [&](size_t i) { return renderer.renderRadiance(cameraPose(stamps_ns[i])); },
+          summary.render_cpu_s);
+      for (int metering = 0; first == 0 && metering < kSettlingMeterings; ++metering) {
+        auto_exposure->update(sensor->meanSignal_dn(centres.front(), auto_exposure->settings()));
+      }
+      std::vector<ExposureSettings> settings;
+      for (size_t k = 0; k < count; ++k) {
+        settings.push_back(auto_exposure->settings());
+        auto_exposure->update(sensor->meanSignal_dn(centres[k], settings.back()));
+      }
+      images = inParallel(
+          first, count,
+          [&](size_t i) {
+            const ExposureSettings& frame = settings[i - first];
+            const int64_t half_exposure_ns = seconds_to_ns(0.5 * frame.exposure_time_s);
+            const cv::Mat radiance = renderer.renderExposureRadiance(
+                cameraPose(stamps_ns[i] - half_exposure_ns),
+                cameraPose(stamps_ns[i] + half_exposure_ns), centres[i - first]);
+            return sensor->expose(radiance, frame, noiseSeed(i));
+          },
+          summary.render_cpu_s);
+      for (size_t k = 0; k < count; ++k) {
+        exposures << fmt::format("{},{:.6e},{:.3f}\n", stamps_ns[first + k] + camera_offset_ns,
+                                 settings[k].exposure_time_s, settings[k].gain_db);
+      }
     }
-    for (std::future<RenderedFrame>& rendered : batch) {
-      const RenderedFrame frame = rendered.get();
+    for (const cv::Mat& image : images) {
       const int64_t stamp_ns = stamps_ns[summary.images];
-      summary.render_cpu_s += frame.cpu_s;
-      writer.writeImage(stamp_ns + camera_offset_ns, frame.image);
-      writer.writeCameraGroundTruth(
-          {stamp_ns, bodyPose(trajectory.at(stamp_ns)) * spec.T_body_camera});
+      writer.writeImage(stamp_ns + camera_offset_ns, image);
+      writer.writeCameraGroundTruth({stamp_ns, cameraPose(stamp_ns)});
       if (++summary.images % 200 == 0) {
         spdlog::info("{} images rendered", summary.images);
       }

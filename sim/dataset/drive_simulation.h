@@ -13,6 +13,8 @@
 
 #include "common/geodesy/site_sun.h"
 #include "common/geometry/sunlight.h"
+#include "sim/render/auto_exposure.h"
+#include "sim/render/camera_sensor.h"
 #include "sim/render/city_renderer.h"
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
@@ -20,6 +22,12 @@
 #include "sim/world/street_route.h"
 
 namespace lineloc {
+
+// The realistic camera's renders per exposure: in its exposure of at most
+// 2 ms the image moves about a pixel (2 m/s past a façade 2 m away at
+// f = 536 px), which three renders spread; an odd count includes the halfway
+// render that auto-exposure meters.
+inline constexpr int kRealisticMotionBlurSamples = 3;
 
 struct DriveSimulationConfig {
   std::string city_model;
@@ -48,9 +56,18 @@ struct DriveSimulationConfig {
   double imu_time_offset_s = 0.0;
   // Render options.
   bool shadows = true;
-  double noise_sigma = 2.0;
-  int motion_blur_samples = 1;
   int edge_pixel_samples = RenderOptions{}.edge_pixel_samples;
+  // Renders averaged over each frame's exposure; 0: kRealisticMotionBlurSamples
+  // with the realistic camera, 1 (no blur) with the ideal one.
+  int motion_blur_samples = 0;
+  // The realistic camera (CameraSensor under AutoExposure; its exposure time
+  // capped by the frame period too), or the ideal one: 255 x radiance plus
+  // Gaussian noise of noise_sigma grey levels, a fixed exposure_time_s, no
+  // vignetting.
+  bool ideal_camera = false;
+  CameraSensorOptions sensor;
+  AutoExposureOptions auto_exposure;
+  double noise_sigma = 2.0;
   double exposure_time_s = 0.008;
   double sun_azimuth_deg = 135.0;  // clockwise from grid north
   double sun_elevation_deg = 40.0;
@@ -75,7 +92,8 @@ struct DriveSimulationSummary {
   double render_cpu_s = 0.0;
 };
 
-// Throws std::runtime_error naming the input that is missing or malformed.
+// Throws std::runtime_error naming the input that is missing or malformed,
+// std::invalid_argument naming a camera option out of its range.
 DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config);
 
 // The sun the drive's images are rendered under, given by its azimuth and

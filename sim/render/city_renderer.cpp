@@ -318,21 +318,31 @@ cv::Mat CityRenderer::renderRadiance(const Eigen::Isometry3d& T_world_camera) co
   return radiance;
 }
 
+cv::Mat CityRenderer::renderExposureRadiance(const Eigen::Isometry3d& T_world_camera_open,
+                                             const Eigen::Isometry3d& T_world_camera_close,
+                                             const cv::Mat& centre_radiance) const {
+  const int samples = options_.motion_blur_samples;
+  const auto render = [&](int k) {
+    const double s = (k + 0.5) / samples;
+    return 2 * k + 1 == samples && !centre_radiance.empty()
+               ? centre_radiance
+               : renderRadiance(interpolate(T_world_camera_open, T_world_camera_close, s));
+  };
+  if (samples == 1) {
+    return render(0);
+  }
+  cv::Mat radiance = cv::Mat::zeros(rays_.height(), rays_.width(), CV_32FC1);
+  for (int k = 0; k < samples; ++k) {
+    radiance += render(k);
+  }
+  radiance /= samples;
+  return radiance;
+}
+
 cv::Mat CityRenderer::renderImage(const Eigen::Isometry3d& T_world_camera_open,
                                   const Eigen::Isometry3d& T_world_camera_close,
                                   uint64_t noise_seed) const {
-  const int samples = options_.motion_blur_samples;
-  cv::Mat radiance;
-  if (samples == 1) {
-    radiance = renderRadiance(interpolate(T_world_camera_open, T_world_camera_close, 0.5));
-  } else {
-    radiance = cv::Mat::zeros(rays_.height(), rays_.width(), CV_32FC1);
-    for (int k = 0; k < samples; ++k) {
-      const double s = (k + 0.5) / samples;
-      radiance += renderRadiance(interpolate(T_world_camera_open, T_world_camera_close, s));
-    }
-    radiance /= samples;
-  }
+  const cv::Mat radiance = renderExposureRadiance(T_world_camera_open, T_world_camera_close);
   cv::Mat grey = radiance * (255.0f * options_.exposure);
   if (options_.noise_sigma > 0.0f) {
     cv::Mat noise(grey.size(), CV_32FC1);

@@ -3,7 +3,8 @@
 // model (CameraRays, inverse mapping of OpenCV's distortion), Embree packets of
 // 4x4 pixels, procedural surface detail and sun shading (SurfaceShader), an
 // optional shadow ray towards the sun, optional motion blur (the mean of
-// renders at poses spread over the exposure), and Gaussian sensor noise.
+// renders at poses spread over the exposure), and, for an ideal camera,
+// Gaussian noise of one sigma over the image (CameraSensor models a real one).
 //
 // A sensor's pixel integrates the light over its area; one ray at its centre
 // puts every edge on a pixel boundary, up to half a pixel from where it is. A
@@ -75,8 +76,15 @@ class CityRenderer {
   // Noise-free radiance (CV_32FC1, 1 = white) seen from one pose, edge pixels
   // integrated over their area.
   cv::Mat renderRadiance(const Eigen::Isometry3d& T_world_camera) const;
-  // The 8-bit grey image exposed while the camera moves from T_world_camera_open
-  // to T_world_camera_close (equal poses: no blur); the noise is drawn from
+  // The mean radiance over an exposure while the camera moves from
+  // T_world_camera_open to T_world_camera_close: motion_blur_samples renders
+  // at the poses (k + 1/2) / n of the way. `centre_radiance`, when given, is
+  // the render at the halfway pose, which an odd count includes.
+  cv::Mat renderExposureRadiance(const Eigen::Isometry3d& T_world_camera_open,
+                                 const Eigen::Isometry3d& T_world_camera_close,
+                                 const cv::Mat& centre_radiance = cv::Mat()) const;
+  // The ideal camera's 8-bit grey image of that exposure,
+  // 255 x exposure x radiance + N(0, noise_sigma^2); the noise is drawn from
   // `noise_seed`, so equal inputs give equal bytes.
   cv::Mat renderImage(const Eigen::Isometry3d& T_world_camera_open,
                       const Eigen::Isometry3d& T_world_camera_close, uint64_t noise_seed) const;

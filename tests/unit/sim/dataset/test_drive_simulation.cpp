@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -164,6 +165,86 @@ TEST(DriveSimulation, SameSeedSameBytes) {
     }
   }
   EXPECT_GT(files, 10);
+}
+
+// FNV-1a (64 bit) of the pixel bytes of every image of a dataset, in stamp order.
+uint64_t imageFingerprint(const fs::path& root) {
+  std::vector<fs::path> images;
+  for (const auto& entry : fs::directory_iterator(root / "cam0" / "data")) {
+    images.push_back(entry.path());
+  }
+  std::sort(images.begin(), images.end());
+  uint64_t hash = 14'695'981'039'346'656'037ull;
+  for (const fs::path& path : images) {
+    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    for (int v = 0; v < image.rows; ++v) {
+      for (int u = 0; u < image.cols; ++u) {
+        hash = (hash ^ image.at<uint8_t>(v, u)) * 1'099'511'628'211ull;
+      }
+    }
+  }
+  return hash;
+}
+
+// The ideal camera's images of this drive are the renderer's 255 x radiance
+// plus Gaussian noise of noise_sigma, bytes that the fingerprint pins.
+TEST(DriveSimulation, IdealCameraKeepsTheRenderersImages) {
+  DriveSimulationConfig config = shortDelftDrive("ideal");
+  config.duration_s = 1.0;
+  config.ideal_camera = true;
+  simulateDrive(config);
+  EXPECT_EQ(imageFingerprint(config.output), 12'589'182'321'637'302'390ull);
+}
+
+TEST(DriveSimulation, TheRealisticCameraExposesEachFrameUnderAutoExposure) {
+  DriveSimulationConfig config = shortDelftDrive("realistic");
+  config.duration_s = 1.0;
+  simulateDrive(config);
+  const fs::path root(config.output);
+  std::istringstream rows(readAll(root / "cam0" / "exposure.csv"));
+  std::string row;
+  std::getline(rows, row);
+  EXPECT_EQ(row, "#timestamp [ns],exposure_time [s],gain [dB]");
+  int frames = 0;
+  while (std::getline(rows, row)) {
+    ++frames;
+    std::istringstream fields(row);
+    std::string stamp;
+    std::string exposure_time_s;
+    std::string gain_db;
+    std::getline(fields, stamp, ',');
+    std::getline(fields, exposure_time_s, ',');
+    std::getline(fields, gain_db);
+    EXPECT_GE(std::stod(exposure_time_s), config.auto_exposure.min_exposure_time_s) << row;
+    EXPECT_LE(std::stod(exposure_time_s), config.auto_exposure.max_exposure_time_s) << row;
+    EXPECT_GE(std::stod(gain_db), 0.0) << row;
+    // Auto-exposure settled on the first view and meters the noise-free
+    // render at the stamp: the image's mean is within the deadband, give or
+    // take what blur and noise move it (well under 1 DN over 307,200 pixels).
+    const cv::Mat image =
+        cv::imread((root / "cam0" / "data" / (stamp + ".png")).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(image.empty()) << stamp;
+    EXPECT_NEAR(cv::mean(image)[0], config.auto_exposure.target_mean_dn,
+                config.auto_exposure.tolerance * config.auto_exposure.target_mean_dn + 1.0)
+        << row;
+  }
+  EXPECT_EQ(frames, 3);
+}
+
+TEST(DriveSimulation, InvalidCameraOptionsAreNamed) {
+  DriveSimulationConfig config = shortDelftDrive("bad_sensor");
+  config.sensor.read_noise_e = -2.0;
+  try {
+    simulateDrive(config);
+    FAIL();
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("read_noise_e must be >= 0 (got -2)"),
+              std::string::npos)
+        << error.what();
+  }
+  config = shortDelftDrive("bad_auto_exposure");
+  config.auto_exposure.max_gain_db = -6.0;
+  EXPECT_THROW(simulateDrive(config), std::invalid_argument);
 }
 
 TEST(DriveSimulation, MissingCityModelIsNamed) {

@@ -9,6 +9,7 @@
 
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
+#include "tests/unit/sim/render/quarter_camera.h"
 
 namespace lineloc {
 namespace {
@@ -58,15 +59,6 @@ SceneMesh meshOf(const Box& box) {
   SceneMesh mesh;
   mesh.addBox(box.T_world_box, box.half_size, SurfaceTag{SurfaceKind::kWall, 1, 0.2f, 3.8f});
   return mesh;
-}
-
-// The sample camera at a quarter of its resolution (160x120): the same lens,
-// 16 times fewer rays, for the tests that do not measure geometry.
-CameraCalibration quarterCamera() {
-  CameraCalibration calibration = opencvSampleCamera();
-  PinholeCamera& camera = calibration.camera;
-  camera = {camera.fx / 4, camera.fy / 4, camera.cx / 4, camera.cy / 4, 0.0, 160, 120};
-  return calibration;
 }
 
 RenderOptions noiselessOptions() {
@@ -222,6 +214,22 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   cv::Sobel(moving, gradient_moving, CV_32F, 1, 0);
   // A 0.04 rad pan is ~5 px at this resolution: vertical edges spread and weaken.
   EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
+}
+
+TEST(CityRenderer, AnExposureTakesItsHalfwayRenderWhenGivenIt) {
+  RenderOptions options = noiselessOptions();
+  options.motion_blur_samples = 3;
+  const CityRenderer renderer(meshOf(rotatedBox()), quarterCamera(), options);
+  const Eigen::Isometry3d open = forwardLookingCamera(0.1);
+  const Eigen::Isometry3d close = forwardLookingCamera(0.14);
+  const cv::Mat centre = renderer.renderRadiance(forwardLookingCamera(0.12));
+  EXPECT_EQ(cv::norm(renderer.renderExposureRadiance(open, close, centre),
+                     renderer.renderExposureRadiance(open, close), cv::NORM_INF),
+            0.0);
+  // The given render is used, not a new one.
+  EXPECT_GT(cv::norm(renderer.renderExposureRadiance(open, close, cv::Mat(0.0f * centre)),
+                     renderer.renderExposureRadiance(open, close), cv::NORM_INF),
+            0.0);
 }
 
 // What a pixel on a wall's vertical edge sees beside the wall: each is an edge

@@ -48,10 +48,12 @@ int main(int argc, char** argv) {
               "camera clock minus true time (s)");
   options.add("imu_time_offset_s", config.imu_time_offset_s, "IMU clock minus true time (s)");
   options.add("shadows", config.shadows, "cast sun shadows");
-  options.add("motion_blur_samples", config.motion_blur_samples,
-              fmt::format("renders averaged over each frame's exposure (1: no motion blur; 0: {} "
-                          "with the realistic camera, 1 with the ideal one)",
-                          lineloc::kRealisticMotionBlurSamples));
+  options.add(
+      "motion_blur_samples", config.motion_blur_samples,
+      fmt::format("at most this many renders averaged over each frame's exposure, as many as its "
+                  "motion needs (1: no motion blur; 0: {} "
+                  "with the realistic camera, 1 with the ideal one)",
+                  lineloc::kRealisticMotionBlurSamples));
   options.addFlag("ideal_camera", config.ideal_camera,
                   "ideal camera: 255 x radiance plus flat Gaussian noise, a fixed exposure time, "
                   "no vignetting (default: a CMOS sensor under auto-exposure)");

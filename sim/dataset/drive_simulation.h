@@ -23,11 +23,9 @@
 
 namespace lineloc {
 
-// The realistic camera's renders per exposure: in its exposure of at most
-// 2 ms the image moves about a pixel (2 m/s past a façade 2 m away at
-// f = 536 px), which three renders spread; an odd count includes the halfway
-// render that auto-exposure meters.
-inline constexpr int kRealisticMotionBlurSamples = 3;
+// The realistic camera's most renders per exposure: four pixels of image
+// motion, a turn of 0.5 rad/s at f = 536 px over an exposure of 15 ms.
+inline constexpr int kRealisticMotionBlurSamples = 8;
 
 struct DriveSimulationConfig {
   std::string city_model;
@@ -57,7 +55,8 @@ struct DriveSimulationConfig {
   // Render options.
   bool shadows = true;
   int edge_pixel_samples = RenderOptions{}.edge_pixel_samples;
-  // Renders averaged over each frame's exposure; 0: kRealisticMotionBlurSamples
+  // At most this many renders averaged over each frame's exposure, as many as
+  // its motion needs (CityRenderer::renderExposureRadiance); 0: kRealisticMotionBlurSamples
   // with the realistic camera, 1 (no blur) with the ideal one.
   int motion_blur_samples = 0;
   // The realistic camera (CameraSensor under AutoExposure; its exposure time

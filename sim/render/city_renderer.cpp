@@ -318,10 +318,27 @@ cv::Mat CityRenderer::renderRadiance(const Eigen::Isometry3d& T_world_camera) co
   return radiance;
 }
 
+int CityRenderer::blurSamples(const Eigen::Isometry3d& T_world_camera_open,
+                              const Eigen::Isometry3d& T_world_camera_close) const {
+  // Nearest surface a blur is drawn for (m) and the largest spacing of the
+  // samples in the image (px).
+  constexpr double kNearestDepth_m = 2.0;
+  constexpr double kSampleSpacing_px = 0.5;
+  const Eigen::AngleAxisd rotation(T_world_camera_open.linear().transpose() *
+                                   T_world_camera_close.linear());
+  const double translation_m =
+      (T_world_camera_close.translation() - T_world_camera_open.translation()).norm();
+  const double motion_px = (std::abs(rotation.angle()) + translation_m / kNearestDepth_m) /
+                           static_cast<double>(pixel_angle_rad_);
+  const double needed = std::ceil(motion_px / kSampleSpacing_px);
+  return static_cast<int>(
+      std::clamp(needed, 1.0, static_cast<double>(options_.motion_blur_samples)));
+}
+
 cv::Mat CityRenderer::renderExposureRadiance(const Eigen::Isometry3d& T_world_camera_open,
                                              const Eigen::Isometry3d& T_world_camera_close,
                                              const cv::Mat& centre_radiance) const {
-  const int samples = options_.motion_blur_samples;
+  const int samples = blurSamples(T_world_camera_open, T_world_camera_close);
   const auto render = [&](int k) {
     const double s = (k + 0.5) / samples;
     return 2 * k + 1 == samples && !centre_radiance.empty()

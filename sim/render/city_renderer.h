@@ -45,7 +45,7 @@ struct RenderOptions {
   float exposure = 1.0f;
   // Standard deviation of the additive Gaussian sensor noise (grey levels).
   float noise_sigma = 2.0f;
-  // Renders averaged over the exposure; 1 = no motion blur.
+  // At most this many renders averaged over the exposure; 1 = no motion blur.
   int motion_blur_samples = 1;
   // Rays averaged over each pixel a geometric edge crosses, 1 to
   // kRayPacketSize; 1 = one ray per pixel centre everywhere.
@@ -77,9 +77,13 @@ class CityRenderer {
   // integrated over their area.
   cv::Mat renderRadiance(const Eigen::Isometry3d& T_world_camera) const;
   // The mean radiance over an exposure while the camera moves from
-  // T_world_camera_open to T_world_camera_close: motion_blur_samples renders
-  // at the poses (k + 1/2) / n of the way. `centre_radiance`, when given, is
-  // the render at the halfway pose, which an odd count includes.
+  // T_world_camera_open to T_world_camera_close: n renders at the poses
+  // (k + 1/2) / n of the way, n = clamp(ceil(d / 0.5 px), 1,
+  // motion_blur_samples) for the image motion bound d = (theta + |dt| / 2 m) fx,
+  // theta the rotation and dt the translation over the exposure (a point
+  // 2 m away or further moves at most that far), so samples lie at most half
+  // a pixel apart. `centre_radiance`, when given, is the render at the
+  // halfway pose, which an odd count includes.
   cv::Mat renderExposureRadiance(const Eigen::Isometry3d& T_world_camera_open,
                                  const Eigen::Isometry3d& T_world_camera_close,
                                  const cv::Mat& centre_radiance = cv::Mat()) const;
@@ -90,6 +94,9 @@ class CityRenderer {
                       const Eigen::Isometry3d& T_world_camera_close, uint64_t noise_seed) const;
 
   const CameraRays& rays() const { return rays_; }
+  // The n above.
+  int blurSamples(const Eigen::Isometry3d& T_world_camera_open,
+                  const Eigen::Isometry3d& T_world_camera_close) const;
 
  private:
   // Ray i of a packet: from origin along world direction d (zero: inactive),

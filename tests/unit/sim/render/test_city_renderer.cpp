@@ -216,6 +216,22 @@ TEST(CityRenderer, MotionBlurSmearsOnlyWhenTheCameraMoves) {
   EXPECT_LT(cv::norm(gradient_moving, cv::NORM_INF), 0.8 * cv::norm(gradient_still, cv::NORM_INF));
 }
 
+TEST(CityRenderer, AnExposureTakesAsManyRendersAsItsMotionNeeds) {
+  RenderOptions options = noiselessOptions();
+  options.motion_blur_samples = 8;
+  const CameraCalibration calibration = quarterCamera();
+  const CityRenderer renderer(meshOf(rotatedBox()), calibration, options);
+  const Eigen::Isometry3d open = forwardLookingCamera(0.1);
+  EXPECT_EQ(renderer.blurSamples(open, open), 1);
+  // d = theta fx: 1.2 px of pan take ceil(1.2 / 0.5) = 3 renders.
+  EXPECT_EQ(renderer.blurSamples(open, forwardLookingCamera(0.1 + 1.2 / calibration.camera.fx)), 3);
+  // |dt| fx / 2 m: 1.7 px of travel take 4.
+  Eigen::Isometry3d moved = open;
+  moved.translation().x() += 2.0 * 1.7 / calibration.camera.fx;
+  EXPECT_EQ(renderer.blurSamples(open, moved), 4);
+  EXPECT_EQ(renderer.blurSamples(open, forwardLookingCamera(0.14)), 8) << "at most the option's";
+}
+
 TEST(CityRenderer, AnExposureTakesItsHalfwayRenderWhenGivenIt) {
   RenderOptions options = noiselessOptions();
   options.motion_blur_samples = 3;

@@ -229,14 +229,17 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   const std::vector<Eigen::Vector2d> route = planRoute(config, map);
   summary.route_length_m = polylineLength(route);
   SceneMesh scene = city.mesh;
+  const auto ground_height_m = [&city](const Eigen::Vector2d& xy) {
+    return groundHeightAt(city, xy);
+  };
   StreetClutterOptions clutter = config.clutter;
-  clutter.ground_z_m = static_cast<float>(city.ground_z_m);
   clutter.seed = static_cast<uint32_t>(config.seed * 4);
-  summary.clutter = addStreetClutter(map, route, clutter, kFirstClutterObjectId, scene);
+  summary.clutter =
+      addStreetClutter(map, route, ground_height_m, clutter, kFirstClutterObjectId, scene);
   RouteDriveOptions drive = config.drive;
   drive.duration_s = config.duration_s;
   drive.seed = config.seed;
-  const RouteTrajectory trajectory(route, city.ground_z_m, drive);
+  const RouteTrajectory trajectory(route, ground_height_m, drive);
 
   const CameraCalibration calibration = config.camera_calibration.empty()
                                             ? opencvSampleCamera()

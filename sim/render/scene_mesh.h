@@ -1,7 +1,8 @@
-// The triangles the simulator renders: buildings from the city model plus the
-// things in front of them that the model does not hold (cars, trees, poles,
-// pedestrians). Every triangle carries what it is made of and which object it
-// belongs to, so the shader can give each building its own façade.
+// The triangles the simulator renders: buildings and terrain from the city
+// model plus the things in front of them that the model does not hold (cars,
+// trees, poles, pedestrians). Every triangle carries what it is made of and
+// which object it belongs to, so the shader can give each building its own
+// façade.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,7 +20,9 @@ enum class SurfaceKind : uint8_t {
   kTreeTrunk,
   kFoliage,
   kPole,
-  kPerson
+  kPerson,
+  // The model's terrain, shaded as the ground plane is.
+  kGround
 };
 
 // Per-triangle attributes the shader reads.

@@ -163,6 +163,8 @@ float SurfaceShader::meshAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& p,
                                 const Eigen::Vector3f& n, float footprint_m) const {
   const uint32_t id = tag.object_id;
   switch (tag.kind) {
+    case SurfaceKind::kGround:
+      return groundAlbedo(p, footprint_m);
     case SurfaceKind::kWall:
       return facadeAlbedo(tag, p, n, footprint_m);
     case SurfaceKind::kRoof:

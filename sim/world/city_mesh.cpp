@@ -81,7 +81,21 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
   std::nth_element(base_heights.begin(), base_heights.begin() + base_heights.size() / 2,
                    base_heights.end());
   city.ground_z_m = base_heights[base_heights.size() / 2];
+  std::vector<TerrainSurface::Triangle> terrain;
+  terrain.reserve(model.terrain.size());
+  const SurfaceTag ground{SurfaceKind::kGround, kTerrainObjectId, 0.0f, 0.0f};
+  for (const citymodel::TerrainTriangle& triangle : model.terrain) {
+    terrain.push_back(
+        {triangle[0] - site_origin, triangle[1] - site_origin, triangle[2] - site_origin});
+    city.mesh.addTriangle(terrain.back()[0], terrain.back()[1], terrain.back()[2], ground);
+  }
+  city.terrain = TerrainSurface(std::move(terrain));
+  city.ground_z_m = city.terrain.lowestHeight().value_or(city.ground_z_m);
   return city;
+}
+
+double groundHeightAt(const CityMesh& city, const Eigen::Vector2d& xy) {
+  return city.terrain.heightAt(xy).value_or(city.ground_z_m);
 }
 
 citymodel::CityModel readCityModelFile(const std::string& path) {

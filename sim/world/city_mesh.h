@@ -1,14 +1,16 @@
 // The render scene of a city model: every building face (CityJSON semantic
-// wall or roof; ground faces lie under the ground plane and are left out)
-// triangulated by ear clipping of its exterior ring (holes are not cut), moved
-// by a site origin so coordinates stay small enough for float ray casting.
-// Each building becomes one object, its façade style drawn from its index.
+// wall or roof; ground faces lie under the ground and are left out)
+// triangulated by ear clipping of its exterior ring (holes are not cut), and
+// the model's terrain triangles as ground, moved by a site origin so
+// coordinates stay small enough for float ray casting. Each building becomes
+// one object, its façade style drawn from its index.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "common/geometry/terrain_surface.h"
 #include "db/citymodel/city_model.h"
 #include "sim/render/scene_mesh.h"
 
@@ -18,14 +20,25 @@ struct CityMesh {
   SceneMesh mesh;
   // World (model CRS) coordinates of the scene's origin.
   Eigen::Vector3d site_origin = Eigen::Vector3d::Zero();
-  // Median height of the buildings' bases in scene coordinates: the street level.
+  // Height of the ground plane in scene coordinates: the street level of a
+  // model without terrain (the median height of the buildings' bases), else
+  // the terrain's lowest point, so that the plane lies under the terrain and
+  // shows only beyond its edge.
   double ground_z_m = 0.0;
+  // The terrain in scene coordinates; empty when the model has none.
+  TerrainSurface terrain{{}};
   int building_count = 0;
   // Faces left out because their ring could not be triangulated.
   int skipped_faces = 0;
 };
 
-// Object ids 1..N are the buildings; clutter takes ids from here on.
+// The ground's height under a scene point: the terrain's where it has one,
+// else the ground plane's.
+double groundHeightAt(const CityMesh& city, const Eigen::Vector2d& xy);
+
+// Object ids 1..N are the buildings; the terrain is kTerrainObjectId; clutter
+// takes ids from kFirstClutterObjectId on.
+inline constexpr uint32_t kTerrainObjectId = 999'999;
 inline constexpr uint32_t kFirstClutterObjectId = 1'000'000;
 
 // Builds the scene with the given origin. Throws std::invalid_argument when the

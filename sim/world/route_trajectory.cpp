@@ -50,11 +50,43 @@ std::vector<Eigen::Vector2d> resample(const std::vector<Eigen::Vector2d>& waypoi
   return points;
 }
 
+// The control values c_0..c_n of the uniform cubic B-spline through `heights`
+// at its knots with no curvature at its ends: (c_{k-1} + 4 c_k + c_{k+1}) / 6
+// = z_k with c_{-1} = 2 c_0 - c_1 and c_{n+1} = 2 c_n - c_{n-1}, so c_0 = z_0
+// and c_n = z_n, and the rows between form a diagonally dominant tridiagonal
+// system, solved by the Thomas algorithm.
+std::vector<double> interpolatingControls(const std::vector<double>& heights) {
+  const size_t n = heights.size();
+  std::vector<double> controls(heights);
+  if (n < 3) {
+    return controls;
+  }
+  constexpr double kDiagonal = 4.0 / 6.0;
+  constexpr double kOff = 1.0 / 6.0;
+  std::vector<double> upper(n, 0.0);
+  std::vector<double> right(n, 0.0);
+  for (size_t k = 1; k + 1 < n; ++k) {
+    double known = k == 1 ? kOff * heights[0] : 0.0;
+    known += k + 2 == n ? kOff * heights[n - 1] : 0.0;
+    const double lower = k == 1 ? 0.0 : kOff;
+    const double pivot = kDiagonal - lower * upper[k - 1];
+    upper[k] = kOff / pivot;
+    right[k] = (heights[k] - known - lower * right[k - 1]) / pivot;
+  }
+  controls[n - 2] = right[n - 2];
+  for (size_t k = n - 2; k-- > 1;) {
+    controls[k] = right[k] - upper[k] * controls[k + 1];
+  }
+  return controls;
+}
+
 }  // namespace
 
-RouteTrajectory::RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, double ground_z_m,
-                                 const RouteDriveOptions& options)
-    : options_(options), ground_z_m_(ground_z_m) {
+RouteTrajectory::RouteTrajectory(
+    const std::vector<Eigen::Vector2d>& waypoints,
+    const std::function<double(const Eigen::Vector2d&)>& ground_height_m,
+    const RouteDriveOptions& options)
+    : options_(options) {
   if (waypoints.size() < 2 || !(options.control_spacing_m > 0.0) ||
       !(options.min_speed_m_s > 0.0) || options.max_speed_m_s < options.min_speed_m_s ||
       !(options.ramp_s > 0.0) || !(options.duration_s > 0.0)) {
@@ -92,7 +124,47 @@ RouteTrajectory::RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, 
                                    (speed * speed * speed)
                              : 0.0);
   }
+  const int ground_spans =
+      std::max(1, static_cast<int>(std::ceil(arclength_.back() / options_.control_spacing_m)));
+  ground_spacing_m_ = arclength_.back() / ground_spans;
+  std::vector<double> heights_m;
+  for (int k = 0; k <= ground_spans; ++k) {
+    heights_m.push_back(ground_height_m(spline(parameterAt(k * ground_spacing_m_)).position));
+  }
+  ground_control_m_ = interpolatingControls(heights_m);
+  const size_t n = ground_control_m_.size();
+  const double before_first =
+      n > 1 ? 2.0 * ground_control_m_[0] - ground_control_m_[1] : ground_control_m_[0];
+  const double after_last =
+      n > 1 ? 2.0 * ground_control_m_[n - 1] - ground_control_m_[n - 2] : ground_control_m_[0];
+  ground_control_m_.insert(ground_control_m_.begin(), before_first);
+  ground_control_m_.push_back(after_last);
   planSpeed();
+}
+
+Eigen::Vector3d RouteTrajectory::groundHeight(double arclength_m) const {
+  // Span j of x = s / spacing blends control values j - 1 .. j + 2 (indices
+  // into ground_control_m_ shifted by the one before the first).
+  const double spacing = ground_spacing_m_;
+  const double x =
+      std::clamp(arclength_m / spacing, 0.0, static_cast<double>(ground_control_m_.size() - 3));
+  const int j = std::min(static_cast<int>(x), static_cast<int>(ground_control_m_.size()) - 4);
+  const double u = x - j;
+  const double c0 = ground_control_m_[j];
+  const double c1 = ground_control_m_[j + 1];
+  const double c2 = ground_control_m_[j + 2];
+  const double c3 = ground_control_m_[j + 3];
+  const double u2 = u * u;
+  const double u3 = u2 * u;
+  const double height = ((1 - u) * (1 - u) * (1 - u) * c0 + (3 * u3 - 6 * u2 + 4) * c1 +
+                         (-3 * u3 + 3 * u2 + 3 * u + 1) * c2 + u3 * c3) /
+                        6.0;
+  const double slope =
+      (-(1 - u) * (1 - u) * c0 + (3 * u2 - 4 * u) * c1 + (-3 * u2 + 2 * u + 1) * c2 + u2 * c3) /
+      (2.0 * spacing);
+  const double bend =
+      ((1 - u) * c0 + (3 * u - 2) * c1 + (1 - 3 * u) * c2 + u * c3) / (spacing * spacing);
+  return {height, slope, bend};
 }
 
 RouteTrajectory::SplinePoint RouteTrajectory::spline(double U) const {
@@ -241,21 +313,29 @@ sim::TruthSample RouteTrajectory::at(int64_t stamp_ns) const {
   const double t = static_cast<double>(clamped - options_.start_stamp_ns) * 1e-9;
   const double v = speed(t);
   const double dv = acceleration(t);
-  const SplinePoint p = spline(parameterAt(distance(t)));
+  const double s = distance(t);
+  const SplinePoint p = spline(parameterAt(s));
   const double dp = p.first.norm();
   const Eigen::Vector2d tangent = p.first / dp;
   const Eigen::Vector2d normal(-tangent.y(), tangent.x());
   const double curvature =
       (p.first.x() * p.second.y() - p.first.y() * p.second.x()) / (dp * dp * dp);
   const double yaw = std::atan2(tangent.y(), tangent.x());
+  const Eigen::Vector3d ground = groundHeight(s);
+  const double grade = ground.y();
+  const double pitch = std::atan(grade);
+  const double pitch_rate = ground.z() * v / (1.0 + grade * grade);
+  const double yaw_rate = curvature * v;
   sim::TruthSample sample;
   sample.stamp_ns = clamped;
   sample.p_world_body =
-      Eigen::Vector3d(p.position.x(), p.position.y(), ground_z_m_ + options_.body_height_m);
-  sample.v_world_body << v * tangent, 0.0;
-  sample.a_world_body << dv * tangent + curvature * v * v * normal, 0.0;
-  sample.q_world_body = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  sample.gyro_body_radps = Eigen::Vector3d(0.0, 0.0, curvature * v);
+      Eigen::Vector3d(p.position.x(), p.position.y(), ground.x() + options_.body_height_m);
+  sample.v_world_body << v * tangent, grade * v;
+  sample.a_world_body << dv * tangent + curvature * v * v * normal, ground.z() * v * v + grade * dv;
+  sample.q_world_body = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                           Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
+  sample.gyro_body_radps =
+      Eigen::Vector3d(std::sin(pitch) * yaw_rate, -pitch_rate, std::cos(pitch) * yaw_rate);
   sample.specific_force_body_mps2 =
       sample.q_world_body.conjugate() *
       (sample.a_world_body + Eigen::Vector3d(0.0, 0.0, options_.gravity_m_s2));

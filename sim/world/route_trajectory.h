@@ -5,14 +5,22 @@
 // between random cruise speeds (each capped by the bends it drives through),
 // with stops. Distance along the path is the
 // closed-form integral of the speed (S(u) = u^6 - 3u^5 + 5u^4/2); arclength
-// is inverted by Newton's method on the spline parameter. The robot stays
-// level: with unit tangent T, left normal N and signed curvature k,
-//   v_world = v T,  a_world = v' T + k v^2 N,  yaw rate = k v,
-// and the specific force is R^T (a + g z).
+// is inverted by Newton's method on the spline parameter. The robot rides the
+// ground: its height over the arclength s of the path is h(s), the uniform
+// cubic B-spline through the ground's heights at most a control spacing apart
+// along the path, straight at its ends (a sloping street, smoothed over a few metres as wheels and
+// suspension do), and it pitches with the grade, theta =
+// atan h'(s), without rolling. With v the speed over the ground's plan, unit
+// tangent T, left normal N, signed curvature k and yaw psi,
+//   v_world = (v T, h' v),  a_world = (v' T + k v^2 N, h'' v^2 + h' v'),
+//   R = Rz(psi) Ry(-theta),  psi' = k v,  theta' = h'' v / (1 + h'^2),
+//   omega_body = (sin(theta) psi', -theta', cos(theta) psi'),
+// and the specific force is R^T (a + g z); on level ground theta = 0.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sim/sensors/ground_truth_trajectory.h"
@@ -37,7 +45,7 @@ struct RouteDriveOptions {
   double max_stop_s = 5.0;
   // Spacing of the spline's control points along the route (m).
   double control_spacing_m = 5.0;
-  // Height of the body frame above the ground plane z = 0 of the route (m).
+  // Height of the body frame above the ground under it (m).
   double body_height_m = 0.3;
   double gravity_m_s2 = 9.80665;
   uint64_t seed = 1;
@@ -45,10 +53,12 @@ struct RouteDriveOptions {
 
 class RouteTrajectory : public sim::TruthTrajectory {
  public:
-  // `waypoints` in the world frame, `ground_z_m` their ground height. Throws
+  // `waypoints` in the world frame, `ground_height_m` the ground's height
+  // under a point of them (m, world z). Throws
   // std::invalid_argument when the route is shorter than one control spacing
   // or the options are inconsistent.
-  RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints, double ground_z_m,
+  RouteTrajectory(const std::vector<Eigen::Vector2d>& waypoints,
+                  const std::function<double(const Eigen::Vector2d&)>& ground_height_m,
                   const RouteDriveOptions& options);
 
   sim::TruthSample at(int64_t stamp_ns) const override;
@@ -74,12 +84,17 @@ class RouteTrajectory : public sim::TruthTrajectory {
   double acceleration(double t) const;
   double distance(double t) const;
   SplinePoint spline(double U) const;
+  // h(s), h'(s) and h''(s) at arclength s.
+  Eigen::Vector3d groundHeight(double arclength_m) const;
   double parameterAt(double arclength_m) const;
   // Largest curvature between two arclengths (1/m).
   double maxCurvature(double from_m, double to_m) const;
 
   RouteDriveOptions options_;
-  double ground_z_m_;
+  // Control values of h, whose knots lie at arclengths 0, d, 2d, .. the
+  // path's end (d at most the control spacing), with one more at each end.
+  std::vector<double> ground_control_m_;
+  double ground_spacing_m_ = 0.0;
   std::vector<Eigen::Vector2d> control_;
   // Arclength at U = 0, h, 2h, ... (h = kTableStep).
   std::vector<double> arclength_;

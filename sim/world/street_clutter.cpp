@@ -179,13 +179,12 @@ int targetCount(double per_100m, double route_length_m) {
 
 }  // namespace
 
-StreetClutterCounts addStreetClutter(const OccupancyMap& map,
-                                     const std::vector<Eigen::Vector2d>& route,
-                                     const StreetClutterOptions& options, uint32_t first_object_id,
-                                     SceneMesh& mesh) {
+StreetClutterCounts addStreetClutter(
+    const OccupancyMap& map, const std::vector<Eigen::Vector2d>& route,
+    const std::function<double(const Eigen::Vector2d&)>& ground_height_m,
+    const StreetClutterOptions& options, uint32_t first_object_id, SceneMesh& mesh) {
   ClutterPlacer placer(map, route, options);
   const double length_m = polylineLength(route);
-  const double z = options.ground_z_m;
   uint32_t id = first_object_id;
   StreetClutterCounts counts;
   Eigen::Vector2d xy;
@@ -194,28 +193,32 @@ StreetClutterCounts addStreetClutter(const OccupancyMap& map,
       // Parked parallel to the façade: the car's x axis is perpendicular to
       // the direction away from the buildings.
       const Eigen::Vector2d away = map.awayFromBuildings(xy);
-      addCar(mesh, placeOnGround(xy, std::atan2(away.y(), away.x()) + std::numbers::pi / 2, z),
+      addCar(mesh,
+             placeOnGround(xy, std::atan2(away.y(), away.x()) + std::numbers::pi / 2,
+                           ground_height_m(xy)),
              id++);
       ++counts.cars;
     }
   }
   for (int i = 0; i < targetCount(options.trees_per_100m, length_m); ++i) {
     if (placer.find(kTreePlacement, xy)) {
-      addTree(mesh, placeOnGround(xy, 0.0, z), id++, placer.uniform(5.0, 9.0), placer.random());
+      addTree(mesh, placeOnGround(xy, 0.0, ground_height_m(xy)), id++, placer.uniform(5.0, 9.0),
+              placer.random());
       ++counts.trees;
     }
   }
   for (int i = 0; i < targetCount(options.poles_per_100m, length_m); ++i) {
     if (placer.find(kPolePlacement, xy)) {
       const Eigen::Vector2d away = map.awayFromBuildings(xy);
-      addPole(mesh, placeOnGround(xy, std::atan2(away.y(), away.x()), z), id++);
+      addPole(mesh, placeOnGround(xy, std::atan2(away.y(), away.x()), ground_height_m(xy)), id++);
       ++counts.poles;
     }
   }
   for (int i = 0; i < targetCount(options.pedestrians_per_100m, length_m); ++i) {
     if (placer.find(kPedestrianPlacement, xy)) {
-      addPedestrian(mesh, placeOnGround(xy, placer.uniform(0.0, 2 * std::numbers::pi), z), id,
-                    placer.uniform(1.55, 1.95));
+      addPedestrian(
+          mesh, placeOnGround(xy, placer.uniform(0.0, 2 * std::numbers::pi), ground_height_m(xy)),
+          id, placer.uniform(1.55, 1.95));
       id += 2;
       ++counts.pedestrians;
     }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sim/render/scene_mesh.h"
@@ -23,7 +24,6 @@ struct StreetClutterOptions {
   double route_keep_out_m = 2.0;
   // Nothing stands farther than this from the route (m).
   double max_route_distance_m = 15.0;
-  float ground_z_m = 0.0f;
   uint32_t seed = 1;
 };
 
@@ -34,11 +34,12 @@ struct StreetClutterCounts {
   int pedestrians = 0;
 };
 
-// Adds the clutter to `mesh` (object ids from `first_object_id` on) and says
-// how many of each kind found room.
-StreetClutterCounts addStreetClutter(const OccupancyMap& map,
-                                     const std::vector<Eigen::Vector2d>& route,
-                                     const StreetClutterOptions& options, uint32_t first_object_id,
-                                     SceneMesh& mesh);
+// Adds the clutter to `mesh` (object ids from `first_object_id` on), each
+// thing standing on the ground at `ground_height_m` of its position (m, world
+// z), and says how many of each kind found room.
+StreetClutterCounts addStreetClutter(
+    const OccupancyMap& map, const std::vector<Eigen::Vector2d>& route,
+    const std::function<double(const Eigen::Vector2d&)>& ground_height_m,
+    const StreetClutterOptions& options, uint32_t first_object_id, SceneMesh& mesh);
 
 }  // namespace lineloc

@@ -59,13 +59,15 @@ struct DelftDrive {
     route_options.length_m = 140.0;
     const StreetRoute route = planStreetRoute(map, route_options);
     scene = city.mesh;
-    StreetClutterOptions clutter;
-    clutter.ground_z_m = static_cast<float>(city.ground_z_m);
-    addStreetClutter(map, route.waypoints, clutter, kFirstClutterObjectId, scene);
+    const auto ground_height_m = [&city](const Eigen::Vector2d& xy) {
+      return groundHeightAt(city, xy);
+    };
+    addStreetClutter(map, route.waypoints, ground_height_m, StreetClutterOptions{},
+                     kFirstClutterObjectId, scene);
     ground_z_m = static_cast<float>(city.ground_z_m);
     RouteDriveOptions drive;
     drive.duration_s = 60.0;
-    const RouteTrajectory trajectory(route.waypoints, city.ground_z_m, drive);
+    const RouteTrajectory trajectory(route.waypoints, ground_height_m, drive);
     Eigen::Matrix3d R_body_camera;
     R_body_camera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
     for (int64_t t = trajectory.startStamp_ns(); t <= trajectory.endStamp_ns(); t += 50'000'000) {

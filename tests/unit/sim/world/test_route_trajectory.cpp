@@ -11,6 +11,15 @@ std::vector<Eigen::Vector2d> lRoute() {
   return {{0, 0}, {60, 0}, {60, 40}, {90, 70}};
 }
 
+std::function<double(const Eigen::Vector2d&)> flat(double z_m) {
+  return [z_m](const Eigen::Vector2d&) { return z_m; };
+}
+
+// Rolling ground climbing northwards: grades up to 13 %.
+double hills(const Eigen::Vector2d& xy) {
+  return 2.0 * std::sin(0.05 * xy.x()) + 0.03 * xy.y();
+}
+
 RouteDriveOptions testDrive() {
   RouteDriveOptions options;
   options.duration_s = 60.0;
@@ -19,7 +28,7 @@ RouteDriveOptions testDrive() {
 }
 
 TEST(RouteTrajectory, FollowsTheRouteWithinTheSplineCornerCut) {
-  const RouteTrajectory trajectory(lRoute(), 0.5, testDrive());
+  const RouteTrajectory trajectory(lRoute(), flat(0.5), testDrive());
   // A uniform cubic B-spline cuts a 90-degree corner by at most ~ spacing / 3.
   const double allowed_m = testDrive().control_spacing_m / 3.0 + 1e-6;
   const auto route = lRoute();
@@ -41,8 +50,12 @@ TEST(RouteTrajectory, FollowsTheRouteWithinTheSplineCornerCut) {
   EXPECT_EQ(trajectory.at(trajectory.startStamp_ns() + 4'000'000'000).v_world_body.norm(), 0.0);
 }
 
-TEST(RouteTrajectory, VelocityAndAccelerationAreDerivativesOfPosition) {
-  const RouteTrajectory trajectory(lRoute(), 0.0, testDrive());
+// Flat ground, and hills whose grade the robot pitches with.
+class RouteTrajectoryOnGround
+    : public ::testing::TestWithParam<std::function<double(const Eigen::Vector2d&)>> {};
+
+TEST_P(RouteTrajectoryOnGround, VelocityAccelerationAndRateAreDerivatives) {
+  const RouteTrajectory trajectory(lRoute(), GetParam(), testDrive());
   constexpr int64_t kStep_ns = 1'000'000;  // central differences over 1 ms
   for (double t_s = 6.0; t_s < 59.0; t_s += 1.7) {
     const int64_t t = trajectory.startStamp_ns() + static_cast<int64_t>(t_s * 1e9);
@@ -56,15 +69,20 @@ TEST(RouteTrajectory, VelocityAndAccelerationAreDerivativesOfPosition) {
     // difference amplifies the ~1e-12 m arclength inversion error by 1/h^2.
     EXPECT_NEAR((velocity - now.v_world_body).norm(), 0.0, 1e-5) << t_s;
     EXPECT_NEAR((acceleration - now.a_world_body).norm(), 0.0, 5e-3) << t_s;
-    const double yaw_before = before.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0)[0];
-    const double yaw_after = after.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0)[0];
-    const double yaw_rate = std::remainder(yaw_after - yaw_before, 2 * M_PI) / 2e-3;
-    EXPECT_NEAR(yaw_rate, now.gyro_body_radps.z(), 1e-4) << t_s;
+    // omega_body = 2 vec(q(t - h)^-1 q(t + h)) / (2 h), to O(h^2).
+    const Eigen::Quaterniond turn = before.q_world_body.conjugate() * after.q_world_body;
+    EXPECT_NEAR((turn.vec() / 1e-3 - now.gyro_body_radps).norm(), 0.0, 1e-4) << t_s;
+    // The body's x axis lies along the velocity: it pitches with the grade.
+    if (now.v_world_body.norm() > 0.1) {
+      EXPECT_GT((now.q_world_body * Eigen::Vector3d::UnitX()).dot(now.v_world_body.normalized()),
+                1.0 - 1e-9)
+          << t_s;
+    }
   }
 }
 
-TEST(RouteTrajectory, IntegratingNoiselessImuReproducesTheTrajectory) {
-  const RouteTrajectory trajectory(lRoute(), 0.0, testDrive());
+TEST_P(RouteTrajectoryOnGround, IntegratingNoiselessImuReproducesTheTrajectory) {
+  const RouteTrajectory trajectory(lRoute(), GetParam(), testDrive());
   sim::ImuModel model;
   model.noise = false;
   const std::vector<sim::SimImuSample> imu = sim::synthesiseImu(trajectory, model, 1);
@@ -99,10 +117,35 @@ TEST(RouteTrajectory, IntegratingNoiselessImuReproducesTheTrajectory) {
   EXPECT_LT(q.angularDistance(end.q_world_body), 1e-5);
 }
 
+INSTANTIATE_TEST_SUITE_P(Grounds, RouteTrajectoryOnGround, ::testing::Values(flat(0.0), hills),
+                         [](const auto& info) { return info.index == 0 ? "Flat" : "Hills"; });
+
+TEST(RouteTrajectory, RidesTheGroundItIsGiven) {
+  const RouteTrajectory trajectory(lRoute(), hills, testDrive());
+  double most_off_m = 0.0;
+  double most_off_along_legs_m = 0.0;
+  for (int64_t t = trajectory.startStamp_ns(); t <= trajectory.endStamp_ns(); t += 50'000'000) {
+    const sim::TruthSample sample = trajectory.at(t);
+    const Eigen::Vector2d xy = sample.p_world_body.head<2>();
+    const double off_m = std::abs(sample.p_world_body.z() - testDrive().body_height_m - hills(xy));
+    most_off_m = std::max(most_off_m, off_m);
+    if ((xy - Eigen::Vector2d(60, 0)).norm() > 10.0 &&
+        (xy - Eigen::Vector2d(60, 40)).norm() > 10.0) {
+      most_off_along_legs_m = std::max(most_off_along_legs_m, off_m);
+    }
+  }
+  // Along a straight leg the cubic through heights d <= 5 m apart errs by
+  // (5 / 384) d^4 |h''''| < 1e-4 m; round the first corner the grade breaks
+  // from dh/dx = 0.1 cos 3 to dh/dy = 0.03, which a cubic over one span
+  // follows to |dh'| d / 8 = 0.08 m.
+  EXPECT_LT(most_off_along_legs_m, 1e-3);
+  EXPECT_LT(most_off_m, std::abs(0.03 - 0.1 * std::cos(3.0)) * 5.0 / 8.0);
+}
+
 TEST(RouteTrajectory, StopsAtTheEndOfAShortRoute) {
   RouteDriveOptions options = testDrive();
   options.duration_s = 120.0;
-  const RouteTrajectory trajectory({{0, 0}, {40, 0}}, 0.0, options);
+  const RouteTrajectory trajectory({{0, 0}, {40, 0}}, flat(0.0), options);
   const sim::TruthSample start = trajectory.at(trajectory.startStamp_ns());
   const sim::TruthSample end = trajectory.at(trajectory.endStamp_ns());
   EXPECT_NEAR(end.v_world_body.norm(), 0.0, 1e-9);
@@ -124,7 +167,7 @@ TEST(RouteTrajectory, TurnsBackWithinItsLateralAccelerationLimit) {
   RouteDriveOptions options = testDrive();
   options.stop_probability = 0.0;
   options.duration_s = 200.0;  // longer than the route takes: it ends at its end
-  const RouteTrajectory trajectory(route, 0.0, options);
+  const RouteTrajectory trajectory(route, flat(0.0), options);
   double most_lateral = 0.0;
   for (int64_t t = trajectory.startStamp_ns(); t <= trajectory.endStamp_ns(); t += 20'000'000) {
     const sim::TruthSample sample = trajectory.at(t);
@@ -146,8 +189,8 @@ TEST(RouteTrajectory, TurnsBackWithinItsLateralAccelerationLimit) {
 }
 
 TEST(RouteTrajectory, RejectsDegenerateRoutes) {
-  EXPECT_THROW(RouteTrajectory({{0, 0}}, 0.0, testDrive()), std::invalid_argument);
-  EXPECT_THROW(RouteTrajectory({{0, 0}, {1, 0}}, 0.0, testDrive()), std::invalid_argument);
+  EXPECT_THROW(RouteTrajectory({{0, 0}}, flat(0.0), testDrive()), std::invalid_argument);
+  EXPECT_THROW(RouteTrajectory({{0, 0}, {1, 0}}, flat(0.0), testDrive()), std::invalid_argument);
 }
 
 }  // namespace

@@ -27,7 +27,10 @@ TEST(StreetClutter, PlacesObjectsBesideTheRouteNotOnItNorInBuildings) {
   StreetClutterOptions options;
   options.route_keep_out_m = 3.0;
   SceneMesh clutter;
-  const StreetClutterCounts counts = addStreetClutter(map, route.waypoints, options, 1000, clutter);
+  // A street climbing 2 % eastwards.
+  const auto ground_height_m = [](const Eigen::Vector2d& xy) { return 1.0 + 0.02 * xy.x(); };
+  const StreetClutterCounts counts =
+      addStreetClutter(map, route.waypoints, ground_height_m, options, 1000, clutter);
   EXPECT_GT(counts.cars, 5);
   EXPECT_GT(counts.trees, 2);
   EXPECT_GT(counts.poles, 3);
@@ -47,7 +50,8 @@ TEST(StreetClutter, PlacesObjectsBesideTheRouteNotOnItNorInBuildings) {
       EXPECT_GE(distanceToPolyline(xy, route.waypoints), options.route_keep_out_m - 2.3);
     }
     EXPECT_GT(map.clearanceAt(xy), 0.0) << "clutter inside a building at " << xy.transpose();
-    EXPECT_GE(vertex.z(), options.ground_z_m - 1e-4f);
+    // Every object stands on the ground at its centre, at most 2.3 m away.
+    EXPECT_GE(vertex.z(), ground_height_m(xy) - 0.02 * 2.3 - 1e-4);
   }
 }
 
@@ -56,8 +60,9 @@ TEST(StreetClutter, SameSeedSameScene) {
   const StreetRoute route = planStreetRoute(map, StreetRouteOptions{});
   SceneMesh a;
   SceneMesh b;
-  addStreetClutter(map, route.waypoints, StreetClutterOptions{}, 1, a);
-  addStreetClutter(map, route.waypoints, StreetClutterOptions{}, 1, b);
+  const auto flat = [](const Eigen::Vector2d&) { return 0.0; };
+  addStreetClutter(map, route.waypoints, flat, StreetClutterOptions{}, 1, a);
+  addStreetClutter(map, route.waypoints, flat, StreetClutterOptions{}, 1, b);
   ASSERT_EQ(a.vertices().size(), b.vertices().size());
   EXPECT_TRUE(std::equal(a.vertices().begin(), a.vertices().end(), b.vertices().begin()));
 }

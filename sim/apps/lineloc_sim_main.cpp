@@ -24,10 +24,19 @@ int main(int argc, char** argv) {
   options.add("duration_s", config.duration_s, "length of the drive (s)");
   options.add("waypoints", config.waypoints,
               "route file of 'x y' lines in the site frame (empty: planned in the streets)");
-  options.add("min_clearance_m", config.route.min_clearance_m,
-              "planned routes keep this far from façades (m)");
+  options.add("min_clearance_m", config.network.min_clearance_m,
+              "streets of the planned route keep this far from façades (m)");
+  options.add("max_facade_distance_m", config.network.max_facade_distance_m,
+              "a street has façades on both sides within this distance; beyond is open land (m)");
+  options.add("min_turn_clearance_m", config.route.min_turn_clearance_m,
+              "turning back at a dead end, the robot keeps this far from façades (m)");
+  options.add("min_facades_in_view", config.route.min_facades_in_view,
+              "on the way to a dead end, the robot turns back before façades fill less than this "
+              "share of its view");
   options.add("initial_still_s", config.drive.initial_still_s,
               "the robot stands still this long at the start (s)");
+  options.add("initial_speed_m_s", config.drive.initial_speed_m_s,
+              "speed at the start (m/s); above 0 the robot starts moving, with initial_still_s 0");
   options.add("min_speed_m_s", config.drive.min_speed_m_s, "slowest cruise speed (m/s)");
   options.add("max_speed_m_s", config.drive.max_speed_m_s, "fastest cruise speed (m/s)");
   options.add("stop_probability", config.drive.stop_probability,

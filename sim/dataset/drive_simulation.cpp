@@ -123,13 +123,14 @@ std::vector<Eigen::Vector2d> planRoute(const DriveSimulationConfig& config,
   // Long enough to drive the whole time at top speed.
   options.length_m = config.drive.max_speed_m_s * config.duration_s + 20.0;
   options.seed = static_cast<uint32_t>(config.seed);
-  const StreetRoute route = planStreetRoute(map, options);
+  const StreetRoute route = planStreetRoute(buildStreetNetwork(map, config.network), map, options);
   if (route.status == RouteStatus::kNoStreets) {
-    throw std::runtime_error(fmt::format("{}: no street has {} m clearance from the façades",
-                                         config.city_model, options.min_clearance_m));
+    throw std::runtime_error(
+        fmt::format("{}: no street with {} m clearance from the façades to drive and turn in",
+                    config.city_model, config.network.min_clearance_m));
   }
   if (route.status == RouteStatus::kTooShort) {
-    spdlog::warn("street network allows only {:.0f} m of route; the robot stops at its end",
+    spdlog::warn("the street network allows only {:.0f} m of route; the robot stops at its end",
                  route.length_m);
   }
   return route.waypoints;

@@ -1,6 +1,6 @@
 // A simulated drive through a city model, written as an EuRoC/ASL dataset:
 // the city's buildings plus street clutter (sim/world), a street route (planned
-// in the free space between footprints, or given as waypoints), a ground robot
+// through the street network between footprints, or given as waypoints), a ground robot
 // driving it (RouteTrajectory), camera images rendered along it
 // (sim/render), IMU, DGPS (NMEA GGA + RMC) and compass readings synthesised
 // along the same trajectory (sim/sensors), and the ground truth. Every random
@@ -19,6 +19,7 @@
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
 #include "sim/world/street_clutter.h"
+#include "sim/world/street_network.h"
 #include "sim/world/street_route.h"
 
 namespace lineloc {
@@ -36,8 +37,9 @@ struct DriveSimulationConfig {
   std::string output;
   uint64_t seed = 1;
   double duration_s = 60.0;
-  // Waypoint file; empty: a route is planned through the streets.
+  // Waypoint file; empty: a route is planned through the street network.
   std::string waypoints;
+  StreetNetworkOptions network;
   StreetRouteOptions route;
   RouteDriveOptions drive;
   StreetClutterOptions clutter;

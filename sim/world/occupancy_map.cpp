@@ -70,6 +70,22 @@ double OccupancyMap::clearanceAt(const Eigen::Vector2d& xy) const {
   return contains(cell) ? clearance_m_.at<float>(cell) : 0.0;
 }
 
+bool OccupancyMap::buildingAlong(const cv::Point& cell, const Eigen::Vector2d& direction,
+                                 double range_m) const {
+  const int reach_cells = static_cast<int>(std::ceil(range_m / cell_size_m_));
+  for (int k = 1; k <= reach_cells; ++k) {
+    const cv::Point at(cell.x + static_cast<int>(std::lround(k * direction.x())),
+                       cell.y + static_cast<int>(std::lround(k * direction.y())));
+    if (!contains(at)) {
+      return false;
+    }
+    if (occupied_.at<uint8_t>(at) != 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
 Eigen::Vector2d OccupancyMap::awayFromBuildings(const Eigen::Vector2d& xy) const {
   const cv::Point cell = cellOf(xy);
   if (cell.x < 1 || cell.y < 1 || cell.x >= cols() - 1 || cell.y >= rows() - 1) {

@@ -31,6 +31,10 @@ class OccupancyMap {
   // CV_32F, metres from each cell to the nearest building cell.
   const cv::Mat& clearance() const { return clearance_m_; }
   double clearanceAt(const Eigen::Vector2d& xy) const;
+  // True when a building cell lies within range_m of `cell` along the unit
+  // `direction` (cells stepped one cell length apart; the grid's edge ends the
+  // search).
+  bool buildingAlong(const cv::Point& cell, const Eigen::Vector2d& direction, double range_m) const;
   // Unit vector pointing away from the nearest building (the clearance
   // gradient); zero where the clearance is flat.
   Eigen::Vector2d awayFromBuildings(const Eigen::Vector2d& xy) const;

@@ -95,6 +95,13 @@ RouteTrajectory::RouteTrajectory(
         "duration, and 0 < min_speed <= max_speed",
         waypoints.size()));
   }
+  if (!(options.initial_speed_m_s >= 0.0) || options.initial_speed_m_s > options.max_speed_m_s ||
+      (options.initial_speed_m_s > 0.0 && options.initial_still_s != 0.0)) {
+    throw std::invalid_argument(fmt::format(
+        "RouteTrajectory: initial speed {} m/s must lie in [0, max_speed {}], and a drive that "
+        "starts moving cannot stand still first (initial_still_s {} must be 0)",
+        options.initial_speed_m_s, options.max_speed_m_s, options.initial_still_s));
+  }
   control_ = resample(waypoints, options.control_spacing_m);
   if (control_.size() < 6) {
     throw std::invalid_argument(
@@ -237,7 +244,7 @@ void RouteTrajectory::planSpeed() {
   };
   const double ramp = options_.ramp_s;
   double t = options_.initial_still_s;
-  double v = 0.0;
+  double v = options_.initial_speed_m_s;
   double covered = 0.0;  // distance at time t
   const double length = arclength_.back();
   while (t < options_.duration_s) {
@@ -272,7 +279,7 @@ void RouteTrajectory::planSpeed() {
 }
 
 double RouteTrajectory::speed(double t) const {
-  double v = 0.0;
+  double v = options_.initial_speed_m_s;
   for (const Ramp& r : ramps_) {
     v += r.change_m_s * smoothstep(std::clamp((t - r.start_s) / r.duration_s, 0.0, 1.0));
   }
@@ -290,9 +297,9 @@ double RouteTrajectory::acceleration(double t) const {
   return a;
 }
 
-// s(t) = sum over ramps of change * (d S(u) for u in the ramp, + (t - end) after it).
+// s(t) = v0 t + sum over ramps of change * (d S(u) for u in the ramp, + (t - end) after it).
 double RouteTrajectory::distance(double t) const {
-  double s = 0.0;
+  double s = options_.initial_speed_m_s * t;
   for (const Ramp& r : ramps_) {
     const double u = (t - r.start_s) / r.duration_s;
     if (u <= 0.0) {

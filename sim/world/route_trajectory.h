@@ -3,15 +3,16 @@
 // acceleration have no steps) through control points every few metres, driven
 // with a speed profile of quintic smoothstep ramps s(u) = 6u^5 - 15u^4 + 10u^3
 // between random cruise speeds (each capped by the bends it drives through),
-// with stops. Distance along the path is the
-// closed-form integral of the speed (S(u) = u^6 - 3u^5 + 5u^4/2); arclength
-// is inverted by Newton's method on the spline parameter. The robot rides the
-// ground: its height over the arclength s of the path is h(s), the uniform
-// cubic B-spline through the ground's heights at most a control spacing apart
-// along the path, straight at its ends (a sloping street, smoothed over a few metres as wheels and
-// suspension do), and it pitches with the grade, theta =
-// atan h'(s), without rolling. With v the speed over the ground's plan, unit
-// tangent T, left normal N, signed curvature k and yaw psi,
+// with stops, from standing or from an initial speed v0. Distance along the
+// path is the closed-form integral of the speed, v0 t plus the ramps'
+// (S(u) = u^6 - 3u^5 + 5u^4/2); arclength is inverted by Newton's method on
+// the spline parameter. The robot rides the ground: its height over the
+// arclength s of the path is h(s), the uniform cubic B-spline through the
+// ground's heights at most a control spacing apart along the path, straight
+// at its ends (a sloping street, smoothed over a few metres as wheels and
+// suspension do), and it pitches with the grade, theta = atan h'(s), without
+// rolling. With v the speed over the ground's plan, unit tangent T, left
+// normal N, signed curvature k and yaw psi,
 //   v_world = (v T, h' v),  a_world = (v' T + k v^2 N, h'' v^2 + h' v'),
 //   R = Rz(psi) Ry(-theta),  psi' = k v,  theta' = h'' v / (1 + h'^2),
 //   omega_body = (sin(theta) psi', -theta', cos(theta) psi'),
@@ -32,6 +33,9 @@ struct RouteDriveOptions {
   double duration_s = 60.0;
   // Standing still at the start, so the IMU can be aligned (s).
   double initial_still_s = 5.0;
+  // Speed at the start (m/s): 0 starts standing, above 0 (up to max_speed_m_s,
+  // with initial_still_s 0) starts driving at it along the route.
+  double initial_speed_m_s = 0.0;
   double min_speed_m_s = 0.5;
   double max_speed_m_s = 2.0;
   // Each leg's cruise speed is capped so that k v^2 stays below this on the

@@ -57,7 +57,8 @@ struct DelftDrive {
     const OccupancyMap map(city.mesh);
     StreetRouteOptions route_options;
     route_options.length_m = 140.0;
-    const StreetRoute route = planStreetRoute(map, route_options);
+    const StreetRoute route =
+        planStreetRoute(buildStreetNetwork(map, StreetNetworkOptions{}), map, route_options);
     scene = city.mesh;
     const auto ground_height_m = [&city](const Eigen::Vector2d& xy) {
       return groundHeightAt(city, xy);

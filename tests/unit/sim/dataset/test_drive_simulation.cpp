@@ -193,7 +193,7 @@ TEST(DriveSimulation, IdealCameraKeepsTheRenderersImages) {
   config.duration_s = 1.0;
   config.ideal_camera = true;
   simulateDrive(config);
-  EXPECT_EQ(imageFingerprint(config.output), 12'589'182'321'637'302'390ull);
+  EXPECT_EQ(imageFingerprint(config.output), 6'504'118'807'975'186'671ull);
 }
 
 TEST(DriveSimulation, TheRealisticCameraExposesEachFrameUnderAutoExposure) {

@@ -188,6 +188,43 @@ TEST(RouteTrajectory, TurnsBackWithinItsLateralAccelerationLimit) {
   EXPECT_LT((end.q_world_body * Eigen::Vector3d::UnitX()).x(), -0.99);
 }
 
+TEST(RouteTrajectory, StartsMovingAtTheInitialSpeed) {
+  RouteDriveOptions options = testDrive();
+  options.initial_still_s = 0.0;
+  options.initial_speed_m_s = 1.5;
+  const RouteTrajectory trajectory(lRoute(), flat(0.0), options);
+  const sim::TruthSample start = trajectory.at(trajectory.startStamp_ns());
+  EXPECT_NEAR((start.v_world_body - Eigen::Vector3d(1.5, 0.0, 0.0)).norm(), 0.0, 1e-9);
+  // Position, velocity and acceleration agree from the first instant on.
+  constexpr int64_t kStep_ns = 1'000'000;
+  for (int64_t t = trajectory.startStamp_ns() + kStep_ns;
+       t < trajectory.startStamp_ns() + 5'000'000'000; t += 500'000'000) {
+    const Eigen::Vector3d velocity =
+        (trajectory.at(t + kStep_ns).p_world_body - trajectory.at(t - kStep_ns).p_world_body) /
+        2e-3;
+    EXPECT_NEAR((velocity - trajectory.at(t).v_world_body).norm(), 0.0, 1e-5);
+    EXPECT_GT(trajectory.at(t).v_world_body.norm(), options.min_speed_m_s - 1e-9);
+  }
+  // It stops where the road ends, as a standing start does.
+  options.duration_s = 200.0;
+  const RouteTrajectory to_the_end(lRoute(), flat(0.0), options);
+  EXPECT_NEAR(to_the_end.at(to_the_end.endStamp_ns()).v_world_body.norm(), 0.0, 1e-9);
+  EXPECT_NEAR(
+      (to_the_end.at(to_the_end.endStamp_ns()).p_world_body.head<2>() - Eigen::Vector2d(90, 70))
+          .norm(),
+      0.0, testDrive().control_spacing_m);
+}
+
+TEST(RouteTrajectory, RejectsAMovingStartThatStandsStillOrExceedsTheTopSpeed) {
+  RouteDriveOptions options = testDrive();
+  options.initial_speed_m_s = 1.0;
+  options.initial_still_s = 5.0;
+  EXPECT_THROW(RouteTrajectory(lRoute(), flat(0.0), options), std::invalid_argument);
+  options.initial_still_s = 0.0;
+  options.initial_speed_m_s = options.max_speed_m_s + 0.1;
+  EXPECT_THROW(RouteTrajectory(lRoute(), flat(0.0), options), std::invalid_argument);
+}
+
 TEST(RouteTrajectory, RejectsDegenerateRoutes) {
   EXPECT_THROW(RouteTrajectory({{0, 0}}, flat(0.0), testDrive()), std::invalid_argument);
   EXPECT_THROW(RouteTrajectory({{0, 0}, {1, 0}}, flat(0.0), testDrive()), std::invalid_argument);

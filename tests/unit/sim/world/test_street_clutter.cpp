@@ -22,7 +22,8 @@ TEST(StreetClutter, PlacesObjectsBesideTheRouteNotOnItNorInBuildings) {
   const OccupancyMap map(city, 0.5);
   StreetRouteOptions route_options;
   route_options.length_m = 250.0;
-  const StreetRoute route = planStreetRoute(map, route_options);
+  const StreetRoute route =
+      planStreetRoute(buildStreetNetwork(map, StreetNetworkOptions{}), map, route_options);
   ASSERT_EQ(route.status, RouteStatus::kOk);
   StreetClutterOptions options;
   options.route_keep_out_m = 3.0;
@@ -57,7 +58,8 @@ TEST(StreetClutter, PlacesObjectsBesideTheRouteNotOnItNorInBuildings) {
 
 TEST(StreetClutter, SameSeedSameScene) {
   const OccupancyMap map(makeBoxCity(2, 16.0), 0.5);
-  const StreetRoute route = planStreetRoute(map, StreetRouteOptions{});
+  const StreetRoute route =
+      planStreetRoute(buildStreetNetwork(map, StreetNetworkOptions{}), map, StreetRouteOptions{});
   SceneMesh a;
   SceneMesh b;
   const auto flat = [](const Eigen::Vector2d&) { return 0.0; };

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# The main job, a localisation run on a simulated drive through Delft:
+# The main job, a localisation run on a simulated drive through a city:
 # builds lineloc when needed, starts the private PostGIS cluster, brings the
-# database to the newest schema, loads the bundled Delft city model, simulates
-# a drive through its streets (camera, IMU, DGPS, compass, ground truth), runs
-# lineloc-backbone and lineloc-robot as separate processes over DDS on loopback
-# in real time, and prints lineloc-eval's report against the ground truth.
+# database to the newest schema, loads the city model (the bundled Delft tile
+# unless told otherwise), simulates a drive through its streets (camera, IMU,
+# DGPS, compass, ground truth), runs lineloc-backbone and lineloc-robot as
+# separate processes over DDS on loopback in real time, and prints
+# lineloc-eval's report against the ground truth.
 #
-# Environment: LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
+# Environment: LINELOC_DEMO_CITY (delft, the bundled tile; denhaag, Den Haag's
+# centre from ../shared/data; or a CityJSON file, with LINELOC_DEMO_SITE_CRS,
+# default the one it names, and LINELOC_DEMO_SITE_ORIGIN, "x y z" in its CRS
+# near its centre), LINELOC_DEMO_DURATION_S (default 120), LINELOC_DEMO_SEED (1),
 # LINELOC_DEMO_CAMERA_HZ (30), LINELOC_DEMO_DOMAIN (DDS domain, 42),
 # LINELOC_DEMO_OUT (where everything goes, out/demo/),
 # LINELOC_DEMO_REALTIME_PRIORITY (the robot's --realtime-priority, 10; 0: off),
@@ -30,10 +34,39 @@ REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
 # The backbone's answering threads below it, above the backbone's searches and
 # the replay's decoding.
 BACKBONE_REALTIME_PRIORITY="${LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY:-5}"
-CITY_MODEL="$ROOT/../shared/data/citymodels/delft.json"
-# Site frame: EPSG:7415 (RD New + NAP height) minus this origin, near the model's centre.
-SITE_CRS=EPSG:7415
-SITE_ORIGIN=(84900 447600 0)
+CITY="${LINELOC_DEMO_CITY:-delft}"
+MODEL_CRS=()
+# Site frame: the site's CRS minus an origin near the model's centre; for the
+# named cities EPSG:7415 (RD New + NAP height).
+case "$CITY" in
+  delft)
+    CITY_MODEL="$ROOT/data/citymodels/delft.json"
+    SITE=delft
+    SITE_CRS=EPSG:7415
+    SITE_ORIGIN=(84900 447600 0)
+    ;;
+  denhaag)
+    CITY_MODEL="$ROOT/../shared/data/citymodels/denhaag_01.city.json"
+    SITE=denhaag
+    SITE_CRS=EPSG:7415
+    SITE_ORIGIN=(78650 457950 0)
+    ;;
+  *)
+    CITY_MODEL="$CITY"
+    SITE="$(basename "$CITY" | sed 's/\..*//')"
+    SITE_CRS="${LINELOC_DEMO_SITE_CRS:-}"
+    # A CRS given for a file that names none.
+    [ -z "$SITE_CRS" ] || MODEL_CRS=(--crs "$SITE_CRS")
+    read -r -a SITE_ORIGIN <<<"${LINELOC_DEMO_SITE_ORIGIN:-}"
+    if [ ${#SITE_ORIGIN[@]} -ne 3 ]; then
+      echo "demo: a city model file needs LINELOC_DEMO_SITE_ORIGIN=\"x y z\" (its CRS, near its centre)" >&2
+      exit 1
+    fi
+    if [ -z "$SITE_CRS" ]; then
+      SITE_CRS="EPSG:$(grep -o 'EPSG/0/[0-9]*\|EPSG::[0-9]*\|EPSG:[0-9]*' "$CITY_MODEL" | head -1 | grep -o '[0-9]*$')"
+    fi
+    ;;
+esac
 DDS_CONFIG="$ROOT/deploy/cyclonedds.xml"
 # With them, Cyclone's receive thread (deploy/cyclonedds-realtime.xml), where
 # the machine grants SCHED_FIFO: without it Cyclone could not start at all.
@@ -45,12 +78,13 @@ DDS=(--domain-id "$DOMAIN_ID" --dds-config "$DDS_CONFIG")
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5
 # The drive starts on a sunny April morning (UTC). The simulator renders the
-# city under the sun that stands over Delft then, about 137 deg from grid
-# north and 40 deg high; the backbone works the sun out from each LineSet's
-# time, as it would on the street.
+# city under the sun that stands over it then (over Delft about 137 deg from
+# grid north and 40 deg high); the backbone works the sun out from each
+# LineSet's time, as it would on the street.
 START_UTC=2026-04-14T09:30:00Z
 
 [ -f "$CITY_MODEL" ] || { echo "demo: city model $CITY_MODEL missing" >&2; exit 1; }
+[ "$SITE_CRS" != "EPSG:" ] || { echo "demo: $CITY_MODEL names no CRS: give LINELOC_DEMO_SITE_CRS" >&2; exit 1; }
 "$ROOT/deploy/build.sh"
 rm -rf "$OUT" && mkdir -p "$OUT"
 
@@ -59,15 +93,16 @@ CONNINFO="$("$ROOT/deploy/pg.sh" conninfo)"
 # The backbone only reads: it connects with the read-only role the migrations create.
 READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-migrate" --db "$CONNINFO"
-"$BIN/lineloc-load" --db "$CONNINFO" --site delft --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
+"$BIN/lineloc-load" --db "$CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
+  --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
-echo "demo: simulating a ${DURATION_S} s drive (seed $SEED, camera ${CAMERA_HZ} Hz)"
-"$BIN/lineloc-sim" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
+echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)"
+"$BIN/lineloc-sim" --city-model "$CITY_MODEL" "${MODEL_CRS[@]}" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
   --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
   --start-utc "$START_UTC" --sun-from-clock
 
-"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site delft --sun-from-clock \
+"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site "$SITE" --sun-from-clock \
   --realtime-priority "$BACKBONE_REALTIME_PRIORITY" --stats-file "$OUT/backbone-stats.json" \
   >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job over many drives: deploy/demo.sh on seeds FIRST..FIRST+N-1,
+# The main job over many drives: deploy/demo.sh in CITY on seeds FIRST..FIRST+N-1,
 # each its own route, clutter and sensor noise, LINELOC_DEMO_DURATION_S long
 # (default 20 s here), then one row per seed and the totals: fixes OK, the
 # answers from the first OK fix on (the OK share of those is the availability
@@ -11,14 +11,20 @@
 # their own covariance from its first OK fix on (the robot sure of a wrong pose).
 # Exits 1 when any seed gave a precise wrong pose, 2 when a run failed.
 #
-# Usage: deploy/seeds.sh [N=50] [FIRST=1]   (about 45 s per 20 s drive)
-# Each run's files stay in out/seeds/<seed>/.
+# Usage: deploy/seeds.sh [CITY=delft] [N=50] [FIRST=1]   (about 45 s per 20 s drive)
+# CITY as deploy/demo.sh's LINELOC_DEMO_CITY: delft, denhaag, or a CityJSON
+# file (with LINELOC_DEMO_SITE_CRS and LINELOC_DEMO_SITE_ORIGIN).
+# Each run's files stay in out/seeds/<city>/<seed>/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-SEEDS="${1:-50}"
-FIRST_SEED="${2:-1}"
+export LINELOC_DEMO_CITY="${1:-delft}"
+SEEDS="${2:-50}"
+FIRST_SEED="${3:-1}"
+case "$SEEDS$FIRST_SEED" in
+  *[!0-9]*) echo "usage: deploy/seeds.sh [CITY=delft] [N=50] [FIRST=1]" >&2; exit 2 ;;
+esac
 export LINELOC_DEMO_DURATION_S="${LINELOC_DEMO_DURATION_S:-20}"
-OUT="$ROOT/out/seeds"
+OUT="$ROOT/out/seeds/$(basename "$LINELOC_DEMO_CITY" | sed 's/\..*//')"
 mkdir -p "$OUT"
 
 # One row from a demo's report (lineloc-robot's summary and lineloc-eval's

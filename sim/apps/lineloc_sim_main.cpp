@@ -10,7 +10,7 @@
 
 int main(int argc, char** argv) {
   lineloc::DriveSimulationConfig config;
-  config.city_model = LINELOC_SHARED_DATA_DIR "/citymodels/delft.json";
+  config.city_model = LINELOC_BUNDLED_CITY_MODEL;
   config.output = "sim_dataset";
   lineloc::ProgramOptions options("lineloc-sim",
                                   "simulated drive through a city model -> EuRoC/ASL dataset");

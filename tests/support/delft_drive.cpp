@@ -10,7 +10,7 @@
 namespace lineloc::test {
 
 std::filesystem::path delftCityModel() {
-  return std::filesystem::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
+  return std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
 }
 
 Eigen::Vector3d delftSiteOrigin() {

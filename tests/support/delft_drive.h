@@ -19,7 +19,7 @@ inline constexpr double kDelftCameraHeightM = 1.5;
 // When the demo's drive starts (deploy/demo.sh): a sunny April morning.
 inline constexpr const char* kDelftDriveStartUtc = "2026-04-14T09:30:00Z";
 
-// ../shared/data/citymodels/delft.json.
+// data/citymodels/delft.json, bundled with lineloc.
 std::filesystem::path delftCityModel();
 
 // Model coordinates (EPSG:7415) of the site origin: the site frame is the

@@ -48,10 +48,7 @@ struct DelftDrive {
 
   DelftDrive() {
     const std::filesystem::path path =
-        std::filesystem::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
-    if (!std::filesystem::exists(path)) {
-      throw std::runtime_error("shared data missing: " + path.string());
-    }
+        std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
     const citymodel::CityModel model = readCityModelFile(path.string());
     const CityMesh city = buildCityMesh(model, defaultSiteOrigin(model));
     const OccupancyMap map(city.mesh);

@@ -49,13 +49,10 @@ BenchImage buildingImage() {
   return building;
 }
 
-// The simulator's frame 0.5 s into a drive through Delft (the 3D city model
-// of the shared data), with its camera's calibration.
+// The simulator's frame 0.5 s into a drive through Delft (the city model
+// bundled with lineloc), with its camera's calibration.
 BenchImage streetImage() {
-  const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
-  if (!fs::exists(city)) {
-    throw std::runtime_error("shared data missing: " + city.string());
-  }
+  const fs::path city = fs::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
   const fs::path folder =
       fs::temp_directory_path() / fmt::format("lineloc-bench-vision-{}", ::getpid());
   lineloc::DriveSimulationConfig config;

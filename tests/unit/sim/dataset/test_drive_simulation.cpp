@@ -20,11 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 DriveSimulationConfig shortDelftDrive(const std::string& name) {
-  const fs::path city = fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
-  if (!fs::exists(city)) {
-    throw std::runtime_error("shared data missing: " + city.string() +
-                             " (set LINELOC_SHARED_DATA_DIR)");
-  }
+  const fs::path city = fs::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
   DriveSimulationConfig config;
   config.city_model = city.string();
   config.output = (fs::temp_directory_path() / ("lineloc_test_drive_" + name)).string();

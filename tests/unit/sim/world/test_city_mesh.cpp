@@ -10,9 +10,7 @@ namespace {
 
 TEST(CityMesh, DelftModelBecomesASceneAroundTheSiteOrigin) {
   const std::filesystem::path path =
-      std::filesystem::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "delft.json";
-  ASSERT_TRUE(std::filesystem::exists(path))
-      << "shared data missing: " << path << " (set LINELOC_SHARED_DATA_DIR)";
+      std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
   const citymodel::CityModel model = readCityModelFile(path.string());
   const Eigen::Vector3d origin = defaultSiteOrigin(model);
   // Inside the model's extent x 84616..85141, y 447423..447751 (EPSG:7415).

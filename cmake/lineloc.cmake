@@ -7,14 +7,15 @@ function(lineloc_add_executable name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
 endfunction()
 
-# lineloc_add_unit_test(NAME SOURCES... LIBS ... [POSTGIS]): a GoogleTest
+# lineloc_add_unit_test(NAME SOURCES... LIBS ... [POSTGIS] [SHARED_DATA]): a GoogleTest
 # binary registered with CTest under the label "unit" (the sanitizer build runs
 # every test it builds; it builds no integration tests or benchmarks).
 # POSTGIS: its tests need the private PostGIS cluster (the CTest fixture
 # "postgis" starts it; tests/support/test_database.h gives each test a fresh
-# migrated database) and are labelled "postgis" instead.
+# migrated database) and are labelled "postgis" instead. SHARED_DATA: its tests
+# read the real data of ../shared/data (lineloc_shared_data_properties).
 function(lineloc_add_unit_test name)
-  cmake_parse_arguments(ARG "POSTGIS" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "POSTGIS;SHARED_DATA" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
                         GTest::gtest_main)
@@ -22,13 +23,38 @@ function(lineloc_add_unit_test name)
   target_compile_definitions(${name} PRIVATE
     LINELOC_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     LINELOC_SHARED_DATA_DIR="${LINELOC_SHARED_DATA_DIR}")
+  set(label unit)
   if(ARG_POSTGIS)
-    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS postgis
-                         FIXTURES_REQUIRED postgis
-                         ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
-  else()
-    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+    set(label postgis)
   endif()
+  lineloc_shared_data_properties(${name} ${ARG_SHARED_DATA} label shared_data)
+  if(ARG_POSTGIS)
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${label}"
+                         FIXTURES_REQUIRED postgis
+                         ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}"
+                         ${shared_data})
+  else()
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${label}"
+                         ${shared_data})
+  endif()
+endfunction()
+
+# lineloc_shared_data_properties(NAME READS_SHARED_DATA LABEL_VAR PROPERTIES_VAR):
+# for a test binary that reads ../shared/data, the label "shared-data" in
+# place of its own and, where that folder is missing (a fresh clone on its
+# own), the property DISABLED, so CTest lists its tests as not run rather than
+# failed; the configure step says which binaries it disabled.
+function(lineloc_shared_data_properties name reads_shared_data label_var properties_var)
+  set(properties "")
+  if(reads_shared_data)
+    # One label: gtest_discover_tests takes a list value for more properties.
+    set(${label_var} shared-data PARENT_SCOPE)
+    if(NOT EXISTS "${LINELOC_SHARED_DATA_DIR}/citymodels")
+      message(STATUS "${name}: disabled, its real data is missing (${LINELOC_SHARED_DATA_DIR})")
+      set(properties DISABLED TRUE)
+    endif()
+  endif()
+  set(${properties_var} ${properties} PARENT_SCOPE)
 endfunction()
 
 # lineloc_add_benchmark(NAME SOURCES... LIBS ...): a Google Benchmark binary.
@@ -76,14 +102,14 @@ function(lineloc_add_fuzz_target name)
   endif()
 endfunction()
 
-# lineloc_add_integration_test(NAME [REAL_TIME] SOURCES... LIBS ... DEPENDS programs...):
+# lineloc_add_integration_test(NAME [REAL_TIME] [SHARED_DATA] SOURCES... LIBS ... DEPENDS programs...):
 # a GoogleTest binary that starts the project's real programs (from
 # LINELOC_BIN_DIR) against the private PostGIS cluster and DDS on loopback;
 # labelled "integration". REAL_TIME tests replay sensors in real time and check
 # what the robot achieved in that time: they run alone (RUN_SERIAL), so other
 # tests do not take the cores the real robot and backbone would have.
 function(lineloc_add_integration_test name)
-  cmake_parse_arguments(ARG "REAL_TIME" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "REAL_TIME;SHARED_DATA" "" "SOURCES;LIBS;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} lineloc_test_support GTest::gtest
                         GTest::gtest_main)
@@ -99,7 +125,10 @@ function(lineloc_add_integration_test name)
   if(ARG_REAL_TIME)
     set(run_serial TRUE)
   endif()
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS integration
+  set(label integration)
+  lineloc_shared_data_properties(${name} ${ARG_SHARED_DATA} label shared_data)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${label}"
                        FIXTURES_REQUIRED postgis RUN_SERIAL ${run_serial}
-                       ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}")
+                       ENVIRONMENT "LINELOC_TEST_PG_PORT=${LINELOC_TEST_PG_PORT}"
+                       ${shared_data})
 endfunction()

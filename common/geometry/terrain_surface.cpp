@@ -53,7 +53,17 @@ TerrainSurface::TerrainSurface(std::vector<Triangle> triangles, double cell_size
   if (triangles_.empty()) {
     return;
   }
+  if (!bounds.sizes().allFinite()) {
+    throw std::invalid_argument("TerrainSurface: the terrain's extent overflows");
+  }
   grid_origin_ = bounds.min();
+  // Cells no smaller than needed to keep their count within kCellsPerTriangle
+  // per triangle, however large the terrain's extent.
+  constexpr double kCellsPerTriangle = 4.0;
+  const double max_cells = kCellsPerTriangle * static_cast<double>(triangles_.size()) + 16.0;
+  cell_size_m_ =
+      std::max(cell_size_m_, std::sqrt(bounds.sizes().x() * bounds.sizes().y() / max_cells));
+  cell_size_m_ = std::max(cell_size_m_, bounds.sizes().maxCoeff() / max_cells);
   columns_ = static_cast<int>(std::floor(bounds.sizes().x() / cell_size_m_)) + 1;
   rows_ = static_cast<int>(std::floor(bounds.sizes().y() / cell_size_m_)) + 1;
   // Counting sort of (cell, triangle) pairs by cell.

@@ -17,7 +17,10 @@ class TerrainSurface {
  public:
   using Triangle = std::array<Eigen::Vector3d, 3>;
 
-  // `cell_size_m`: side of the grid's cells; about a triangle's size.
+  // `cell_size_m`: side of the grid's cells, about a triangle's size (larger
+  // where the terrain's extent would otherwise need more than four cells per
+  // triangle). Throws std::invalid_argument for a non-positive cell size, a
+  // non-finite corner or an extent beyond the range of a double.
   explicit TerrainSurface(std::vector<Triangle> triangles, double cell_size_m = 10.0);
 
   // nullopt where no triangle lies under (x, y), and for an empty terrain.

@@ -73,6 +73,17 @@ TEST(TerrainSurface, AgreesWithASearchOfEveryTriangle) {
   }
 }
 
+TEST(TerrainSurface, AVastTerrainTakesAsFewCellsAsItsTriangles) {
+  // Two triangles a million kilometres across: cells grow to keep their count
+  // small instead of allocating 1e18 of them.
+  const TerrainSurface terrain({{{{0, 0, 0}, {1e9, 0, 10}, {1e9, 1e9, 20}}},
+                                {{{0, 0, 0}, {1e9, 1e9, 20}, {0, 1e9, 10}}}});
+  ASSERT_TRUE(terrain.heightAt({5e8, 1e8}).has_value());
+  EXPECT_NEAR(*terrain.heightAt({5e8, 1e8}), 6.0, 1e-6);
+  EXPECT_THROW(TerrainSurface({{{{-1e308, 0, 0}, {1e308, 0, 0}, {0, 1, 0}}}}),
+               std::invalid_argument);
+}
+
 TEST(TerrainSurface, NoHeightOffTheTerrain) {
   const TerrainSurface terrain(tin(4, 0.0, [](double, double) { return 1.0; }));
   EXPECT_FALSE(terrain.heightAt({-0.1, 5.0}).has_value());

@@ -38,32 +38,6 @@ TEST(CityMesh, DelftModelBecomesASceneAroundTheSiteOrigin) {
   EXPECT_GT(cv::countNonZero(map.occupied()), 0);
 }
 
-TEST(CityMesh, DenHaagsTerrainIsTheGroundTheSceneStandsOn) {
-  const std::filesystem::path path =
-      std::filesystem::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "denhaag_01.city.json";
-  ASSERT_TRUE(std::filesystem::exists(path))
-      << "shared data missing: " << path << " (set LINELOC_SHARED_DATA_DIR)";
-  const citymodel::CityModel model = readCityModelFile(path.string());
-  const Eigen::Vector3d origin(78650.0, 457950.0, 0.0);
-  const CityMesh city = buildCityMesh(model, origin);
-  size_t ground_triangles = 0;
-  for (size_t i = 0; i < city.mesh.triangleCount(); ++i) {
-    ground_triangles += city.mesh.tag(i).kind == SurfaceKind::kGround;
-  }
-  EXPECT_EQ(ground_triangles, model.terrain.size());
-  ASSERT_FALSE(city.terrain.empty());
-  // The plane lies under the terrain, which spans NAP 2.5-15.9 m.
-  EXPECT_NEAR(city.ground_z_m, 2.463, 1e-3);
-  for (const citymodel::TerrainTriangle& triangle : model.terrain) {
-    const Eigen::Vector3d centroid = (triangle[0] + triangle[1] + triangle[2]) / 3.0 - origin;
-    ASSERT_NEAR(groundHeightAt(city, centroid.head<2>()), centroid.z(), 1e-6);
-  }
-  EXPECT_DOUBLE_EQ(groundHeightAt(city, {5000.0, 0.0}), city.ground_z_m) << "off the terrain";
-  // The occupancy map holds the buildings only, not the ground.
-  const OccupancyMap map(city.mesh);
-  EXPECT_LT(cv::countNonZero(map.occupied()), map.cols() * map.rows() / 2);
-}
-
 TEST(CityMesh, RejectsAnEmptyModel) {
   EXPECT_THROW(buildCityMesh(citymodel::CityModel{}, Eigen::Vector3d::Zero()),
                std::invalid_argument);

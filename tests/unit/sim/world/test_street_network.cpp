@@ -1,40 +1,15 @@
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 
 #include "sim/world/street_network.h"
 #include "tests/unit/sim/world/box_city.h"
+#include "tests/unit/sim/world/network_measures.h"
 #include "tests/unit/sim/world/shared_city.h"
 #include "tests/unit/sim/world/street_layouts.h"
 
 namespace lineloc {
 namespace {
-
-int countDegree(const StreetNetwork& network, int degree) {
-  return static_cast<int>(std::count_if(network.nodes.begin(), network.nodes.end(),
-                                        [&](const auto& node) { return node.degree() == degree; }));
-}
-
-// Share of the network's edge length in its largest connected part.
-double largestComponentShare(const StreetNetwork& network) {
-  const std::vector<int> component = network.components();
-  double total_m = 0.0;
-  double largest_m = 0.0;
-  for (const StreetNetwork::Edge& edge : network.edges) {
-    total_m += edge.length_m;
-    largest_m += component[edge.from] == 0 ? edge.length_m : 0.0;
-  }
-  return largest_m / total_m;
-}
-
-void printSize(const std::string& name, const StreetNetwork& network) {
-  fmt::print(
-      "{}: {} nodes ({} junctions, {} dead ends), {} edges, largest part {:.0f} % of length\n",
-      name, network.nodes.size(), network.nodes.size() - countDegree(network, 1),
-      countDegree(network, 1), network.edges.size(), 100.0 * largestComponentShare(network));
-}
 
 TEST(StreetNetwork, GridCityHasFourWayJunctionsAtTheCrossingsAndBlockLongEdges) {
   // 4 x 4 blocks, 14 m streets: three streets each way cross at x, y in
@@ -116,7 +91,7 @@ TEST(StreetNetwork, NoStreetWhereTheClearanceIsTooSmall) {
 TEST(StreetNetwork, DelftHasItsStreetBetweenTwoDeadEnds) {
   // The street between the two blocks, about 100 m of it between façades;
   // the other parts are courtyards and corners between buildings.
-  const OccupancyMap map = sharedCityMap("delft.json");
+  const OccupancyMap map = bundledDelftMap();
   const StreetNetwork network = buildStreetNetwork(map, StreetNetworkOptions{});
   printSize("Delft", network);
   const std::vector<int> component = network.components();
@@ -131,17 +106,6 @@ TEST(StreetNetwork, DelftHasItsStreetBetweenTwoDeadEnds) {
   }
   EXPECT_EQ(dead_ends, 2);
   EXPECT_GT(largest_m, 90.0);
-}
-
-TEST(StreetNetwork, DenHaagIsConnectedOverMostOfTheModel) {
-  const OccupancyMap map = sharedCityMap("denhaag_01.city.json");
-  const auto start = std::chrono::steady_clock::now();
-  const StreetNetwork network = buildStreetNetwork(map, StreetNetworkOptions{});
-  fmt::print("Den Haag network built in {:.2f} s\n",
-             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  printSize("Den Haag", network);
-  EXPECT_GT(static_cast<int>(network.nodes.size()) - countDegree(network, 1), 30);
-  EXPECT_GT(largestComponentShare(network), 0.7);
 }
 
 }  // namespace

@@ -148,6 +148,38 @@ constexpr int kStepSampleDistancePx = 3;
 constexpr int kBorderPx = kStepSampleDistancePx;
 constexpr int kRingRows = 3;
 
+std::vector<double> convolve(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> ab(a.size() + b.size() - 1, 0.0);
+  for (size_t i = 0; i < a.size(); ++i) {
+    for (size_t j = 0; j < b.size(); ++j) {
+      ab[i + j] += a[i] * b[j];
+    }
+  }
+  return ab;
+}
+
+double sumOfSquares(const std::vector<double>& a) {
+  return std::inner_product(a.begin(), a.end(), a.begin(), 0.0);
+}
+
+// EdgeNoise for sigma = 1 and the smoothing kernel w (edge_detector.h).
+EdgeNoise unitNoise(const std::vector<double>& w) {
+  const double smoothed_variance = sumOfSquares(w);
+  const auto lag = static_cast<size_t>(2 * kStepSampleDistancePx);
+  const std::vector<double> autocorrelation = convolve(w, w);  // centre at w.size() - 1
+  const size_t centre = w.size() - 1;
+  const double rho_step = centre + lag < autocorrelation.size()
+                              ? autocorrelation[centre + lag] / autocorrelation[centre]
+                              : 0.0;
+  EdgeNoise noise;
+  noise.image_sigma = 1.0;
+  noise.gradient_sigma = std::sqrt(sumOfSquares(convolve(w, {0.25, 0.5, 0.25})) *
+                                   sumOfSquares(convolve(w, {-0.5, 0.0, 0.5})));
+  noise.step_sigma = smoothed_variance * std::sqrt(2.0 * (1.0 - rho_step));
+  noise.correlation_length_px = 1.0 / smoothed_variance;
+  return noise;
+}
+
 }  // namespace
 
 HWY_EXPORT(GradientRow);
@@ -166,9 +198,16 @@ EdgeDetector::EdgeDetector(const EdgeDetectorOptions& options) : options_(option
   if (options.smoothing_sigma_px > 0.0) {
     smoother_.emplace(options.smoothing_sigma_px);
   }
-  const double min_sobel = options.min_gradient * EdgeDetector::kGradientGain;
+  unit_noise_ = unitNoise(smoother_ ? smoother_->kernel() : std::vector<double>{1.0});
   cos_max_turn_ = static_cast<float>(std::cos(options.max_link_turn_rad));
-  min_squared_sobel_ = static_cast<int32_t>(std::ceil(min_sobel * min_sobel));
+}
+
+EdgeNoise EdgeDetector::noise(double image_sigma) const {
+  EdgeNoise noise = unit_noise_;
+  noise.image_sigma = image_sigma;
+  noise.gradient_sigma *= image_sigma;
+  noise.step_sigma *= image_sigma;
+  return noise;
 }
 
 void EdgeDetector::prepareBuffers(cv::Size size) {
@@ -219,9 +258,15 @@ Eigen::Vector2f* EdgeDetector::normalRow(int y) {
   return normal_rows_.data() + static_cast<size_t>(y % kRingRows) * smoothed_.cols;
 }
 
-void EdgeDetector::detect(const cv::Mat& grey, GradientRowListener* listener) {
+void EdgeDetector::detect(const cv::Mat& grey, double noise_sigma, GradientRowListener* listener) {
   const int width = grey.cols;
   const int height = grey.rows;
+  const double noise_gradient = noise(noise_sigma).gradient_sigma *
+                                std::sqrt(2.0 * std::log(static_cast<double>(width) * height));
+  const double min_sobel =
+      std::max<double>(options_.min_gradient, noise_gradient) * EdgeDetector::kGradientGain;
+  min_squared_sobel_ = static_cast<int32_t>(std::min(
+      std::ceil(min_sobel * min_sobel), static_cast<double>(std::numeric_limits<int32_t>::max())));
   prepareBuffers(grey.size());
   const auto tell = [&](int y) {
     if (listener != nullptr) {

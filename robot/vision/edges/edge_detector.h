@@ -3,9 +3,17 @@
 //
 // Gaussian pre-smoothing (gaussian_smoother.h) and the 3x3 Sobel gradient
 // g = (gx, gy), zero on the 1 px image border. A pixel is an edge point when
-// |g| >= min_gradient and |g| is a maximum along the gradient direction
+// |g| >= t and |g| is a maximum along the gradient direction
 // quantised to 0, 45, 90 or 135 degrees (non-maximum suppression: strictly
 // above the neighbour on the dark side, at least the one on the bright side).
+// The threshold follows the image's noise sigma (noise_estimate.h): noise
+// alone makes |g| Rayleigh, P(|g| > t) = exp(-t^2 / (2 sigma_g^2)), sigma_g
+// that of each component (EdgeNoise), so that a W x H image expects one
+// edge pixel from noise at
+//   t = max(min_gradient, sigma_g sqrt(2 ln(W H))).
+// min_gradient, the floor, is there for renders: their only noise is 8-bit
+// rounding, which is not white on smooth shading and would else put edges
+// on it.
 // Its sub-pixel position is the peak of the
 // Gaussian through the three magnitudes along that direction d (a parabola
 // through l = ln |g|^2, exact for a blurred step, whose |g| is a Gaussian):
@@ -54,8 +62,24 @@ struct EdgePoint {
 
 struct EdgeDetectorOptions {
   double smoothing_sigma_px = 1.0;  // Gaussian pre-smoothing, >= 0.5; 0 disables it
-  float min_gradient = 8.0f;        // grey levels per pixel
+  float min_gradient = 8.0f;        // grey levels per pixel, the threshold's floor
   double max_link_turn_rad = 0.3;   // largest gradient turn between linked neighbours, < pi/2
+};
+
+// What white Gaussian noise of standard deviation sigma in the grey image
+// becomes in EdgeDetector's measurements; w is the smoothing kernel (1D, sum
+// 1; w = (1) without smoothing), rho(k) = (w * w)(k) / sum w^2 the smoothed
+// noise's autocorrelation at k px along an axis:
+//   gradient_sigma = sigma ||w * (1 2 1) / 4|| ||w * (-1 0 1) / 2||   (each of gx, gy)
+//   step_sigma = sigma sum w^2 sqrt(2 (1 - rho(6)))   (smoothed samples 6 px apart)
+//   correlation_length_px = sum_k rho(k) = 1 / sum w^2,
+// so that the mean step of n points along an edge has variance
+// step_sigma^2 min(1, correlation_length_px / n).
+struct EdgeNoise {
+  double image_sigma = 0.0;     // grey levels
+  double gradient_sigma = 0.0;  // grey levels per pixel
+  double step_sigma = 0.0;      // grey levels
+  double correlation_length_px = 1.0;
 };
 
 // Working storage of EdgeDetector's SIMD passes: the pixels of one row that
@@ -88,10 +112,13 @@ class EdgeDetector {
   // threshold outside (0, 255] or a turn outside (0, pi/2).
   explicit EdgeDetector(const EdgeDetectorOptions& options);
 
-  // `grey`: CV_8UC1, at least 7 x 7 (checked by the caller). Edge points are
-  // found at least 3 px from the border. `listener`, if given, is told of
-  // every gradient row.
-  void detect(const cv::Mat& grey, GradientRowListener* listener = nullptr);
+  // `grey`: CV_8UC1, at least 7 x 7 (checked by the caller), with white
+  // noise of `noise_sigma` grey levels. Edge points are found at least 3 px
+  // from the border. `listener`, if given, is told of every gradient row.
+  void detect(const cv::Mat& grey, double noise_sigma, GradientRowListener* listener = nullptr);
+
+  // The noise of the measurements for noise of `image_sigma` in the image.
+  EdgeNoise noise(double image_sigma) const;
 
   // In raster order of their pixels.
   const std::vector<EdgePoint>& points() const { return points_; }
@@ -117,6 +144,7 @@ class EdgeDetector {
 
   EdgeDetectorOptions options_;
   std::optional<GaussianSmoother> smoother_;
+  EdgeNoise unit_noise_;  // for image_sigma = 1
   int32_t min_squared_sobel_;
   float cos_max_turn_;
   NeighbourSteps neighbour_steps_;

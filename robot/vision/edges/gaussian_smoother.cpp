@@ -126,5 +126,12 @@ void GaussianSmoother::smoothRow(const cv::Mat& grey, int y, uint16_t* out) {
   HWY_DYNAMIC_DISPATCH(SmoothRow)(column_sums_.data(), weights_.data(), taps, width, out);
 }
 
+std::vector<double> GaussianSmoother::kernel() const {
+  std::vector<double> kernel(weights_.size());
+  std::transform(weights_.begin(), weights_.end(), kernel.begin(),
+                 [](uint16_t w) { return w / 256.0; });
+  return kernel;
+}
+
 }  // namespace lineloc
 #endif  // HWY_ONCE

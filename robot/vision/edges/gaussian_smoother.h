@@ -33,6 +33,9 @@ class GaussianSmoother {
   // `out` (grey.cols values).
   void smoothRow(const cv::Mat& grey, int y, uint16_t* out);
 
+  // The weights w_k / 2^8, k = -radius .. radius, summing to 1.
+  std::vector<double> kernel() const;
+
  private:
   int radius_;
   std::vector<uint16_t> weights_;      // 2 radius + 1 taps, sum 2^8

@@ -29,7 +29,6 @@ const CameraCalibration& checkedSize(const CameraCalibration& calibration) {
 FeatureExtractorOptions trackingFrontEndOptions() {
   FeatureExtractorOptions options;
   options.edges.min_gradient = 4.0f;
-  options.lines.min_contrast = 5.0;
   return options;
 }
 
@@ -81,17 +80,18 @@ const cv::Mat& FeatureExtractor::toGrey(const cv::Mat& image) {
 const FrameFeatures& FeatureExtractor::extract(const cv::Mat& image) {
   const cv::Mat& grey = toGrey(image);
   features_.corners.clear();
+  features_.noise_sigma = noise_estimator_.estimate(grey);
   if (!options_.detect_corners) {
-    edge_detector_.detect(grey);
+    edge_detector_.detect(grey, features_.noise_sigma);
     fitLines();
     return features_;
   }
   if (options_.corners_on_own_thread) {
-    edge_detector_.detect(grey);
+    edge_detector_.detect(grey, features_.noise_sigma);
     corner_thread_.runAlongside([this] { fitLines(); });
   } else {
     corner_detector_.begin(grey.size(), EdgeDetector::kGradientGain);
-    edge_detector_.detect(grey, this);
+    edge_detector_.detect(grey, features_.noise_sigma, this);
     fitLines();
     corner_detector_.finish(edge_detector_.gradientX(), edge_detector_.gradientY());
   }
@@ -110,7 +110,10 @@ void FeatureExtractor::detectCorners() {
 
 void FeatureExtractor::fitLines() {
   linker_.link(edge_detector_.next(), edge_detector_.previous());
-  line_extractor_.extract(edge_detector_.points(), linker_, undistortion_);
+  line_extractor_.extract(edge_detector_.points(), linker_, undistortion_,
+                          edge_detector_.gradientX().size(),
+                          edge_detector_.noise(features_.noise_sigma));
+  features_.rejected_segments = line_extractor_.rejectedSegments();
   exportSegments();
 }
 

@@ -2,10 +2,12 @@
 // a small set of straight line segments and Förstner corners in undistorted
 // pixel coordinates, with their uncertainty, ready for the LineSet.
 //
-// Pipeline: grey conversion (colour input) -> sub-pixel edges
+// Pipeline: grey conversion (colour input) -> the image's noise
+// (edges/noise_estimate.h), which sets the edge threshold and the contrast a
+// segment needs -> sub-pixel edges
 // (edges/edge_detector.h) -> chains (edges/edge_linker.h) -> undistortion
-// lookup, split-and-merge, TLS refit, gap merge, corner snapping
-// (lines/line_extractor.h); Förstner corners on the same gradients
+// lookup, split-and-merge, TLS refit, gap merge, a contrario validation,
+// corner snapping (lines/line_extractor.h); Förstner corners on the same gradients
 // (corners/forstner_detector.h), undistorted through the same table with
 // their covariance carried by its Jacobian: Sigma_u = J Sigma J^T. Where a
 // corner is also a junction of two fitted lines (within junction_radius),
@@ -24,6 +26,7 @@
 #include "robot/vision/corners/forstner_detector.h"
 #include "robot/vision/edges/edge_detector.h"
 #include "robot/vision/edges/edge_linker.h"
+#include "robot/vision/edges/noise_estimate.h"
 #include "robot/vision/edges/undistortion_table.h"
 #include "robot/vision/lines/line_extractor.h"
 
@@ -44,11 +47,10 @@ struct FeatureExtractorOptions {
 };
 
 // The options of a front end for model-based tracking, the robot's: the
-// defaults with the edge threshold lowered to 4 grey levels per pixel and the
-// weakest segment to a mean step of 5, which keep the steps down to about 12
-// grey levels where walls in shade meet each other and the street
-// (robot_agent.h gives why and what it measured); the defaults keep the steps
-// of about 24 and over.
+// defaults with the edge threshold's floor lowered to 4 grey levels per
+// pixel, which keeps the steps down to about 12 grey levels where walls in
+// shade meet each other and the street (robot_agent.h gives why and what it
+// measured); the defaults keep the steps of about 24 and over.
 FeatureExtractorOptions trackingFrontEndOptions();
 
 // Fit quality of segments[i], beyond what ImageSegment carries.
@@ -62,6 +64,8 @@ struct FrameFeatures {
   std::vector<ImageSegment> segments;              // undistorted pixels, longest first
   std::vector<SegmentFitQuality> segment_quality;  // parallel to segments
   std::vector<ImageCorner> corners;                // undistorted pixels, strongest first
+  double noise_sigma = 0.0;                        // the image's, grey levels
+  int rejected_segments = 0;                       // by the a contrario test or min_contrast
 };
 
 class FeatureExtractor : private GradientRowListener {
@@ -94,6 +98,7 @@ class FeatureExtractor : private GradientRowListener {
   UndistortionTable undistortion_;
   EdgeDetector edge_detector_;
   EdgeLinker linker_;
+  NoiseEstimator noise_estimator_;
   LineExtractor line_extractor_;
   ForstnerDetector corner_detector_;
   HelperThread corner_thread_;

@@ -59,10 +59,14 @@ void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
   options.add("out", config.out, "overlay image to write; empty: none");
   options.add("smoothing_sigma_px", edges.smoothing_sigma_px,
               "Gaussian pre-smoothing (px), >= 0.5; 0: none");
-  options.add("min_gradient", edges.min_gradient, "edge threshold (grey levels per px)");
+  options.add("min_gradient", edges.min_gradient,
+              "edge threshold's floor (grey levels per px); above it, the noise sets it");
   options.add("split_distance_px", lines.split_distance_px, "split-and-merge tolerance (px)");
   options.add("min_length_px", lines.min_length_px, "shortest segment kept (px)");
-  options.add("min_contrast", lines.min_contrast, "weakest segment kept (mean grey-level step)");
+  options.add("min_contrast", lines.min_contrast,
+              "weakest segment kept (mean grey-level step), besides the a contrario test");
+  options.add("max_false_alarms", lines.max_false_alarms,
+              "a contrario test: expected segments from noise alone per image");
   options.add("max_gap_px", lines.merge.max_gap_px,
               "largest gap bridged between collinear segments (px)");
   options.add("detect_corners", config.extractor.detect_corners, "run the Förstner operator");
@@ -92,8 +96,11 @@ int main(int argc, char** argv) {
                      lineloc::drawFeatures(undistortForDisplay(image, calibration), features))) {
       throw std::runtime_error("cannot write overlay '" + config.out + "'");
     }
-    spdlog::info("{}: {} segments, {} corners", config.image, features.segments.size(),
-                 features.corners.size());
+    spdlog::info(
+        "{}: noise sigma {:.2f} grey levels, {} segments ({} rejected as explained by the noise), "
+        "{} corners",
+        config.image, features.noise_sigma, features.segments.size(), features.rejected_segments,
+        features.corners.size());
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

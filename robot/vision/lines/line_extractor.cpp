@@ -11,19 +11,21 @@ LineExtractor::LineExtractor(const LineExtractorOptions& options)
       merger_(options.merge),
       snapper_(options.snap) {
   if (!(options.min_length_px >= 0.0) || !(options.min_contrast >= 0.0) ||
-      !(options.min_snap_length_px >= 0.0) || options.max_segments < 0 ||
-      !(options.trim_distance_px >= 0.0) || !(options.trim_sigmas >= 0.0) ||
-      !(options.trim_margin_px >= 0.0) || !(options.fit.points_per_sample >= 1.0) ||
-      !(options.fit.min_sigma_px > 0.0)) {
+      !(options.max_false_alarms > 0.0) || !(options.min_snap_length_px >= 0.0) ||
+      options.max_segments < 0 || !(options.trim_distance_px >= 0.0) ||
+      !(options.trim_sigmas >= 0.0) || !(options.trim_margin_px >= 0.0) ||
+      !(options.fit.points_per_sample >= 1.0) || !(options.fit.min_sigma_px > 0.0)) {
     throw std::invalid_argument(
         "line extractor: min_length_px, min_snap_length_px, min_contrast, max_segments, "
         "trim_distance_px, trim_sigmas, trim_margin_px must be >= 0, points_per_sample >= 1, "
-        "min_sigma_px > 0");
+        "min_sigma_px, max_false_alarms > 0");
   }
 }
 
 void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLinker& chains,
-                            const UndistortionTable& undistortion) {
+                            const UndistortionTable& undistortion, cv::Size image_size,
+                            const EdgeNoise& noise) {
+  const SegmentValidation validation(image_size, noise, options_.max_false_alarms);
   const std::vector<int32_t>& chain_points = chains.chainPoints();
   undistorted_.resize(chain_points.size());
   if (undistortion.isIdentity()) {
@@ -40,9 +42,10 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
     fitPieces(points, chain_points, chain);
   }
   merger_.merge(segments_, options_.fit);
-  keepSignificant(std::min(options_.min_snap_length_px, options_.min_length_px));
+  rejected_segments_ = 0;
+  keepSignificant(std::min(options_.min_snap_length_px, options_.min_length_px), validation);
   snapEndpoints();
-  keepSignificant(options_.min_length_px);
+  keepSignificant(options_.min_length_px, validation);
   std::sort(segments_.begin(), segments_.end(),
             [](const LineSegment& a, const LineSegment& b) { return a.length() > b.length(); });
   if (static_cast<int>(segments_.size()) > options_.max_segments) {
@@ -135,9 +138,14 @@ PointMoments LineExtractor::momentsOf(PointRange run) const {
   return prefix_[run.end] - prefix_[run.begin];
 }
 
-void LineExtractor::keepSignificant(double min_length_px) {
+void LineExtractor::keepSignificant(double min_length_px, const SegmentValidation& validation) {
   std::erase_if(segments_, [&](const LineSegment& segment) {
-    return segment.length() < min_length_px || segment.contrast() < options_.min_contrast;
+    if (segment.length() < min_length_px) {
+      return true;
+    }
+    const bool weak = segment.contrast() < options_.min_contrast || !validation.meaningful(segment);
+    rejected_segments_ += weak ? 1 : 0;
+    return weak;
   });
 }
 

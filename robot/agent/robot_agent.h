@@ -44,22 +44,16 @@ struct RobotConfig {
   // restarts mid-drive: its navigator sees nothing before.
   double start_at_s = 0.0;
   double min_segment_length_px = 20.0;
-  // The front end's edge threshold (grey levels per pixel) and the weakest
-  // segment it sends (mean grey-level step across it): EdgeDetectorOptions,
-  // LineExtractorOptions. A step of h grey levels, blurred by the 1 px
-  // smoothing, peaks at a gradient of 0.34 h, so the vision library's 8 drops
-  // every step under 24, and walls in shade meet each other and the shaded
-  // street in smaller ones (13 at the foot of the wall the README's two-minute
-  // drive faces as it turns, 41 against 28). 4 and 5 keep them, and a
-  // camera's noise stays far below (pixel noise sigma_n leaves 0.14 sigma_n
-  // per smoothed Sobel component: 4 is 14 sigma at lineloc-sim's 2 grey
-  // levels). On that drive (seed 1) 4 and 5 had 96.9 % of the answers from
-  // the first fix OK instead of 92.5 % (97 frames of its narrow street without
-  // a fix instead of 220), position RMSE 2.2 cm instead of 3.6 cm, exposure ->
-  // fix p99 6.7 ms (5.8 ms with 8 and 10). The backbone's searches take only the
-  // segments of 20 grey levels and over (AcquisitionOptions::
-  // min_segment_contrast): given the faint window frames too, they confirmed
-  // poses half a metre off.
+  // The front end's floor of the edge threshold (grey levels per pixel; the
+  // threshold rises with each frame's estimated noise, EdgeDetectorOptions)
+  // and of the weakest segment it sends (mean grey-level step across it; 0:
+  // each segment is validated against the frame's noise alone,
+  // SegmentValidation). A step of h grey levels, blurred by the 1 px
+  // smoothing, peaks at a gradient of 0.34 h: the floor of 4 keeps the steps
+  // of 12 grey levels and over, where walls in shade meet each other and the
+  // shaded street. The backbone's searches take only the segments of 20 grey
+  // levels and over (AcquisitionOptions::min_segment_contrast); tracking takes
+  // every one.
   double min_edge_gradient = trackingFrontEndOptions().edges.min_gradient;
   double min_segment_contrast = trackingFrontEndOptions().lines.min_contrast;
   // Detect each frame's corners on a second thread while its lines are linked

@@ -49,8 +49,8 @@ struct FeatureExtractorOptions {
 // The options of a front end for model-based tracking, the robot's: the
 // defaults with the edge threshold's floor lowered to 4 grey levels per
 // pixel, which keeps the steps down to about 12 grey levels where walls in
-// shade meet each other and the street (robot_agent.h gives why and what it
-// measured); the defaults keep the steps of about 24 and over.
+// shade meet each other and the street (robot_agent.h gives why); the
+// defaults keep the steps of about 24 and over.
 FeatureExtractorOptions trackingFrontEndOptions();
 
 // Fit quality of segments[i], beyond what ImageSegment carries.

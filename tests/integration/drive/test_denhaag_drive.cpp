@@ -1,0 +1,52 @@
+// Den Haag's centre (../shared/data), a real LoD2 tile with terrain and a
+// street network the drives turn through (city_drive.h): a 30 s drive from a
+// standing start, and one whose robot is already moving when its software
+// starts (the navigator's start in motion, the backbone's first search from
+// a moving robot's prior). The robot must be found, answered with a pose on
+// nearly every frame from then on, never with a precise wrong fix, and its
+// attitude within the bound. Its position and the states it reported beyond
+// three sigma are printed, not asserted: through Den Haag's turns they do not
+// yet hold the bounds they hold in Delft (5 cm; no state beyond).
+#include "tests/integration/drive/city_drive.h"
+
+namespace lineloc {
+namespace {
+
+using namespace lineloc::test;
+
+class DenHaagDrive : public CityDrive {
+ protected:
+  DenHaagDrive()
+      : CityDrive({"denhaag",
+                   fs::path(LINELOC_SHARED_DATA_DIR) / "citymodels" / "denhaag_01.city.json",
+                   {"78650", "457950", "0"},
+                   1.5,
+                   "2026-04-14T09:30:00Z"}) {}
+};
+
+TEST_F(DenHaagDrive, TheRobotIsFoundAndFixedWithoutAWrongPoseAfterAStandingStart) {
+  simulateDrive(1, "dataset");
+  const auto backbone = startBackbone("backbone.log");
+  const auto robot = startRobot();
+  waitForRobot(*robot);
+  backbone->signal(SIGTERM);
+  backbone->wait(10'000);
+  EXPECT_LE(expectFoundAndAnswered().attitude_rmse_deg, kMaxAttitudeRmseDeg);
+  fmt::print("states beyond three sigma: {}\n",
+             statesBeyondThreeSigma(consistencyReport("drive", "dataset")));
+}
+
+TEST_F(DenHaagDrive, TheRobotIsFoundAndFixedWithoutAWrongPoseAfterAStartInMotion) {
+  simulateDrive(2, "dataset", {"--initial-still-s", "0", "--initial-speed-m-s", "1.2"});
+  const auto backbone = startBackbone("backbone.log");
+  const auto robot = startRobot();
+  waitForRobot(*robot);
+  backbone->signal(SIGTERM);
+  backbone->wait(10'000);
+  EXPECT_LE(expectFoundAndAnswered().attitude_rmse_deg, kMaxAttitudeRmseDeg);
+  fmt::print("states beyond three sigma: {}\n",
+             statesBeyondThreeSigma(consistencyReport("drive", "dataset")));
+}
+
+}  // namespace
+}  // namespace lineloc

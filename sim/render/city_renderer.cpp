@@ -112,9 +112,15 @@ void CityRenderer::setRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& 
   rays.direction_y[i] = d.y();
   rays.direction_z[i] = d.z();
   rays.t_near[i] = 0.0f;
-  // The ground plane z = ground_z ends every downward ray: t = (ground_z - o_z) / d_z.
-  rays.t_far[i] = d.z() < 0.0f && origin.z() > ground_z ? (ground_z - origin.z()) / d.z()
-                                                        : std::numeric_limits<float>::infinity();
+  // The ground plane z = ground_z ends every downward ray within kGroundRange_m:
+  // t = (ground_z - o_z) / d_z. A ray that meets it farther off looks at the
+  // horizon (it dips less than a microradian below it from a camera metres
+  // up), and a point beyond 1.8e18 m is no ray origin Embree takes.
+  constexpr float kGroundRange_m = 1e7f;
+  const float ground_t = d.z() < 0.0f && origin.z() > ground_z
+                             ? (ground_z - origin.z()) / d.z()
+                             : std::numeric_limits<float>::infinity();
+  rays.t_far[i] = ground_t <= kGroundRange_m ? ground_t : std::numeric_limits<float>::infinity();
   rays.active[i] = d.squaredNorm() > 0.0f;
 }
 

@@ -326,6 +326,39 @@ TEST(CityRenderer, AnEdgePixelIsTheMeanOverItsArea) {
   }
 }
 
+TEST(CityRenderer, TheGroundEndsAtTheHorizonRange) {
+  // A camera pitched up until one pixel's ray dips a hair below the horizon:
+  // that ray meets the ground plane farther than any scene is and is the
+  // sky's, so no shading point lies beyond the range a ray caster takes. The
+  // scene's one triangle stands behind the camera.
+  SceneMesh behind;
+  behind.addTriangle({-50, 0, 0}, {-50, 1, 0}, {-50, 0, 1}, SurfaceTag{});
+  const CityRenderer renderer(behind, quarterCamera(), noiselessOptions());
+  const int u = 60;
+  const int v = 100;
+  const Eigen::Isometry3d level = forwardLookingCamera();
+  const Eigen::Vector3d ray =
+      (level.linear() * renderer.rays().direction(u, v).cast<double>()).normalized();
+  // Turning about the horizontal axis across the ray, z x ray, by -delta
+  // raises the ray's elevation by delta.
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(ray).normalized();
+  for (const double dip_rad : {1e-3, 1e-6, 1e-9}) {
+    Eigen::Isometry3d T_world_camera = level;
+    const double raise_rad = -dip_rad - std::asin(ray.z());
+    T_world_camera.linear() = Eigen::AngleAxisd(-raise_rad, across) * level.linear();
+    const PixelHits hits = renderer.castPrimaryRays(T_world_camera);
+    const size_t index = static_cast<size_t>(v) * hits.width + u;
+    const double distance_m = 1.5 / std::sin(dip_rad);
+    if (distance_m <= 1e7) {
+      EXPECT_EQ(hits.triangle[index], kGroundTriangle) << "dip " << dip_rad;
+      EXPECT_NEAR(hits.distance_m[index], distance_m, 1e-3 * distance_m) << "dip " << dip_rad;
+    } else {
+      EXPECT_EQ(hits.triangle[index], kNoTriangle) << "dip " << dip_rad;
+    }
+    EXPECT_TRUE(cv::checkRange(renderer.renderRadiance(T_world_camera)));
+  }
+}
+
 TEST(CityRenderer, RejectsInvalidOptions) {
   RenderOptions options;
   options.motion_blur_samples = 0;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -80,6 +81,29 @@ std::vector<double> interpolatingControls(const std::vector<double>& heights) {
   return controls;
 }
 
+// Value and first and second derivatives in U of the uniform cubic B-spline
+// over control values c_0..c_{n-1} at U, clamped to [0, n - 3]; span j blends
+// c_j..c_{j+3}.
+template <typename T>
+std::array<T, 3> uniformCubicBSpline(const std::vector<T>& control, double U) {
+  const double U_end = static_cast<double>(control.size() - 3);
+  U = std::clamp(U, 0.0, U_end);
+  const int j = std::min(static_cast<int>(U), static_cast<int>(control.size()) - 4);
+  const double u = U - j;
+  const T& c0 = control[j];
+  const T& c1 = control[j + 1];
+  const T& c2 = control[j + 2];
+  const T& c3 = control[j + 3];
+  const double u2 = u * u;
+  const double u3 = u2 * u;
+  return {((1 - u) * (1 - u) * (1 - u) * c0 + (3 * u3 - 6 * u2 + 4) * c1 +
+           (-3 * u3 + 3 * u2 + 3 * u + 1) * c2 + u3 * c3) /
+              6.0,
+          (-(1 - u) * (1 - u) * c0 + (3 * u2 - 4 * u) * c1 + (-3 * u2 + 2 * u + 1) * c2 + u2 * c3) /
+              2.0,
+          (1 - u) * c0 + (3 * u - 2) * c1 + (1 - 3 * u) * c2 + u * c3};
+}
+
 }  // namespace
 
 RouteTrajectory::RouteTrajectory(
@@ -150,51 +174,16 @@ RouteTrajectory::RouteTrajectory(
 }
 
 Eigen::Vector3d RouteTrajectory::groundHeight(double arclength_m) const {
-  // Span j of x = s / spacing blends control values j - 1 .. j + 2 (indices
-  // into ground_control_m_ shifted by the one before the first).
+  // x = s / spacing is the spline's parameter: d/ds = (1 / spacing) d/dx.
   const double spacing = ground_spacing_m_;
-  const double x =
-      std::clamp(arclength_m / spacing, 0.0, static_cast<double>(ground_control_m_.size() - 3));
-  const int j = std::min(static_cast<int>(x), static_cast<int>(ground_control_m_.size()) - 4);
-  const double u = x - j;
-  const double c0 = ground_control_m_[j];
-  const double c1 = ground_control_m_[j + 1];
-  const double c2 = ground_control_m_[j + 2];
-  const double c3 = ground_control_m_[j + 3];
-  const double u2 = u * u;
-  const double u3 = u2 * u;
-  const double height = ((1 - u) * (1 - u) * (1 - u) * c0 + (3 * u3 - 6 * u2 + 4) * c1 +
-                         (-3 * u3 + 3 * u2 + 3 * u + 1) * c2 + u3 * c3) /
-                        6.0;
-  const double slope =
-      (-(1 - u) * (1 - u) * c0 + (3 * u2 - 4 * u) * c1 + (-3 * u2 + 2 * u + 1) * c2 + u2 * c3) /
-      (2.0 * spacing);
-  const double bend =
-      ((1 - u) * c0 + (3 * u - 2) * c1 + (1 - 3 * u) * c2 + u * c3) / (spacing * spacing);
-  return {height, slope, bend};
+  const auto [height, first, second] =
+      uniformCubicBSpline(ground_control_m_, arclength_m / spacing);
+  return {height, first / spacing, second / (spacing * spacing)};
 }
 
 RouteTrajectory::SplinePoint RouteTrajectory::spline(double U) const {
-  const double U_end = static_cast<double>(control_.size() - 3);
-  U = std::clamp(U, 0.0, U_end);
-  const int j = std::min(static_cast<int>(U), static_cast<int>(control_.size()) - 4);
-  const double u = U - j;
-  const Eigen::Vector2d& c0 = control_[j];
-  const Eigen::Vector2d& c1 = control_[j + 1];
-  const Eigen::Vector2d& c2 = control_[j + 2];
-  const Eigen::Vector2d& c3 = control_[j + 3];
-  // Uniform cubic B-spline basis and its derivatives.
-  const double u2 = u * u;
-  const double u3 = u2 * u;
-  SplinePoint point;
-  point.position = ((1 - u) * (1 - u) * (1 - u) * c0 + (3 * u3 - 6 * u2 + 4) * c1 +
-                    (-3 * u3 + 3 * u2 + 3 * u + 1) * c2 + u3 * c3) /
-                   6.0;
-  point.first =
-      (-(1 - u) * (1 - u) * c0 + (3 * u2 - 4 * u) * c1 + (-3 * u2 + 2 * u + 1) * c2 + u2 * c3) /
-      2.0;
-  point.second = (1 - u) * c0 + (3 * u - 2) * c1 + (1 - 3 * u) * c2 + u * c3;
-  return point;
+  const auto [position, first, second] = uniformCubicBSpline(control_, U);
+  return {position, first, second};
 }
 
 double RouteTrajectory::parameterAt(double arclength_m) const {

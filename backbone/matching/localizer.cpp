@@ -256,6 +256,20 @@ bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& o
            yaw_sigma_rad <= options.max_tracking_yaw_sigma_rad);
 }
 
+PoseWithCovariance narrowedForTracking(const PoseWithCovariance& prior,
+                                       const LocalizerOptions& options) {
+  const double yaw_sigma_rad = std::sqrt(std::max(0.0, prior.covariance(5, 5)));
+  const double excess =
+      std::max(largestPositionSigma(prior.covariance) / options.max_tracking_position_sigma_m,
+               yaw_sigma_rad / options.max_tracking_yaw_sigma_rad);
+  PoseWithCovariance narrowed = prior;
+  if (excess > 1.0) {
+    // A hair under the limits, which needsAcquisition compares with <=.
+    narrowed.covariance /= std::pow(excess * (1.0 + 1e-6), 2);
+  }
+  return narrowed;
+}
+
 std::vector<VisibleSegment> visibleFromPrior(const std::vector<ModelSegment>& lines,
                                              const OcclusionScene& scene,
                                              const PoseWithCovariance& prior,

@@ -154,6 +154,12 @@ struct Localization {
 // True when `prior` is too poor for gated matching.
 bool needsAcquisition(const PoseWithCovariance& prior, const LocalizerOptions& options);
 
+// `prior` with its covariance scaled down, as a whole, until it meets the
+// tracking limits: the gates to track a pose that other evidence has taken
+// (hypothesis_set.h) although its own alignment left it wider.
+PoseWithCovariance narrowedForTracking(const PoseWithCovariance& prior,
+                                       const LocalizerOptions& options);
+
 // Tracking's hidden-line removal from `prior` (visible_lines.h, under
 // options.visibility on options.threads): the first step of localize for a
 // prior needsAcquisition refuses, and the only one that needs no image, so a

@@ -20,6 +20,8 @@ bool distinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
 }
 
 struct Verified {
+  // The carried start it was aligned from, or -1 for the grid's.
+  int carried_index = -1;
   Alignment alignment;
   std::vector<VisibleSegment> visible;
   // Of the aligned pose: (C - K) / sqrt(L), its coverage C of L against the
@@ -115,6 +117,34 @@ const Verified* bestRival(const std::vector<Verified>& aligned, const Verified& 
   return rival;
 }
 
+// A hypothesis aligned from `start` and scored (pose_acquisition.h).
+Verified alignFrom(const std::vector<ImageSegment>& image, const CoverageVerifier& verifier,
+                   const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
+                   const PoseWithCovariance& prior, const Eigen::Isometry3d& start_pose,
+                   const PinholeCamera& camera, const AcquisitionOptions& options) {
+  const PoseWithCovariance start = hypothesisStart(start_pose, options);
+  Verified candidate;
+  candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
+  candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
+  rejectOffTheHeight(prior, options, candidate.alignment);
+  if (hasPose(candidate.alignment)) {
+    candidate.score = scorePose(verifier, image, candidate.visible, scene,
+                                candidate.alignment.T_world_camera.pose, camera, options);
+  }
+  return candidate;
+}
+
+// An aligned candidate as the search answers it: its covariance widened for
+// its inliers' redundancy, with the search's resolution added.
+ScoredHypothesis scored(const Verified& candidate, const AcquisitionOptions& options) {
+  Alignment alignment = candidate.alignment;
+  widenForConfidence(alignment, options.alignment.confidence);
+  alignment.T_world_camera.covariance += diagonalPoseCovariance(
+      options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
+  return {alignment.T_world_camera, alignment.status, alignment.inliers, candidate.score,
+          candidate.carried_index};
+}
+
 }  // namespace
 
 CoverageVerifier::CoverageVerifier(const std::vector<ImageSegment>& image,
@@ -131,34 +161,35 @@ Coverage CoverageVerifier::coverage(const std::vector<VisibleSegment>& visible,
 Acquisition acquirePose(const std::vector<ImageSegment>& segments,
                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
-                        const AcquisitionOptions& options) {
+                        const AcquisitionOptions& options,
+                        const std::vector<Eigen::Isometry3d>& carried_starts) {
   const std::vector<ImageSegment> image = searchedSegments(segments, options);
   Acquisition acquisition;
   acquisition.alignment.T_world_camera = prior;
   const int64_t search_start_ns = steadyClockNs();
   const PoseSearch search(lines, scene, camera, options.search);
-  const std::vector<PoseHypothesis> hypotheses = search.search(image, prior);
+  std::vector<Eigen::Isometry3d> starts;
+  for (const PoseHypothesis& hypothesis : search.search(image, prior)) {
+    starts.push_back(hypothesis.T_world_camera);
+  }
   acquisition.summary.search_ns = steadyClockNs() - search_start_ns;
-  acquisition.summary.hypotheses = static_cast<int>(hypotheses.size());
+  acquisition.summary.hypotheses = static_cast<int>(starts.size());
+  const size_t grid_starts = starts.size();
+  starts.insert(starts.end(), carried_starts.begin(), carried_starts.end());
 
   const CoverageVerifier verifier(image, camera, options);
-  std::vector<Verified> verified(hypotheses.size());
-  parallelFor(static_cast<int>(hypotheses.size()), options.search.threads, [&](int i) {
-    const PoseWithCovariance start = hypothesisStart(hypotheses[i].T_world_camera, options);
-    Verified& candidate = verified[i];
-    candidate.visible = visibleSegments(lines, scene, start, camera, options.visibility);
-    candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
-    rejectOffTheHeight(prior, options, candidate.alignment);
-    if (hasPose(candidate.alignment)) {
-      candidate.score = scorePose(verifier, image, candidate.visible, scene,
-                                  candidate.alignment.T_world_camera.pose, camera, options);
-    }
+  std::vector<Verified> verified(starts.size());
+  parallelFor(static_cast<int>(starts.size()), options.search.threads, [&](int i) {
+    verified[i] = alignFrom(image, verifier, lines, scene, prior, starts[i], camera, options);
+    verified[i].carried_index =
+        i < static_cast<int>(grid_starts) ? -1 : i - static_cast<int>(grid_starts);
   });
   std::vector<Verified> aligned;
   for (Verified& candidate : verified) {
     acquisition.alignment.matching_ns += candidate.alignment.matching_ns;
     acquisition.alignment.pose_ns += candidate.alignment.pose_ns;
     if (hasPose(candidate.alignment)) {
+      acquisition.summary.aligned_hypotheses.push_back(scored(candidate, options));
       aligned.push_back(std::move(candidate));
     }
   }
@@ -167,17 +198,15 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
   if (best == aligned.end() || !isOk(*best)) {
     acquisition.alignment.status = AlignmentStatus::kTooFewMatches;
     acquisition.alignment.message = fmt::format(
-        "none of {} search hypotheses aligned to a well-conditioned pose", hypotheses.size());
+        "none of {} search hypotheses aligned to a well-conditioned pose", starts.size());
     return acquisition;
   }
   const Verified* rival = bestRival(aligned, *best, options.search);
   const int64_t matching_ns = acquisition.alignment.matching_ns;
   const int64_t pose_ns = acquisition.alignment.pose_ns;
   acquisition.alignment = best->alignment;
+  acquisition.alignment.T_world_camera = scored(*best, options).T_world_camera;
   acquisition.visible = best->visible;
-  widenForConfidence(acquisition.alignment, options.alignment.confidence);
-  acquisition.alignment.T_world_camera.covariance += diagonalPoseCovariance(
-      options.acquired_position_sigma_m, options.acquired_rotation_sigma_rad);
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
   acquisition.summary.best_score = best->score;
@@ -219,6 +248,19 @@ double verificationScore(const std::vector<ImageSegment>& segments,
       lines, scene, hypothesisStart(T_world_camera, options), camera, options.visibility);
   return scorePose(CoverageVerifier(image, camera, options), image, visible, scene, T_world_camera,
                    camera, options);
+}
+
+std::optional<ScoredHypothesis> alignHypothesis(
+    const std::vector<ImageSegment>& segments, const std::vector<ModelSegment>& lines,
+    const OcclusionScene& scene, const PoseWithCovariance& prior, const Eigen::Isometry3d& start,
+    const PinholeCamera& camera, const AcquisitionOptions& options) {
+  const std::vector<ImageSegment> image = searchedSegments(segments, options);
+  const Verified candidate = alignFrom(image, CoverageVerifier(image, camera, options), lines,
+                                       scene, prior, start, camera, options);
+  if (!hasPose(candidate.alignment)) {
+    return std::nullopt;
+  }
+  return scored(candidate, options);
 }
 
 }  // namespace lineloc

@@ -206,7 +206,20 @@ class CoverageVerifier {
   OrientedDistanceMap map_;
 };
 
-// What a search found, for logs and benchmarks.
+// One aligned hypothesis of a search: an alignment that settled on a pose
+// (OK, or ill-conditioned), its own covariance unwidened, and its
+// verification score (C - K) / sqrt(L).
+struct ScoredHypothesis {
+  PoseWithCovariance T_world_camera;
+  AlignmentStatus status = AlignmentStatus::kOk;
+  int inliers = 0;
+  double score = 0.0;
+  // The carried start it was aligned from (acquirePose), or -1 for the grid's.
+  int carried_index = -1;
+};
+
+// What a search found, for logs, benchmarks and the evidence kept across
+// frames (hypothesis_set.h).
 struct SearchSummary {
   // Hypotheses the grid search proposed and how many of them aligned.
   int hypotheses = 0;
@@ -219,6 +232,8 @@ struct SearchSummary {
   std::optional<Eigen::Isometry3d> T_world_camera_rival;
   // Time of the grid search alone (pose_search.h).
   int64_t search_ns = 0;
+  // Every aligned hypothesis, those from carried starts included.
+  std::vector<ScoredHypothesis> aligned_hypotheses;
 };
 
 struct Acquisition {
@@ -230,11 +245,22 @@ struct Acquisition {
 
 // `lines` and `scene` are the model near the prior; `prior.pose` carries the
 // height the search keeps (see pose_search.h). Of `segments`, it takes those
-// of at least min_segment_contrast.
+// of at least min_segment_contrast. `carried_starts` are aligned and scored
+// beside the grid's hypotheses: the poses earlier frames' searches found,
+// moved to this frame (hypothesis_set.h), which the grid may not propose again.
 Acquisition acquirePose(const std::vector<ImageSegment>& segments,
                         const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
-                        const AcquisitionOptions& options);
+                        const AcquisitionOptions& options,
+                        const std::vector<Eigen::Isometry3d>& carried_starts = {});
+
+// One hypothesis as acquirePose aligns and scores each of its starts, from
+// `start`: for a caller that weighs a pose found in another frame in this one
+// (hypothesis_set.h). nullopt when it settles on no pose.
+std::optional<ScoredHypothesis> alignHypothesis(
+    const std::vector<ImageSegment>& segments, const std::vector<ModelSegment>& lines,
+    const OcclusionScene& scene, const PoseWithCovariance& prior, const Eigen::Isometry3d& start,
+    const PinholeCamera& camera, const AcquisitionOptions& options);
 
 // The score (C - K) / sqrt(L) acquisition gives its aligned hypotheses, of a
 // pose found otherwise (the tracked pose a proof search is checked against,

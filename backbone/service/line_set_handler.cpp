@@ -113,7 +113,7 @@ void LineSetHandler::forgetUnheardRobots() {
   cadence_.forget(unheard);
   {
     const std::lock_guard<std::mutex> lock(searches_mutex_);
-    eraseRobots(last_search_, unheard);
+    eraseRobots(acquisition_, unheard);
     eraseRobots(tracking_start_, unheard);
     eraseRobots(searching_again_, unheard);
   }
@@ -191,35 +191,6 @@ void LineSetHandler::track(const LineSetData& line_set, const OdometryPose& odom
   widenUntilProven(line_set, odometry, map, fix);
 }
 
-void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odometry,
-                            const PreparedMap& map, const PoseWithCovariance& prior) {
-  const int64_t start_ns = steadyClockNs();
-  const Localization localization =
-      localize(line_set.segments, line_set.corners, map.segments, map.scene, prior, line_set.camera,
-               localizerOptions(line_set));
-  const int64_t search_ns = steadyClockNs() - start_ns;
-  countSearch();
-  const Alignment& alignment = localization.alignment;
-  std::string outcome = alignment.message;
-  if (alignment.status == AlignmentStatus::kOk) {
-    outcome = describe(confirmPreviousSearch(line_set, odometry, alignment.T_world_camera),
-                       alignment.T_world_camera);
-  } else if (outranksPreviousSearch(line_set, odometry, localization)) {
-    outcome += "; ranks the previous search's pose second to another, so none confirms it";
-  }
-  logSearch("search", line_set, localization, outcome, search_ns);
-}
-
-LineSetHandler::PoseOffset LineSetHandler::PoseOffset::between(const Eigen::Isometry3d& from,
-                                                               const Eigen::Isometry3d& to) {
-  return {(to.translation() - from.translation()).norm(),
-          std::abs(Eigen::AngleAxisd(from.linear().transpose() * to.linear()).angle())};
-}
-
-LineSetHandler::PoseOffset LineSetHandler::PoseOffset::farthest(const PoseOffset& other) const {
-  return {std::max(position_m, other.position_m), std::max(rotation_rad, other.rotation_rad)};
-}
-
 namespace {
 
 // Where a pose puts the camera, and its optical axis' azimuth clockwise from
@@ -243,6 +214,57 @@ std::vector<Eigen::Isometry3d> foundPoses(const Localization& found) {
 }
 
 }  // namespace
+
+void LineSetHandler::search(const LineSetData& line_set, const OdometryPose& odometry,
+                            std::shared_ptr<const PreparedMap> map,
+                            const PoseWithCovariance& prior) {
+  const int64_t start_ns = steadyClockNs();
+  std::shared_ptr<AcquisitionSession> session;
+  {
+    const std::lock_guard<std::mutex> lock(searches_mutex_);
+    auto& own = acquisition_[line_set.robot_id];
+    if (!own) {
+      own = std::make_shared<AcquisitionSession>(options_.hypotheses);
+    }
+    session = own;
+  }
+  const AcquisitionSession::Searched searched =
+      session->search(line_set, odometry, std::move(map), prior, localizerOptions(line_set));
+  const int64_t search_ns = steadyClockNs() - start_ns;
+  countSearch();
+  const Alignment& alignment = searched.acquisition.alignment;
+  std::string outcome = alignment.message.empty() ? "" : alignment.message + "; ";
+  outcome += fmt::format("{} hypotheses kept", searched.hypotheses);
+  if (searched.decision) {
+    startTrackingFrom(line_set, odometry, *searched.decision);
+    session->clear();
+    outcome += fmt::format(
+        "; takes one at {} with posterior {:.4f}, covering rivals up to {:.2f} m and {:.2f} deg: "
+        "tracking",
+        describePose(searched.decision->hypothesis.T_world_camera.pose),
+        searched.decision->posterior, searched.decision->covered.position_m,
+        searched.decision->covered.rotation_rad * 180.0 / M_PI);
+  }
+  logSearch("search", line_set, alignment, searched.acquisition.summary, outcome, search_ns);
+}
+
+void LineSetHandler::startTrackingFrom(const LineSetData& line_set, const OdometryPose& odometry,
+                                       const HypothesisDecision& decision) {
+  const PoseWithCovariance& found = decision.hypothesis.T_world_camera;
+  // A pose too wide to track from is tracked within the tracking limits; its
+  // own width is then part of what the fixes leave unproven.
+  PoseOffset unproven = decision.covered;
+  if (needsAcquisition(found, options_.localizer)) {
+    unproven = unproven.farthest(
+        {largestPositionSigma(found.covariance), std::sqrt(std::max(0.0, found.covariance(5, 5)))});
+  }
+  const std::lock_guard<std::mutex> lock(searches_mutex_);
+  tracking_start_.insert_or_assign(
+      line_set.robot_id,
+      TrackingStart{
+          .origin = {line_set.stamp_ns, found, odometry}, .searched = true, .rival = unproven});
+  searching_again_.erase(line_set.robot_id);
+}
 
 LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_set,
                                                         const PreparedMap& map,
@@ -275,7 +297,7 @@ LineSetHandler::ProofVerdict LineSetHandler::judgeProof(const LineSetData& line_
                     offset.position_m, tracked_score, found_score);
     if (!ambiguous && tracked_score < fraction * found_score) {
       verdict.proof = Proof::kContradicts;
-      verdict.outcome += "tracking stops until two searches confirm each other";
+      verdict.outcome += "tracking stops; the robot is searched for again";
       return verdict;
     }
     if (found_score >= fraction * tracked_score) {
@@ -321,14 +343,13 @@ void LineSetHandler::prove(const LineSetData& line_set, const PreparedMap& map,
           std::max(moved_m + options_.proof_retry_m, options_.acquisition_proven_after_m);
     }
   }
-  logSearch("proof search", line_set, localization, verdict.outcome, search_ns);
+  logSearch("proof search", line_set, localization.alignment,
+            localization.search.value_or(SearchSummary{}), verdict.outcome, search_ns);
 }
 
 void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
-                               const Localization& localization, const std::string& outcome,
-                               int64_t search_ns) {
-  const Alignment& alignment = localization.alignment;
-  const SearchSummary summary = localization.search.value_or(SearchSummary{});
+                               const Alignment& alignment, const SearchSummary& summary,
+                               const std::string& outcome, int64_t search_ns) {
   const std::string rival = summary.T_world_camera_rival
                                 ? ", rival at " + describePose(*summary.T_world_camera_rival)
                                 : "";
@@ -341,25 +362,6 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
       toMilliseconds(search_ns), toMilliseconds(summary.search_ns));
 }
 
-std::string LineSetHandler::describe(Confirmation confirmation,
-                                     const PoseWithCovariance& found) const {
-  switch (confirmation) {
-    case Confirmation::kConfirmed:
-      return "confirms the previous search";
-    case Confirmation::kConfirmedTooWide:
-      return fmt::format(
-          "confirms the previous search, but is too wide to track from (position sigma {:.2f} "
-          "m, yaw sigma {:.2f} deg); searching on",
-          largestPositionSigma(found.covariance),
-          std::sqrt(std::max(0.0, found.covariance(5, 5))) * 180.0 / M_PI);
-    case Confirmation::kFirst:
-      return "awaits confirmation by the next search";
-    case Confirmation::kDisagrees:
-      return "disagrees with the previous search";
-  }
-  return "";
-}
-
 std::optional<PoseWithCovariance> LineSetHandler::movedByOdometry(const SearchResult& search,
                                                                   const OdometryPose& odometry) {
   if (search.odometry.epoch != odometry.epoch) {
@@ -369,61 +371,10 @@ std::optional<PoseWithCovariance> LineSetHandler::movedByOdometry(const SearchRe
                             search.odometry.T_odom_camera.inverse() * odometry.T_odom_camera);
 }
 
-LineSetHandler::Confirmation LineSetHandler::confirmPreviousSearch(
-    const LineSetData& line_set, const OdometryPose& odometry, const PoseWithCovariance& acquired) {
-  const SearchResult current{line_set.stamp_ns, acquired, odometry};
-  const std::lock_guard<std::mutex> lock(searches_mutex_);
-  const auto previous = last_search_.find(line_set.robot_id);
-  if (previous == last_search_.end()) {
-    last_search_.emplace(line_set.robot_id, current);
-    return Confirmation::kFirst;
-  }
-  const SearchResult last = std::exchange(previous->second, current);
-  const double age_s = (current.stamp_ns - last.stamp_ns) * 1e-9;
-  const std::optional<PoseWithCovariance> moved = movedByOdometry(last, odometry);
-  if (!(age_s > 0.0 && age_s <= options_.confirm_within_s) || !moved) {
-    return Confirmation::kFirst;
-  }
-  if (!agrees(moved->pose, acquired.pose)) {
-    return Confirmation::kDisagrees;
-  }
-  if (needsAcquisition(acquired, options_.localizer)) {
-    return Confirmation::kConfirmedTooWide;
-  }
-  tracking_start_.insert_or_assign(line_set.robot_id,
-                                   TrackingStart{.origin = current, .searched = true});
-  searching_again_.erase(line_set.robot_id);
-  return Confirmation::kConfirmed;
-}
-
-bool LineSetHandler::outranksPreviousSearch(const LineSetData& line_set,
-                                            const OdometryPose& odometry,
-                                            const Localization& found) {
-  if (found.alignment.status != AlignmentStatus::kAmbiguous) {
-    return false;
-  }
-  const std::vector<Eigen::Isometry3d> poses = foundPoses(found);
-  if (poses.size() < 2) {
-    return false;
-  }
-  const std::lock_guard<std::mutex> lock(searches_mutex_);
-  const auto previous = last_search_.find(line_set.robot_id);
-  if (previous == last_search_.end()) {
-    return false;
-  }
-  const std::optional<PoseWithCovariance> moved = movedByOdometry(previous->second, odometry);
-  if (!moved || agrees(moved->pose, poses[0]) || !agrees(moved->pose, poses[1])) {
-    return false;
-  }
-  last_search_.erase(previous);
-  return true;
-}
-
 bool LineSetHandler::agrees(const Eigen::Isometry3d& expected,
                             const Eigen::Isometry3d& found) const {
-  const PoseOffset offset = PoseOffset::between(expected, found);
-  return offset.position_m <= options_.confirm_position_m &&
-         offset.rotation_rad <= options_.confirm_rotation_rad;
+  return PoseOffset::between(expected, found)
+      .within({options_.confirm_position_m, options_.confirm_rotation_rad});
 }
 
 std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetData& line_set,
@@ -438,7 +389,11 @@ std::optional<PoseWithCovariance> LineSetHandler::carriedSearch(const LineSetDat
   if (!(age_s > 0.0 && age_s <= options_.carry_search_s)) {
     return std::nullopt;
   }
-  return movedByOdometry(search, odometry);
+  const std::optional<PoseWithCovariance> carried = movedByOdometry(search, odometry);
+  if (!carried) {
+    return std::nullopt;
+  }
+  return narrowedForTracking(*carried, options_.localizer);
 }
 
 void LineSetHandler::widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
@@ -600,15 +555,14 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
             ahead ? &*ahead : nullptr);
       return finish(fix, start_ns);
     }
-    const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry);
-    if (carried && !needsAcquisition(*carried, options_.localizer)) {
+    if (const std::optional<PoseWithCovariance> carried = carriedSearch(line_set, odometry)) {
       LocalizerOptions from_search = localizerOptions(line_set);
       from_search.min_start_step_m = options_.carried_start_step_m;
       track(line_set, odometry, map, *carried, from_search, fix);
       return finish(fix, start_ns);
     }
     submitSearch("search", line_set, [this, line_set, odometry, map, prior] {
-      search(line_set, odometry, *map, prior);
+      search(line_set, odometry, map, prior);
     });
     fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {

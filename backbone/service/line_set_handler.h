@@ -1,162 +1,76 @@
 // Turns one received LineSet into its PoseFix (paper §3.2): validate it, take
-// the model lines and faces near the predicted pose from the tile cache, and
-// localize the camera in them (backbone/matching/localizer.h: hidden-line
-// removal and alignment from a good prediction, a search from a poor one),
-// and answer with the aligned pose and its covariance — or with a status that
-// says why no pose can be trusted. Malformed input is dropped and counted; a
-// map failure is answered with FIX_INTERNAL_ERROR and counted; serving goes on.
+// the model lines and faces near the predicted pose from the prepared map,
+// localize the camera in them (localizer.h) and answer with the aligned pose
+// and its covariance, or with a status that says why no pose can be trusted.
+// Malformed input is dropped and counted; a map failure is answered with
+// FIX_INTERNAL_ERROR and counted; serving goes on.
 //
-// A robot that states its camera height above the ground has its predicted
-// height replaced by the model's ground level there plus that height (sigma
-// ground_level_sigma_m) whenever its own is poorer: DGPS altitude is metres
-// off, the street is not.
+// Ground. A robot that states its camera height above the ground has its
+// predicted height replaced by the model's ground level there plus that
+// height (sigma ground_level_sigma_m) whenever its own is poorer.
 //
-// What localization needs of a map view — the model segments, the ray-casting
-// scene of the faces, the ground level — is built once per view, off the
-// frames' path (prepared_maps.h); a frame with no map prepared near it yet
-// is answered with FIX_NO_MATCH_COMPUTED.
+// Maps. What localization needs of a map view is built once per view, off
+// the frames' path (prepared_maps.h); a frame with no map prepared near it
+// yet is answered with FIX_NO_MATCH_COMPUTED. The tiles around where a robot
+// will be prefetch_lookahead_s later are queued for loading.
 //
-// A frame whose prediction is too poor to track starts a search for the
-// camera on a SearchWorker thread (search_worker.h), unless the robot's last
-// search is still running, and is answered at once with
-// FIX_NO_MATCH_COMPUTED: every LineSet is answered within the time of a
-// tracked frame, never after a search. A pose found by a search is only taken
-// once a second search, on a later frame of the same robot, finds the pose
-// the first one predicts: the first found pose A1 moved by the robot's own
-// motion between the two frames, A1 O1^-1 O2 (dead reckoning over a second is
-// centimetres, DGPS metres), within confirm_position_m and
-// confirm_rotation_rad of A2. A wrong pose the search picked by chance does
-// not repeat. An ambiguous search between the two that ranks A1's pose second
-// to another (its rival agrees with A1 moved, its best does not) votes
-// against it: A1 then awaits no confirmation (seed 39 below: the search
-// between its two confirming ones had the truth as its best, 1 cm off, and
-// their pose as its rival; in the logs of nine runs of simulated Delft drives,
-// such a search fell between the two of 9 of 290 confirmations, each that
-// one; in 62 runs of seeds 1-50 since, it voted nine times, each against
-// a pose 0.4-11.4 m off, seed 39's 1.6 m three times).
-// Once confirmed, the robot's next frames are tracked from the
-// confirmed pose moved the same way, A2 O2^-1 O, for carry_search_s. O is
-// the robot's odometry pose, read from its predictions with the jumps of its
-// DGPS corrections left out (predicted_motion.h): right after a start those
-// move the prediction of a robot standing still by decimetres, and over 16
-// simulated Delft drives all 6 searches that disagreed with the one before
-// were both within 0.2 m of the truth.
+// Acquisition. A frame whose prediction is too poor to track starts a search
+// on the SearchWorker thread (search_worker.h), unless the robot's last one
+// still runs, and is answered at once with FIX_NO_MATCH_COMPUTED: no LineSet
+// waits for a search. The robot's searches form one sequential estimator
+// (acquisition_session.h, hypothesis_set.h): the poses they align are kept
+// as hypotheses, moved between frames by the robot's own motion O (read from
+// its predictions without their DGPS jumps, predicted_motion.h), aligned
+// again in each searched frame and weighed over a window of views, until one
+// is likely enough to take. The robot's next frames are then tracked from it,
+// A O_A^-1 O, for carry_search_s, with carried_start_step_m probes along the
+// horizontal axes (LocalizerOptions::min_start_step_m).
 //
-// A confirmed search is no proof against a neighbouring basin: a robot that
-// stands still searches the same view twice, and both searches can settle
-// the same window's width off (simulated Delft seed 48: 0.31 m and 0.13 m,
-// confirmed). Tracking from the carried pose therefore probes
-// carried_start_step_m either way along the horizontal axes, not the
-// tracking floor; and every OK fix keeps the acquired pose's resolution term
-// (acquired_*_sigma, pose_acquisition.h) added to its covariance, and states
-// it as the fix's unproven part (PoseFix::unproven_*: an offset the fixes
-// share, which the robot fuses as one, inertial_navigator.h), until
-// searches from other viewpoints agree with tracking: proof searches run on
-// the worker over proof_position_sigma_m around the frame's tracked pose,
-// the first at once, from the tracking start's own view, the others once
-// the robot has moved acquisition_proven_after_m from where its confirmed
-// search saw it. Tracking's covariance comes from the residuals of one
-// view, which cannot tell the two basins apart; a view that changes can, but
-// tracking from the wrong basin follows it there (seed 9: 0.5 m off for
-// three metres of driving). Proof searches that agree, agreeing_proofs_needed
-// of them from viewpoints at least proof_retry_m apart, end the widening: one
-// can agree with tracking in the wrong basin itself (seed 9 again, with the
-// frames' timing changed: a proof 0.6 m off agreed, and unwidened, 107 fixes
-// lay beyond three sigma), and a basin that a changing view keeps is rarer.
-// The first proves nothing by agreeing, as it sees the view the confirmed
-// searches saw; it is there to find a basin their wider grid missed before
-// tracking has followed it for a metre (seed 39 below). Until a proof search
-// has aligned around tracking, the fixes' unproven part is that search's
-// prior (proof_position_sigma_m, confirm_rotation_rad), as no basin within
-// its reach is ruled out yet.
+// Proof. A taken pose can lie in a neighbouring basin, which tracking then
+// follows, and tracking's covariance, from one view's residuals, cannot tell.
+// So every OK fix states an unproven part (PoseFix::unproven_*: one offset
+// the fixes share, which the robot fuses as one, inertial_navigator.h) and
+// carries it in its covariance: the search's resolution (acquired_*_sigma,
+// pose_acquisition.h), the farthest rival the acquisition still held, and
+// until a proof search has aligned around tracking that search's own reach
+// (proof_position_sigma_m, confirm_rotation_rad). Proof searches run over
+// proof_position_sigma_m around the frame's tracked pose: the first at once,
+// the next once the robot has moved acquisition_proven_after_m from the
+// tracking start, then every proof_retry_m. agreeing_proofs_needed of them
+// from elsewhere that agree (within confirm_position_m and
+// confirm_rotation_rad) prove tracking, and the unproven part goes. A pose
+// elsewhere scoring at least ambiguous_score_fraction of the tracked pose
+// (verificationScore, pose_acquisition.h) is a rival the unproven part grows
+// to cover; one the tracked pose scores below that fraction of ends tracking,
+// and the robot is searched for again over at least proof_position_sigma_m.
+// A verdict on a tracking start the robot no longer tracks from is dropped.
+// A robot tracked from its own prediction (a restarted backbone, a robot
+// forgotten and back, or a new odometry chain) is proven alike from its first
+// tracked frame.
 //
-// One that finds the camera elsewhere ends the tracking only when the tracked
-// pose, scored as the search scores its hypotheses (verificationScore,
-// pose_acquisition.h), falls below ambiguous_score_fraction of the found one:
-// the robot's frames are then searched for again, over at least
-// proof_position_sigma_m, until two searches confirm each other on a pose
-// narrow enough to track from: the robot's own prediction, however narrow,
-// stands on the fixes the proof disproved. A search may miss the tracked pose's
-// basin among its hypotheses; over 50 simulated Delft drives, both proof
-// searches that ended tracking within 9 cm of the truth had found a pose 0.75 m
-// and 0.9 m off that the truth outscored (17.1 to 14.1, 8.1 to 8.0). A pose
-// elsewhere that scores within that fraction of the tracked one, found OK or as
-// either pose of an ambiguous search, is a rival the view cannot tell from
-// tracking: until tracking is proven, the unproven part of the fixes grows to
-// the farthest such rival's distance and rotation from the tracked pose, so
-// that a wrong basin is no precise answer. Simulated Delft seed 39 had two
-// searches 13.07 and 13.27 s into its drive confirm a pose 1.75 m along its
-// street (scoring 17.2 against a rival of 9.4; the truth was not among their
-// hypotheses), and tracking followed it for 6 s: four proof searches were
-// ambiguous, each with the truth as its best and the tracked pose as its rival
-// (17.3 to 14.4 and alike), and 138 fixes lay beyond three sigma of covariances
-// 0.15 m wide. With the rivals widening the fixes, 4 still did: two tracked
-// before the first proof search had returned, and two tracked from the robot's
-// own prediction, still on the disproven fixes, after two searches had
-// confirmed the truth too wide to track from; none since. With the vote
-// above, the search between those two leaves the pose unconfirmed: in two of
-// three runs it voted, and nothing was tracked in their 20 s; the third's
-// searches never found that pose and confirmed the truth at 15.7 s.
-// One that finds nothing, or only poses near the tracked one, is tried again
-// after proof_retry_m more. A proof judges the tracking start it was submitted
-// for: a verdict that returns after the robot has started another (restarted
-// or forgotten meanwhile; its searches wait for the proof) is dropped.
+// Covariance. A tracked answer's covariance is raised to the sample
+// covariance of the robot's answers of the last second, each moved to its
+// frame by the robot's motion (fix_scatter.h).
 //
-// A robot tracked from its own prediction, without a search of this backbone
-// (one restarted mid-drive, a robot forgotten and back, a robot started from
-// a known pose), is proven alike from its first tracked frame: its prediction
-// stands on fixes whose proof this backbone never saw, or on none, and
-// tracking keeps whichever basin it starts in. Its fixes state the same
-// unproven part until proof searches from its tracking start agree. So is a
-// robot whose odometry starts a new chain (predicted_motion.h: the robot
-// restarted, or its frames came out of order): its motion since its tracking
-// start is unknown.
-//
-// A tracked answer's covariance is raised to the sample covariance of the
-// robot's answers of the last second and it, each moved to its frame by the
-// robot's motion (fix_scatter.h): a view whose lines fit two alignments flips
-// between them from frame to frame, each reporting its own basin's covariance.
-//
-// Each robot's predicted positions give its velocity; the tiles around where
-// it will be `prefetch_lookahead_s` later are queued for loading, so steady
-// frames find their map in memory.
-//
-// A robot may send each frame's LineSet without its features at the frame's
-// exposure (ExposureTopic, common/messages/topics.h): the prediction the
-// LineSet will carry. When that prediction is one to track in a map already
-// prepared (a notice neither starts a preparation nor takes its error, which
-// are the frame's), the hidden-line removal from it (visibleFromPrior,
-// localizer.h) runs at once, on
-// exposure_visibility_threads, while the robot extracts its lines, and the
+// Exposure notices. A robot may send each frame's LineSet without its
+// features at the frame's exposure (ExposureTopic, common/messages/topics.h).
+// When its prediction is one to track in a map already prepared, the
+// hidden-line removal from it (visibleFromPrior, localizer.h) runs at once on
+// exposure_visibility_threads while the robot extracts its lines, and the
 // LineSet that follows takes it when its prior, map view and camera are the
-// ones it was computed for, waiting for the rest of it if it is still running.
-// It is then off the frame's exposure -> fix path: on the seven of simulated
-// Delft seeds 1-8 that track (robot and backbone sharing two cores), the
-// backbone's median answer went from 3.1-4.4 ms to 1.6-3.2 ms and exposure ->
-// fix median from 6.0-7.3 ms to 5.0-6.6 ms; p99 did not move beyond the
-// machine's noise, as the removal then competes with the robot's line
-// extraction for the cores. A notice that comes after its LineSet, or after
-// a later one (the notices' thread held up on a loaded machine), is skipped
-// and counted: its frame has been answered, and the removal would only take
-// a core from the next one. Notices wait for their LineSets in order, up to
-// kMaxWaitingNotices per robot: a LineSets' thread a frame behind still
-// finds its frame's notice, and leaves the next frame's for it.
+// ones it was computed for. A notice that comes after its LineSet, or after a
+// later one, is skipped and counted. Notices wait for their LineSets in
+// order, up to kMaxWaitingNotices per robot.
 //
-// A robot not heard from for forget_robot_after_s is forgotten: its motion,
-// recent answers, searches, proofs, notice and frame cadence are dropped, so
-// that a backbone serving robots that come and go holds only the ones it
-// serves (a forgotten notice held a prepared map of its own). One that comes
-// back after that long is served as after a backbone restart: tracked from
-// its own prediction and proven, or searched for when that is poor. The sweep runs on
-// the LineSets' thread, at most every forget_robot_after_s / 2, at each
-// LineSet and, while none comes, each time the serving loop wakes without
-// one (forgetSilentRobotsWhenDue): a robot is forgotten between one and one
-// and a half of that after its last LineSet, also when no robot is left.
+// Forgetting. A robot not heard from for forget_robot_after_s is forgotten
+// (its motion, answers, searches, proofs, notices and cadence), so that a
+// backbone serving robots that come and go holds only the ones it serves; one
+// that comes back is served as after a backbone restart. The sweep runs on the
+// LineSets' thread, at most every forget_robot_after_s / 2.
 //
-// The searches and the map preparation are background work: they pause
-// between pieces while a LineSet is being handled and from
-// quiet_before_frame_ms before a tracked robot's next one is due
-// (foreground_gate.h, frame_cadence.h).
+// Background work. Searches and map preparation pause between pieces while
+// a LineSet is being handled and from quiet_before_frame_ms before a tracked
+// robot's next one is due (foreground_gate.h, frame_cadence.h).
 #pragma once
 
 #include <cstdint>
@@ -173,6 +87,7 @@
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
+#include "backbone/service/acquisition_session.h"
 #include "backbone/service/fix_scatter.h"
 #include "backbone/service/frame_cadence.h"
 #include "backbone/service/predicted_motion.h"
@@ -213,20 +128,15 @@ struct PipelineOptions {
   double map_reuse_distance_m = 50.0;
   double prefetch_lookahead_s = 3.0;
   double ground_level_sigma_m = 0.1;
+  // A proof search's pose within both of these of the tracked one agrees with it.
   double confirm_position_m = 0.3;
   double confirm_rotation_rad = 0.5 * M_PI / 180.0;
-  // An unconfirmed search result older than this is forgotten.
-  double confirm_within_s = 5.0;
-  // A confirmed search result starts tracking for this long after its frame.
+  // The acquisition's estimator over the robot's searched frames.
+  HypothesisSetOptions hypotheses;
+  // A taken hypothesis starts tracking for this long after its frame.
   double carry_search_s = 1.0;
-  // Tracking from a carried search probes this far along the horizontal axes
-  // (LocalizerOptions::min_start_step_m). It starts only from a carried pose
-  // within the tracking limits a robot's prediction must meet, although the
-  // probes would reach a sigma of carried_start_step_m / start_sigma (0.33 m):
-  // taking such wider poses too gave earlier first fixes on 29 simulated Delft
-  // drives (seed 13 at 3.4 s instead of 11.9), but seed 20 then tracked two
-  // searches that confirmed each other 9 m along its façade with 13 inliers,
-  // 28 fixes beyond three sigma. A wide acquired covariance marks a poor match.
+  // Tracking from a taken hypothesis probes this far along the horizontal
+  // axes (LocalizerOptions::min_start_step_m).
   double carried_start_step_m = 0.5;
   // Fixes keep the acquired pose's resolution term until proof searches
   // from at least this far from where the confirmed search saw the robot
@@ -306,12 +216,18 @@ class LineSetHandler {
              const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior,
              const LocalizerOptions& options, PoseFixData& fix,
              const std::vector<VisibleSegment>* visible_from_prior = nullptr);
-  // Runs on the search worker; `odometry` is the frame's.
-  void search(const LineSetData& line_set, const OdometryPose& odometry, const PreparedMap& map,
-              const PoseWithCovariance& prior);
+  // Runs on the search worker: the robot's acquisition session searches the
+  // frame (`odometry` is its) and, when it takes a hypothesis, tracking starts.
+  void search(const LineSetData& line_set, const OdometryPose& odometry,
+              std::shared_ptr<const PreparedMap> map, const PoseWithCovariance& prior);
+  // Starts the robot's tracking from the hypothesis `decision` took at
+  // `line_set`'s frame, its rivals and, when it is too wide to track from,
+  // its own sigmas left unproven.
+  void startTrackingFrom(const LineSetData& line_set, const OdometryPose& odometry,
+                         const HypothesisDecision& decision);
   PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
   // The prior a frame of `line_set`'s robot is tracked from in `map` unless a
-  // confirmed search is carried: the prediction grounded and, for a robot
+  // taken hypothesis is carried: the prediction grounded and, for a robot
   // searched for again, widened (searchPrior).
   PoseWithCovariance trackingPrior(const LineSetData& line_set, const PreparedMap& map);
   // A frame of one robot: its sequence number and exposure stamp.
@@ -341,24 +257,8 @@ class LineSetHandler {
       const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior);
   // Counts a malformed message and logs `kind`'s drop.
   void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
-  enum class Confirmation { kConfirmed, kConfirmedTooWide, kFirst, kDisagrees };
-  // A found pose's confirmation, for the search's log line.
-  std::string describe(Confirmation confirmation, const PoseWithCovariance& found) const;
-  // Whether `acquired` at `line_set`'s time confirms the robot's previous
-  // search result (kFirst: there is none recent); remembers it for the next
-  // one either way, and a confirmed one for carriedSearch. A confirmed one
-  // too wide to track from (needsAcquisition) starts no tracking and leaves
-  // a robot whose tracking a proof search ended searched for: its own
-  // prediction stands on the fixes that proof disproved.
-  Confirmation confirmPreviousSearch(const LineSetData& line_set, const OdometryPose& odometry,
-                                     const PoseWithCovariance& acquired);
-  // Whether the ambiguous search `found`, at `line_set`'s time, ranks the
-  // robot's previous search result second to another pose (see above); if
-  // so, forgets it, so that no search confirms it.
-  bool outranksPreviousSearch(const LineSetData& line_set, const OdometryPose& odometry,
-                              const Localization& found);
-  // The robot's confirmed search result moved to `line_set`'s time, when
-  // there is one to carry (see above).
+  // The robot's taken hypothesis moved to `line_set`'s time and narrowed to
+  // the tracking limits (narrowedForTracking), when there is one to carry.
   std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
                                                   const OdometryPose& odometry);
   // Adds an acquired pose's resolution term (acquired_*_sigma,
@@ -379,15 +279,6 @@ class LineSetHandler {
     OdometryPose odometry;
   };
   enum class Proof { kAgrees, kUndecided, kContradicts };
-  // How far one camera pose lies from another: the distance between the two
-  // and the angle of the rotation between them.
-  struct PoseOffset {
-    double position_m = 0.0;
-    double rotation_rad = 0.0;
-    static PoseOffset between(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to);
-    // Each of the two at the larger of its own and `other`'s.
-    PoseOffset farthest(const PoseOffset& other) const;
-  };
   struct ProofVerdict {
     Proof proof;
     std::string outcome;
@@ -409,8 +300,8 @@ class LineSetHandler {
   void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked,
              const SearchResult& origin, double moved_m);
   // Logs a search's outcome.
-  static void logSearch(const char* kind, const LineSetData& line_set,
-                        const Localization& localization, const std::string& outcome,
+  static void logSearch(const char* kind, const LineSetData& line_set, const Alignment& alignment,
+                        const SearchSummary& summary, const std::string& outcome,
                         int64_t search_ns);
   // Whether a pose found where `expected` was predicted lies within
   // confirm_position_m and confirm_rotation_rad of it.
@@ -474,7 +365,8 @@ class LineSetHandler {
     }
   };
   std::mutex searches_mutex_;
-  std::map<std::string, SearchResult> last_search_;
+  // Each robot's acquisition; its frames are searched on the worker, one at a time.
+  std::map<std::string, std::shared_ptr<AcquisitionSession>> acquisition_;
   std::map<std::string, TrackingStart> tracking_start_;
   // Robots whose tracking a proof search ended.
   std::set<std::string> searching_again_;

@@ -1,0 +1,140 @@
+// The robot's acquisition session on LineSets of a robot driving down the
+// synthetic street of the matching tests, from a DGPS + compass start, with
+// the street's map in memory: no database, no DDS.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "backbone/service/acquisition_session.h"
+#include "tests/unit/backbone/matching/synthetic_street.h"
+
+namespace lineloc {
+namespace {
+
+using namespace lineloc::testing;
+
+std::shared_ptr<const PreparedMap> preparedMap(const Street& street) {
+  auto tile = std::make_shared<MapTile>();
+  for (const ModelSegment& edge : street.edges) {
+    db::ModelLine line;
+    line.id = edge.id;
+    line.start_world = edge.start_world;
+    line.end_world = edge.end_world;
+    tile->lines.push_back(line);
+  }
+  for (size_t i = 0; i < street.faces.size(); ++i) {
+    tile->faces.push_back(
+        {static_cast<int64_t>(i), street.face_building_ids[i], 0, street.faces[i]});
+  }
+  return std::make_shared<PreparedMap>(tile, Eigen::Vector3d(0.0, 50.0, 0.0));
+}
+
+// A robot driving north from the synthetic street's true pose at 1.2 m/s,
+// searched for every 0.3 s.
+constexpr double kFramePeriodS = 0.3;
+constexpr double kSpeedMS = 1.2;
+
+Eigen::Isometry3d truthAt(int frame, double speed_m_s = kSpeedMS) {
+  Eigen::Isometry3d pose = truePose().pose;
+  pose.translation().y() += speed_m_s * kFramePeriodS * frame;
+  return pose;
+}
+
+// The frame as the robot sends it: the visible model pieces with pixel noise
+// and as many window frames again, which no model holds; its prediction, a
+// DGPS + compass start 3 m and 0.3 degrees off.
+LineSetData lineSetAt(const Street& street, const OcclusionScene& occlusion, int frame,
+                      const Eigen::Isometry3d& T_world_camera, std::mt19937& random) {
+  LineSetData line_set;
+  line_set.robot_id = "session-test";
+  line_set.sequence_number = static_cast<uint32_t>(frame);
+  line_set.stamp_ns = static_cast<int64_t>(1e9 + frame * kFramePeriodS * 1e9);
+  line_set.camera = kCamera;
+  const PoseWithCovariance truth{T_world_camera, diagonalPoseCovariance(0.01, 0.001)};
+  for (const VisibleSegment& seen : visibleSegments(street.edges, occlusion, truth, kCamera, {})) {
+    const ProjectedSegment p = projectSegment(seen.start_world, seen.end_world, truth, kCamera);
+    line_set.segments.push_back(observe(p.start_px, p.end_px, random));
+  }
+  std::uniform_real_distribution<double> u(40, 600), v(40, 440);
+  const size_t modelled = line_set.segments.size();
+  for (size_t i = 0; i < modelled; ++i) {
+    const Eigen::Vector2d a(u(random), v(random));
+    const Eigen::Vector2d b = a + (i % 2 == 0 ? Eigen::Vector2d(0, 30) : Eigen::Vector2d(30, 0));
+    line_set.segments.push_back(observe(a, b, random));
+  }
+  PoseWithCovariance& predicted = line_set.predicted_T_world_camera;
+  predicted.pose = T_world_camera;
+  predicted.pose.translation() += Eigen::Vector3d(3.0, -2.0, 0.05);
+  predicted.pose.linear() =
+      Eigen::AngleAxisd(0.3 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+      predicted.pose.linear();
+  predicted.covariance = diagonalPoseCovariance(4.0, 0.5 * M_PI / 180.0);
+  predicted.covariance(2, 2) = 0.1 * 0.1;
+  return line_set;
+}
+
+// Exact dead reckoning: the odometry frame is the world's.
+OdometryPose odometryAt(const Eigen::Isometry3d& T_world_camera) {
+  return {T_world_camera, 0};
+}
+
+TEST(AcquisitionSession, TakesTheCameraWithinAFewFramesOfADgpsStart) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  const std::shared_ptr<const PreparedMap> map = preparedMap(street);
+  std::mt19937 random(7);
+  AcquisitionSession session;
+  for (int frame = 0; frame < 8; ++frame) {
+    const Eigen::Isometry3d truth = truthAt(frame);
+    const LineSetData line_set = lineSetAt(street, occlusion, frame, truth, random);
+    const AcquisitionSession::Searched searched = session.search(
+        line_set, odometryAt(truth), map, line_set.predicted_T_world_camera, LocalizerOptions{});
+    if (!searched.decision) {
+      EXPECT_GT(searched.hypotheses, 0u) << "frame " << frame;
+      continue;
+    }
+    EXPECT_GE(frame, 1) << "one frame is no evidence";
+    const PoseWithCovariance& taken = searched.decision->hypothesis.T_world_camera;
+    EXPECT_LT(normalizedErrorSquared(taken, truth), kChi2Six999);
+    EXPECT_LT((taken.pose.translation() - truth.translation()).norm(), 0.3);
+    return;
+  }
+  ADD_FAILURE() << "no hypothesis taken in 8 frames";
+}
+
+TEST(AcquisitionSession, ARobotDrivingAlongAFeaturelessFacadeIsNeverTaken) {
+  Street wall;
+  addBox(wall, 8, -50, 9, 200, 10);  // nothing to place the camera along it
+  const OcclusionScene occlusion(wall.faces, wall.face_building_ids);
+  const std::shared_ptr<const PreparedMap> map = preparedMap(wall);
+  std::mt19937 random(9);
+  AcquisitionSession session;
+  for (int frame = 0; frame < 8; ++frame) {
+    const Eigen::Isometry3d truth = truthAt(frame);
+    const LineSetData line_set = lineSetAt(wall, occlusion, frame, truth, random);
+    const AcquisitionSession::Searched searched = session.search(
+        line_set, odometryAt(truth), map, line_set.predicted_T_world_camera, LocalizerOptions{});
+    EXPECT_FALSE(searched.decision.has_value()) << "frame " << frame;
+  }
+}
+
+TEST(AcquisitionSession, StartsAfreshOnceCleared) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  const std::shared_ptr<const PreparedMap> map = preparedMap(street);
+  std::mt19937 random(11);
+  AcquisitionSession session;
+  const auto searchFrame = [&](int frame) {
+    const Eigen::Isometry3d truth = truthAt(frame, 0.0);
+    const LineSetData line_set = lineSetAt(street, occlusion, frame, truth, random);
+    return session.search(line_set, odometryAt(truth), map, line_set.predicted_T_world_camera,
+                          LocalizerOptions{});
+  };
+  searchFrame(0);
+  session.clear();
+  EXPECT_FALSE(searchFrame(1).decision) << "its first frame again";
+}
+
+}  // namespace
+}  // namespace lineloc

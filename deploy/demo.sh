@@ -17,7 +17,10 @@
 # LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY (the backbone's, 5, and with it
 # Cyclone DDS's receive threads'; 0: off), LINELOC_DEMO_ROBOT_START_S (the
 # robot's --start-at-s, default 0: it replays the drive from that far in, as a
-# robot whose software restarted while driving).
+# robot whose software restarted while driving), LINELOC_DEMO_SIM_ARGS (words
+# appended to lineloc-sim's command line, split at blanks, e.g. the stress of
+# a poor start and a covered camera: "--compass-bias-deg 5
+# --gps-initial-error-m 10 --camera-covered-s 10 3"; default none).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -28,6 +31,7 @@ DURATION_S="${LINELOC_DEMO_DURATION_S:-120}"
 SEED="${LINELOC_DEMO_SEED:-1}"
 CAMERA_HZ="${LINELOC_DEMO_CAMERA_HZ:-30}"
 ROBOT_START_S="${LINELOC_DEMO_ROBOT_START_S:-0}"
+read -r -a SIM_ARGS <<<"${LINELOC_DEMO_SIM_ARGS:-}"
 # The robot's front end runs ahead of the backbone's threads on the cores
 # they share here, as it would on a computer of its own (thread_priority.h).
 REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
@@ -96,11 +100,11 @@ READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-load" --db "$CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
   --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
-echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)"
+echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)${SIM_ARGS[*]:+, ${SIM_ARGS[*]}}"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" "${MODEL_CRS[@]}" --site-origin "${SITE_ORIGIN[@]}" \
   --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
   --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
-  --start-utc "$START_UTC" --sun-from-clock
+  --start-utc "$START_UTC" --sun-from-clock "${SIM_ARGS[@]}"
 
 "$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site "$SITE" --sun-from-clock \
   --realtime-priority "$BACKBONE_REALTIME_PRIORITY" --stats-file "$OUT/backbone-stats.json" \

@@ -13,7 +13,10 @@
 #
 # Usage: deploy/seeds.sh [CITY=delft] [N=50] [FIRST=1]   (about 45 s per 20 s drive)
 # CITY as deploy/demo.sh's LINELOC_DEMO_CITY: delft, denhaag, or a CityJSON
-# file (with LINELOC_DEMO_SITE_CRS and LINELOC_DEMO_SITE_ORIGIN).
+# file (with LINELOC_DEMO_SITE_CRS and LINELOC_DEMO_SITE_ORIGIN). The other
+# LINELOC_DEMO_* variables but LINELOC_DEMO_SEED and LINELOC_DEMO_OUT reach
+# every run, e.g. a stressed start on each drive:
+#   LINELOC_DEMO_SIM_ARGS="--compass-bias-deg 5 --gps-initial-error-m 10" deploy/seeds.sh denhaag 5 101
 # Each run's files stay in out/seeds/<city>/<seed>/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -4,6 +4,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
 #include "common/config/program_options.h"
 #include "common/time/utc_time.h"
 #include "sim/dataset/drive_simulation.h"
@@ -82,6 +86,13 @@ int main(int argc, char** argv) {
               "auto-exposure's highest analogue gain (dB)");
   options.add("noise_sigma", config.noise_sigma, "ideal camera's noise (grey levels)");
   options.add("exposure_time_s", config.exposure_time_s, "ideal camera's exposure time (s)");
+  std::vector<double> camera_covered_s;
+  options.addFixedSize(
+      "camera_covered_s", camera_covered_s, 2,
+      "START DURATION: the lens is covered (a hand, a cloth) from START to START + DURATION s "
+      "after the drive's start; a frame gets the scene's light of the part of its exposure "
+      "outside that window, so one inside it holds only the sensor's dark noise (the ideal "
+      "camera's: black); frames are still written (empty: never covered)");
   options.add("edge_pixel_samples", config.edge_pixel_samples,
               "rays averaged over each pixel a geometric edge crosses (1: one per pixel)");
   options.add("sun_azimuth_deg", config.sun_azimuth_deg, "sun bearing from grid north (deg)");
@@ -106,14 +117,31 @@ int main(int argc, char** argv) {
   options.add("gps_rate_hz", config.gps.rate_hz, "DGPS fix rate (Hz)");
   options.add("gps_horizontal_sigma_m", config.gps.correlated_horizontal_sigma_m,
               "time-correlated horizontal DGPS error (m)");
+  options.add(
+      "gps_initial_error_m", config.gps.initial_horizontal_error_m,
+      fmt::format("the time-correlated horizontal DGPS error at the first fix, in a direction "
+                  "drawn from the seed; from there the model runs as always, the start's offset "
+                  "decaying as exp(-t / {} s) while the wander of gps_horizontal_sigma_m grows "
+                  "back (m; 0: the first error is drawn from that wander)",
+                  config.gps.correlation_time_s));
   options.add("gps_outage_probability", config.gps.outage_probability,
               "probability per fix that an outage starts");
   options.add("compass_rate_hz", config.compass.rate_hz, "compass rate (Hz)");
   options.add("compass_sigma_rad", config.compass.sigma_rad, "compass white noise (rad)");
+  double compass_bias_deg = 0.0;
+  options.add("compass_bias_deg", compass_bias_deg,
+              "constant bias added to every compass reading, clockwise positive (deg)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }
+  config.compass.bias_rad = compass_bias_deg * std::numbers::pi / 180.0;
   try {
+    if (!camera_covered_s.empty()) {
+      if (camera_covered_s.size() != 2) {
+        throw std::invalid_argument("camera_covered_s takes two numbers: START DURATION (s)");
+      }
+      config.lens_cover.emplace(camera_covered_s[0], camera_covered_s[1]);
+    }
     if (!start_utc.empty()) {
       config.drive.start_stamp_ns = lineloc::parseUtcTime_ns(start_utc);
     }

@@ -275,27 +275,55 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
   const auto noiseSeed = [&](size_t i) {
     return config.seed * 1'000'003 + static_cast<uint64_t>(i);
   };
+  // The share of the scene's light that reaches the sensor over frame i's
+  // exposure of `exposure_time_s`, centred on its stamp.
+  const auto openFraction = [&](size_t i, double exposure_time_s) {
+    if (!config.lens_cover) {
+      return 1.0;
+    }
+    const double stamp_s = 1e-9 * static_cast<double>(stamps_ns[i] - trajectory.startStamp_ns());
+    return config.lens_cover->openFraction(stamp_s - 0.5 * exposure_time_s,
+                                           stamp_s + 0.5 * exposure_time_s);
+  };
   const auto renderIdeal = [&](size_t i) {
+    const double light_fraction = openFraction(i, config.exposure_time_s);
+    if (light_fraction == 0.0) {
+      return cv::Mat(calibration.camera.height, calibration.camera.width, CV_8UC1, cv::Scalar(0));
+    }
     const int64_t half_exposure_ns = seconds_to_ns(0.5 * config.exposure_time_s);
     return renderer.renderImage(cameraPose(stamps_ns[i] - half_exposure_ns),
-                                cameraPose(stamps_ns[i] + half_exposure_ns), noiseSeed(i));
+                                cameraPose(stamps_ns[i] + half_exposure_ns), noiseSeed(i),
+                                static_cast<float>(light_fraction));
   };
   std::optional<CameraSensor> sensor;
   std::optional<AutoExposure> auto_exposure;
   std::ofstream exposures;
+  const double max_exposure_time_s =
+      std::min(config.auto_exposure.max_exposure_time_s, 1.0 / config.camera_rate_hz);
   if (!config.ideal_camera) {
     sensor.emplace(renderer.rays(), config.sensor);
     AutoExposureOptions options = config.auto_exposure;
-    options.max_exposure_time_s =
-        std::min(options.max_exposure_time_s, 1.0 / config.camera_rate_hz);
+    options.max_exposure_time_s = max_exposure_time_s;
     auto_exposure.emplace(options, ExposureSettings{options.max_exposure_time_s, 0.0});
     exposures.open(std::filesystem::path(config.output) / "cam0" / "exposure.csv");
     exposures << "#timestamp [ns],exposure_time [s],gain [dB]\n";
   }
   // Frames render one per core at a time and are written in order. The
   // realistic camera's auto-exposure meters each frame, in order, by the
-  // noise-free mean DN of its render at the stamp; the exposure it sets then
-  // fixes the frame's motion blur and noise.
+  // noise-free mean DN of its render at the stamp times the frame's open
+  // fraction; the exposure it sets then fixes the frame's motion blur and
+  // noise. A frame dark under the longest exposure is dark under any: its
+  // scene is not rendered.
+  const cv::Mat dark_radiance =
+      cv::Mat::zeros(calibration.camera.height, calibration.camera.width, CV_32FC1);
+  const auto isDark = [&](size_t i) { return openFraction(i, max_exposure_time_s) == 0.0; };
+  // The radiance that reaches the sensor: `scene` times the open fraction.
+  const auto throughLens = [&](const cv::Mat& scene, size_t i, double exposure_time_s) {
+    const double light_fraction = openFraction(i, exposure_time_s);
+    return light_fraction == 1.0   ? scene
+           : light_fraction == 0.0 ? dark_radiance
+                                   : cv::Mat(scene * light_fraction);
+  };
   const size_t cores = std::max(1u, std::thread::hardware_concurrency());
   for (size_t first = 0; first < stamps_ns.size(); first += cores) {
     const size_t count = std::min(cores, stamps_ns.size() - first);
@@ -304,25 +332,34 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
       images = inParallel(first, count, renderIdeal, summary.render_cpu_s);
     } else {
       const std::vector<cv::Mat> centres = inParallel(
-          first, count, [&](size_t i) { return renderer.renderRadiance(cameraPose(stamps_ns[i])); },
+          first, count,
+          [&](size_t i) {
+            return isDark(i) ? dark_radiance : renderer.renderRadiance(cameraPose(stamps_ns[i]));
+          },
           summary.render_cpu_s);
       for (int metering = 0; first == 0 && metering < kSettlingMeterings; ++metering) {
-        auto_exposure->update(sensor->meanSignal_dn(centres.front(), auto_exposure->settings()));
+        const ExposureSettings& metered = auto_exposure->settings();
+        auto_exposure->update(sensor->meanSignal_dn(
+            throughLens(centres.front(), 0, metered.exposure_time_s), metered));
       }
       std::vector<ExposureSettings> settings;
       for (size_t k = 0; k < count; ++k) {
         settings.push_back(auto_exposure->settings());
-        auto_exposure->update(sensor->meanSignal_dn(centres[k], settings.back()));
+        auto_exposure->update(sensor->meanSignal_dn(
+            throughLens(centres[k], first + k, settings.back().exposure_time_s), settings.back()));
       }
       images = inParallel(
           first, count,
           [&](size_t i) {
             const ExposureSettings& frame = settings[i - first];
             const int64_t half_exposure_ns = seconds_to_ns(0.5 * frame.exposure_time_s);
-            const cv::Mat radiance = renderer.renderExposureRadiance(
-                cameraPose(stamps_ns[i] - half_exposure_ns),
-                cameraPose(stamps_ns[i] + half_exposure_ns), centres[i - first]);
-            return sensor->expose(radiance, frame, noiseSeed(i));
+            const cv::Mat radiance =
+                isDark(i) ? dark_radiance
+                          : renderer.renderExposureRadiance(
+                                cameraPose(stamps_ns[i] - half_exposure_ns),
+                                cameraPose(stamps_ns[i] + half_exposure_ns), centres[i - first]);
+            return sensor->expose(throughLens(radiance, i, frame.exposure_time_s), frame,
+                                  noiseSeed(i));
           },
           summary.render_cpu_s);
       for (size_t k = 0; k < count; ++k) {

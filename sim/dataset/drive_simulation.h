@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "sim/render/auto_exposure.h"
 #include "sim/render/camera_sensor.h"
 #include "sim/render/city_renderer.h"
+#include "sim/render/lens_cover.h"
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
 #include "sim/world/street_clutter.h"
@@ -70,6 +72,14 @@ struct DriveSimulationConfig {
   AutoExposureOptions auto_exposure;
   double noise_sigma = 2.0;
   double exposure_time_s = 0.008;
+  // The lens covered over a window of the drive, its times in seconds from the
+  // drive's start (true time, not the camera's clock). Each frame is exposed
+  // with the light of the part of its exposure, centred on its stamp, the lens
+  // was open (LensCover::openFraction); frames inside the window are still
+  // written, the realistic camera's holding its dark noise alone and metered by
+  // auto-exposure as such (so the frames after the window start overexposed
+  // until it settles again), the ideal camera's uniform black (0).
+  std::optional<LensCover> lens_cover;
   double sun_azimuth_deg = 135.0;  // clockwise from grid north
   double sun_elevation_deg = 40.0;
   // Instead: the sun over the site at the drive's start (drive.start_stamp_ns,

@@ -364,9 +364,9 @@ cv::Mat CityRenderer::renderExposureRadiance(const Eigen::Isometry3d& T_world_ca
 
 cv::Mat CityRenderer::renderImage(const Eigen::Isometry3d& T_world_camera_open,
                                   const Eigen::Isometry3d& T_world_camera_close,
-                                  uint64_t noise_seed) const {
+                                  uint64_t noise_seed, float light_fraction) const {
   const cv::Mat radiance = renderExposureRadiance(T_world_camera_open, T_world_camera_close);
-  cv::Mat grey = radiance * (255.0f * options_.exposure);
+  cv::Mat grey = radiance * (255.0f * options_.exposure * light_fraction);
   if (options_.noise_sigma > 0.0f) {
     cv::Mat noise(grey.size(), CV_32FC1);
     cv::RNG rng(noise_seed);

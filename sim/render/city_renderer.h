@@ -88,10 +88,13 @@ class CityRenderer {
                                  const Eigen::Isometry3d& T_world_camera_close,
                                  const cv::Mat& centre_radiance = cv::Mat()) const;
   // The ideal camera's 8-bit grey image of that exposure,
-  // 255 x exposure x radiance + N(0, noise_sigma^2); the noise is drawn from
-  // `noise_seed`, so equal inputs give equal bytes.
+  // 255 x exposure x light_fraction x radiance + N(0, noise_sigma^2), with
+  // light_fraction the share of the scene's light that reaches the sensor (a
+  // LensCover's open fraction); the noise is drawn from `noise_seed`, so equal
+  // inputs give equal bytes.
   cv::Mat renderImage(const Eigen::Isometry3d& T_world_camera_open,
-                      const Eigen::Isometry3d& T_world_camera_close, uint64_t noise_seed) const;
+                      const Eigen::Isometry3d& T_world_camera_close, uint64_t noise_seed,
+                      float light_fraction = 1.0f) const;
 
   const CameraRays& rays() const { return rays_; }
   // The n above.

@@ -87,7 +87,17 @@ std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const Gp
   const Eigen::Vector3d sigma(model.correlated_horizontal_sigma_m,
                               model.correlated_horizontal_sigma_m,
                               model.correlated_vertical_sigma_m);
-  Eigen::Vector3d error = sigma.cwiseProduct(gaussian3(random, 1.0));
+  if (!(model.initial_horizontal_error_m >= 0.0) ||
+      !std::isfinite(model.initial_horizontal_error_m)) {
+    throw std::invalid_argument(
+        fmt::format("GPS initial horizontal error must be >= 0 m and finite, got {}",
+                    model.initial_horizontal_error_m));
+  }
+  const Eigen::Vector3d first_draw = gaussian3(random, 1.0);
+  Eigen::Vector3d error = sigma.cwiseProduct(first_draw);
+  if (model.initial_horizontal_error_m > 0.0) {
+    error.head<2>() = model.initial_horizontal_error_m * first_draw.head<2>().normalized();
+  }
   // The velocity's noise has a stream of its own: the positions of a seed stay
   // as they were before the velocity was simulated.
   std::mt19937_64 velocity_random(seed ^ kVelocityStreamKey);
@@ -180,7 +190,7 @@ std::vector<SimCompassReading> synthesiseCompass(const TruthTrajectory& trajecto
     reading.stamp_ns = stamp;
     reading.disturbed = stamp < disturbance_end_ns;
     const double heading = M_PI_2 - yaw - grid_bearing_of_true_north_rad -
-                           model.magnetic_declination_rad + noise(random) +
+                           model.magnetic_declination_rad + model.bias_rad + noise(random) +
                            (reading.disturbed ? disturbance_rad : 0.0);
     reading.magnetic_heading_rad = heading - 2.0 * M_PI * std::floor(heading / (2.0 * M_PI));
     readings.push_back(reading);

@@ -12,9 +12,24 @@
 //
 // DGPS: per-axis first-order Gauss-Markov errors (sigma 4 m horizontal,
 // correlation 60 s: fixes 5-10 m off that wander slowly), white noise on top,
-// 1 Hz, outages that start with a given probability per fix.
+// 1 Hz, outages that start with a given probability per fix. The correlated
+// error starts in the process's stationary distribution, N(0, sigma^2) per
+// axis, or, with initial_horizontal_error_m = m > 0, horizontally at
+//   e_0 = m (n_x, n_y) / |(n_x, n_y)|,
+// (n_x, n_y) the standard normal pair the stationary start would have scaled
+// by sigma: a direction uniform on the circle, drawn from the seed, and every
+// later draw the same as without it. From there the process runs as always,
+//   e_k+1 = a e_k + sigma sqrt(1 - a^2) n_k,  a = exp(-dt / correlation_time_s),
+// so E[e_k] = a^k e_0: the start's offset decays with the correlation time
+// (10 m -> 3.7 m after 60 s) while the stationary spread grows back,
+// Var[e_k] = sigma^2 (1 - a^2k) per axis. A 10 m start at sigma 4 m is a
+// state the stationary process is in 4.4 % of the time (P(|e| > m) =
+// exp(-m^2 / 2 sigma^2)): multipath in a street canyon, a stale correction.
 // Compass: 10 Hz magnetic heading with white noise, plus disturbances (steel,
-// cars, power lines) that add a fixed 10-40 deg offset for a few seconds.
+// cars, power lines) that add a fixed 10-40 deg offset for a few seconds, plus
+// a constant bias (bias_rad, added to every reading: a compass calibrated
+// elsewhere or mounted turned), so a clean reading's mean is the true magnetic
+// heading + bias_rad.
 #pragma once
 
 #include <cmath>
@@ -60,6 +75,9 @@ struct GpsModel {
   // current single-frequency receiver's specification: 0.05 m/s).
   double velocity_sigma_mps = 0.05;
   double outage_probability = 0.01;  // per fix, that an outage starts
+  // Magnitude of the correlated horizontal error at the first fix (m); 0: drawn
+  // from the stationary distribution (see the header comment).
+  double initial_horizontal_error_m = 0.0;
   double min_outage_s = 5.0;
   double max_outage_s = 30.0;
   Eigen::Vector3d p_body_antenna = Eigen::Vector3d::Zero();
@@ -75,6 +93,7 @@ struct SimGpsFix {
   Eigen::Vector2d true_v_world_antenna_mps = Eigen::Vector2d::Zero();
 };
 
+// Throws std::invalid_argument for a negative or non-finite initial_horizontal_error_m.
 std::vector<SimGpsFix> synthesiseGps(const TruthTrajectory& trajectory, const GpsModel& model,
                                      uint64_t seed);
 
@@ -91,6 +110,8 @@ struct CompassModel {
   double max_disturbance_rad = 0.7;
   double min_disturbance_s = 2.0;
   double max_disturbance_s = 6.0;
+  // Added to every reading (rad); positive: the reading is clockwise of the truth.
+  double bias_rad = 0.0;
 };
 
 struct SimCompassReading {
@@ -100,7 +121,8 @@ struct SimCompassReading {
 };
 
 // `grid_bearing_of_true_north_rad` from SiteProjection: magnetic heading =
-// pi/2 - yaw - grid bearing of true north - declination.
+// pi/2 - yaw - grid bearing of true north - declination + bias + noise
+// (+ a disturbance's offset while one lasts), wrapped to [0, 2 pi).
 std::vector<SimCompassReading> synthesiseCompass(const TruthTrajectory& trajectory,
                                                  const CompassModel& model,
                                                  double grid_bearing_of_true_north_rad,

@@ -2,16 +2,23 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/geodesy/site_projection.h"
 #include "common/nmea/nmea_sentence.h"
 #include "common/time/utc_time.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "sim/dataset/drive_simulation.h"
+#include "sim/render/camera_rays.h"
+#include "sim/render/camera_sensor.h"
+#include "sim/render/sample_camera.h"
 #include "tests/unit/sim/dataset/read_file.h"
 
 namespace lineloc {
@@ -225,6 +232,166 @@ TEST(DriveSimulation, TheRealisticCameraExposesEachFrameUnderAutoExposure) {
         << row;
   }
   EXPECT_EQ(frames, 3);
+}
+
+// The 8-bit image a dataset wrote at camera stamp `stamp`.
+cv::Mat datasetImage(const fs::path& root, const std::string& stamp) {
+  return cv::imread((root / "cam0" / "data" / (stamp + ".png")).string(), cv::IMREAD_UNCHANGED);
+}
+
+// The camera stamps of a dataset's images, in order.
+std::vector<std::string> imageStamps(const fs::path& root) {
+  std::vector<std::string> stamps;
+  for (const auto& entry : fs::directory_iterator(root / "cam0" / "data")) {
+    stamps.push_back(entry.path().stem().string());
+  }
+  std::sort(stamps.begin(), stamps.end());
+  return stamps;
+}
+
+// Gain (dB) of each frame of a realistic camera's dataset, by camera stamp.
+std::map<std::string, double> frameGains_db(const fs::path& root) {
+  std::istringstream rows(readAll(root / "cam0" / "exposure.csv"));
+  std::string row;
+  std::getline(rows, row);
+  std::map<std::string, double> gains_db;
+  while (std::getline(rows, row)) {
+    std::istringstream fields(row);
+    std::string stamp;
+    std::string exposure_time_s;
+    std::string gain_db;
+    std::getline(fields, stamp, ',');
+    std::getline(fields, exposure_time_s, ',');
+    std::getline(fields, gain_db);
+    gains_db[stamp] = std::stod(gain_db);
+  }
+  return gains_db;
+}
+
+// Mean, variance and fourth central moment of the DN of a pixel that no
+// light reaches: y = clamp(round(s z), 0, 255), z standard normal, s = K
+// read_noise_e the dark noise in DN (CameraSensor's model with mu_e = 0).
+struct DarkMoments {
+  double mean = 0.0;
+  double variance = 0.0;
+  double fourth = 0.0;
+};
+
+DarkMoments darkMoments(double sigma_dn) {
+  const auto below = [sigma_dn](double y) {
+    return 0.5 * std::erfc(-y / sigma_dn / std::sqrt(2.0));
+  };
+  std::vector<double> p(256, 0.0);
+  for (int y = 1; y < 255; ++y) {
+    p[y] = below(y + 0.5) - below(y - 0.5);
+  }
+  p[255] = 1.0 - below(254.5);
+  p[0] = below(0.5);
+  DarkMoments moments;
+  for (int y = 0; y < 256; ++y) {
+    moments.mean += y * p[y];
+  }
+  for (int y = 0; y < 256; ++y) {
+    const double d = y - moments.mean;
+    moments.variance += d * d * p[y];
+    moments.fourth += d * d * d * d * p[y];
+  }
+  return moments;
+}
+
+// A lens covered from 1.2 s to 2.7 s of a drive filmed at 2 Hz: the frames at
+// 1.5, 2.0 and 2.5 s (exposures of at most 2 ms about their stamps) hold only
+// the sensor's dark noise at the gain auto-exposure set, whose mean and
+// variance follow from the sensor model; the frames before the window are
+// the uncovered drive's, byte for byte; auto-exposure, metering the dark,
+// turns the first frame after the window brighter than the uncovered one.
+TEST(DriveSimulation, CoveredLensFramesHoldOnlyTheSensorsDarkNoise) {
+  DriveSimulationConfig open = shortDelftDrive("uncovered");
+  open.duration_s = 3.0;
+  DriveSimulationConfig covered = shortDelftDrive("covered");
+  covered.duration_s = open.duration_s;
+  covered.lens_cover.emplace(1.2, 1.5);
+  EXPECT_EQ(simulateDrive(covered).images, simulateDrive(open).images);
+  const std::vector<std::string> stamps = imageStamps(covered.output);
+  ASSERT_EQ(stamps, imageStamps(open.output));
+  ASSERT_EQ(stamps.size(), 7u);
+  const std::map<std::string, double> gains_db = frameGains_db(covered.output);
+  const CameraSensor sensor(CameraRays(opencvSampleCamera()), covered.sensor);
+  for (size_t i = 0; i < stamps.size(); ++i) {
+    SCOPED_TRACE("frame " + stamps[i]);
+    const cv::Mat image = datasetImage(covered.output, stamps[i]);
+    const cv::Mat uncovered = datasetImage(open.output, stamps[i]);
+    ASSERT_FALSE(image.empty());
+    ASSERT_FALSE(uncovered.empty());
+    cv::Scalar mean;
+    cv::Scalar sigma;
+    cv::meanStdDev(image, mean, sigma);
+    cv::Scalar uncovered_mean;
+    cv::Scalar uncovered_sigma;
+    cv::meanStdDev(uncovered, uncovered_mean, uncovered_sigma);
+    // The uncovered drive sees a street: a wide spread of grey levels.
+    EXPECT_GT(uncovered_sigma[0], 25.0);
+    if (i < 3) {
+      EXPECT_EQ(cv::norm(image, uncovered, cv::NORM_INF), 0.0);
+    } else if (i < 6) {
+      ASSERT_EQ(gains_db.count(stamps[i]), 1u);
+      const double gain_db = gains_db.at(stamps[i]);
+      const DarkMoments dark =
+          darkMoments(sensor.systemGain_dn_per_e(gain_db) * covered.sensor.read_noise_e);
+      const double n = static_cast<double>(image.total());
+      // Five standard errors: sqrt(variance / n) for the mean, sqrt((mu_4 -
+      // variance^2) / n) for the variance; one pixel's worth of slack.
+      EXPECT_NEAR(mean[0], dark.mean, 5.0 * std::sqrt(dark.variance / n) + 1.0 / n)
+          << "gain " << gain_db << " dB";
+      EXPECT_NEAR(sigma[0] * sigma[0], dark.variance,
+                  5.0 * std::sqrt((dark.fourth - dark.variance * dark.variance) / n) + 1.0 / n)
+          << "gain " << gain_db << " dB";
+    } else {
+      EXPECT_GT(mean[0], uncovered_mean[0] + 10.0);
+    }
+  }
+}
+
+// The ideal camera's covered frames are black; a frame whose exposure (8 ms)
+// the cover's edge cuts gets the open share of its light (its image is
+// round(f 255 radiance) without noise); every other frame is unchanged.
+TEST(DriveSimulation, CoveredLensBlackensTheIdealCamerasFramesAndNoOthers) {
+  DriveSimulationConfig open = shortDelftDrive("ideal_uncovered");
+  open.duration_s = 3.0;
+  open.ideal_camera = true;
+  open.noise_sigma = 0.0;
+  DriveSimulationConfig covered = open;
+  covered.output = shortDelftDrive("ideal_covered").output;
+  // Frame 1.5 s is exposed 1.496-1.504 s: 6 ms covered, f = 0.25. Frame
+  // 2.5 s: covered until 2.498 s, f = 0.75.
+  covered.lens_cover.emplace(1.498, 1.0);
+  simulateDrive(open);
+  simulateDrive(covered);
+  const std::vector<std::string> stamps = imageStamps(covered.output);
+  ASSERT_EQ(stamps, imageStamps(open.output));
+  ASSERT_EQ(stamps.size(), 7u);
+  const std::map<size_t, double> open_fractions = {{3, 0.25}, {4, 0.0}, {5, 0.75}};
+  for (size_t i = 0; i < stamps.size(); ++i) {
+    SCOPED_TRACE("frame " + stamps[i]);
+    const cv::Mat image = datasetImage(covered.output, stamps[i]);
+    const cv::Mat uncovered = datasetImage(open.output, stamps[i]);
+    ASSERT_FALSE(image.empty());
+    ASSERT_FALSE(uncovered.empty());
+    const auto fraction = open_fractions.find(i);
+    if (fraction == open_fractions.end()) {
+      EXPECT_EQ(cv::norm(image, uncovered, cv::NORM_INF), 0.0);
+      continue;
+    }
+    // |round(f x) - f round(x)| <= 1/2 + f/2 for x = 255 radiance.
+    cv::Mat scaled;
+    uncovered.convertTo(scaled, CV_32F, fraction->second);
+    cv::Mat lit;
+    image.convertTo(lit, CV_32F);
+    EXPECT_LE(cv::norm(lit, scaled, cv::NORM_INF), 0.5 + 0.5 * fraction->second + 1e-3);
+    if (fraction->second == 0.0) {
+      EXPECT_EQ(cv::countNonZero(image), 0);
+    }
+  }
 }
 
 TEST(DriveSimulation, InvalidCameraOptionsAreNamed) {

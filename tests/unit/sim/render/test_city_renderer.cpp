@@ -163,6 +163,21 @@ TEST(CityRenderer, SensorNoiseHasTheConfiguredSigma) {
   EXPECT_NEAR(mean[0], 0.0, 0.1);  // standard error 3 / sqrt(19,200) = 0.02
 }
 
+// The ideal camera's image of light_fraction f of the scene's light is
+// round(255 f radiance): within half a grey level of it.
+TEST(CityRenderer, IdealImageScalesWithTheLightFraction) {
+  const CityRenderer renderer(meshOf(rotatedBox()), quarterCamera(), noiselessOptions());
+  const Eigen::Isometry3d pose = forwardLookingCamera();
+  cv::Mat scaled_radiance;
+  renderer.renderRadiance(pose).convertTo(scaled_radiance, CV_32F, 255.0 * 0.25);
+  cv::Mat image;
+  renderer.renderImage(pose, pose, 1, 0.25f).convertTo(image, CV_32F);
+  EXPECT_LE(cv::norm(image, scaled_radiance, cv::NORM_INF), 0.5 + 1e-3);
+  // The scene is there, a quarter as bright.
+  EXPECT_GT(cv::norm(image, cv::NORM_INF), 20.0);
+  EXPECT_EQ(cv::countNonZero(renderer.renderImage(pose, pose, 1, 0.0f)), 0);
+}
+
 TEST(CityRenderer, ShadowedGroundIsLitOnlyByAmbientLight) {
   RenderOptions options = noiselessOptions();
   options.shading.sun_direction = Eigen::Vector3f(-0.5f, 0.0f, 0.8f).normalized();

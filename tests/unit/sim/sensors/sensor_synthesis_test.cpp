@@ -6,6 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "common/nmea/nmea_sentence.h"
 
@@ -124,6 +128,99 @@ TEST(SynthesiseGps, ErrorsAreMetresAndCorrelatedWithOutages) {
   EXPECT_GT(invalid, 0);
 }
 
+// With initial_horizontal_error_m = m the first fix's correlated horizontal
+// error is m long (no white noise here), in the direction the stationary start
+// would have had; every later draw is the same, so the difference from the
+// stationary start's fixes is the start's difference times a^k, a =
+// exp(-dt / correlation_time_s): the Gauss-Markov process forgetting its start.
+TEST(SynthesiseGps, InitialErrorHasItsMagnitudeAndDecaysWithTheCorrelationTime) {
+  TrajectoryConfig config = shortDrive(2);
+  config.duration_s = 180.0;
+  const GroundTruthTrajectory trajectory(config);
+  GpsModel model;
+  model.white_sigma_m = 0.0;
+  const auto stationary = synthesiseGps(trajectory, model, 6);
+  model.initial_horizontal_error_m = 10.0;
+  const auto started = synthesiseGps(trajectory, model, 6);
+  ASSERT_EQ(started.size(), 181u);
+  ASSERT_EQ(started.size(), stationary.size());
+  const auto horizontalError = [](const SimGpsFix& fix) -> Eigen::Vector2d {
+    return (fix.p_world_antenna - fix.true_p_world_antenna).head<2>();
+  };
+  const Eigen::Vector2d first = horizontalError(started.front());
+  EXPECT_NEAR(first.norm(), 10.0, 1e-9);
+  EXPECT_NEAR(first.normalized().dot(horizontalError(stationary.front()).normalized()), 1.0, 1e-12);
+  const double a = std::exp(-1.0 / model.correlation_time_s);
+  const Eigen::Vector2d start_difference = first - horizontalError(stationary.front());
+  for (size_t k = 0; k < started.size(); ++k) {
+    const Eigen::Vector2d difference = horizontalError(started[k]) - horizontalError(stationary[k]);
+    EXPECT_LT((difference - std::pow(a, static_cast<double>(k)) * start_difference).norm(), 1e-9)
+        << "fix " << k;
+    EXPECT_EQ(started[k].p_world_antenna.z(), stationary[k].p_world_antenna.z());
+    EXPECT_EQ(started[k].valid, stationary[k].valid);
+  }
+}
+
+// Over many seeds: the start's direction is uniform, and at fix k the error
+// along it has mean m a^k and the error across it mean 0, each with variance
+// sigma^2 (1 - a^2k), the stationary spread growing back.
+TEST(SynthesiseGps, InitialErrorsMeanAndSpreadFollowTheGaussMarkovModel) {
+  TrajectoryConfig config = shortDrive(2);
+  config.duration_s = 120.0;
+  const GroundTruthTrajectory trajectory(config);
+  GpsModel model;
+  model.white_sigma_m = 0.0;
+  model.initial_horizontal_error_m = 10.0;
+  constexpr int kSeeds = 400;
+  const std::vector<size_t> ks = {0, 10, 60, 120};
+  std::vector<double> along_sum(ks.size(), 0.0);
+  std::vector<double> along_squares(ks.size(), 0.0);
+  std::vector<double> across_squares(ks.size(), 0.0);
+  Eigen::Vector2d direction_sum = Eigen::Vector2d::Zero();
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    const auto fixes = synthesiseGps(trajectory, model, 1000 + seed);
+    const Eigen::Vector2d start =
+        (fixes.front().p_world_antenna - fixes.front().true_p_world_antenna).head<2>();
+    const Eigen::Vector2d along = start.normalized();
+    const Eigen::Vector2d across(-along.y(), along.x());
+    direction_sum += along;
+    for (size_t j = 0; j < ks.size(); ++j) {
+      const Eigen::Vector2d error =
+          (fixes[ks[j]].p_world_antenna - fixes[ks[j]].true_p_world_antenna).head<2>();
+      along_sum[j] += error.dot(along);
+      along_squares[j] += error.dot(along) * error.dot(along);
+      across_squares[j] += error.dot(across) * error.dot(across);
+    }
+  }
+  // The mean of n uniform unit vectors has E|mean|^2 = 1 / n.
+  EXPECT_LT(direction_sum.norm() / kSeeds, 4.0 / std::sqrt(kSeeds));
+  const double a = std::exp(-1.0 / model.correlation_time_s);
+  const double sigma = model.correlated_horizontal_sigma_m;
+  for (size_t j = 0; j < ks.size(); ++j) {
+    SCOPED_TRACE("fix " + std::to_string(ks[j]));
+    const double decay = std::pow(a, static_cast<double>(ks[j]));
+    const double expected_mean = model.initial_horizontal_error_m * decay;
+    const double variance = sigma * sigma * (1.0 - decay * decay);
+    const double mean = along_sum[j] / kSeeds;
+    // Five standard errors: sqrt(variance / n) for a mean, variance
+    // sqrt(2 / n) for a normal sample's variance about a known mean.
+    EXPECT_NEAR(mean, expected_mean, 5.0 * std::sqrt(variance / kSeeds) + 1e-9);
+    const double along_variance = along_squares[j] / kSeeds - mean * mean;
+    EXPECT_NEAR(along_variance, variance, 5.0 * variance * std::sqrt(2.0 / kSeeds) + 1e-9);
+    EXPECT_NEAR(across_squares[j] / kSeeds, variance,
+                5.0 * variance * std::sqrt(2.0 / kSeeds) + 1e-9);
+  }
+}
+
+TEST(SynthesiseGps, NegativeInitialErrorIsRefused) {
+  const GroundTruthTrajectory trajectory(shortDrive(1));
+  GpsModel model;
+  model.initial_horizontal_error_m = -1.0;
+  EXPECT_THROW(synthesiseGps(trajectory, model, 1), std::invalid_argument);
+  model.initial_horizontal_error_m = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(synthesiseGps(trajectory, model, 1), std::invalid_argument);
+}
+
 TEST(SynthesiseGps, NmeaEpochDecodesToTheSamePosition) {
   const GroundTruthTrajectory trajectory(shortDrive(1));
   const SiteProjection projection("UTM:31N", Eigen::Vector3d(593000.0, 5763000.0, 0.0));
@@ -205,6 +302,41 @@ TEST(SynthesiseCompass, NoiseAndDisturbances) {
   }
   EXPECT_GT(disturbed, 0);
   EXPECT_NEAR(std::sqrt(sum_squares / clean) / model.sigma_rad, 1.0, 0.05);
+}
+
+// The bias is added to every reading: with the same seed each reading moves
+// by exactly the bias, and the clean readings' mean error is the bias within
+// five standard errors, sigma / sqrt(n).
+TEST(SynthesiseCompass, BiasShiftsEveryReadingAndTheMeanByIt) {
+  TrajectoryConfig config = shortDrive(9);
+  config.duration_s = 600.0;
+  const GroundTruthTrajectory trajectory(config);
+  CompassModel model;
+  const double grid_bearing = -0.0186;
+  const auto unbiased = synthesiseCompass(trajectory, model, grid_bearing, 5);
+  model.bias_rad = 5.0 * M_PI / 180.0;
+  const auto biased = synthesiseCompass(trajectory, model, grid_bearing, 5);
+  ASSERT_EQ(biased.size(), unbiased.size());
+  double error_sum = 0.0;
+  int clean = 0;
+  for (size_t i = 0; i < biased.size(); ++i) {
+    const SimCompassReading& r = biased[i];
+    EXPECT_NEAR(
+        std::remainder(r.magnetic_heading_rad - unbiased[i].magnetic_heading_rad, 2.0 * M_PI),
+        model.bias_rad, 1e-12);
+    EXPECT_GE(r.magnetic_heading_rad, 0.0);
+    EXPECT_LT(r.magnetic_heading_rad, 2.0 * M_PI);
+    if (r.disturbed) {
+      continue;
+    }
+    const Eigen::Vector3d forward =
+        trajectory.at(r.stamp_ns).q_world_body * Eigen::Vector3d::UnitX();
+    const double expected = M_PI_2 - std::atan2(forward.y(), forward.x()) - grid_bearing;
+    error_sum += std::remainder(r.magnetic_heading_rad - expected, 2.0 * M_PI);
+    ++clean;
+  }
+  ASSERT_GT(clean, 1000);
+  EXPECT_NEAR(error_sum / clean, model.bias_rad, 5.0 * model.sigma_rad / std::sqrt(clean));
 }
 
 TEST(SensorFiles, WritersProduceParseableFiles) {

@@ -5,7 +5,8 @@
 # answers from the first OK fix on (the OK share of those is the availability
 # once the robot has been found), fixes beyond chi2_6(0.9973) of their own
 # covariance (precise wrong poses, which the system must never give), when the
-# robot received its first OK fix, the position and attitude RMSE from then on,
+# robot received its first OK fix, from the start and from when it first moved
+# (negative: before), the position and attitude RMSE from then on,
 # the exposure -> fix latency's 99th percentile over all answers and over
 # those with a pose, and the robot's reported states beyond chi2_6(0.9973) of
 # their own covariance from its first OK fix on (the robot sure of a wrong pose).
@@ -48,20 +49,23 @@ summarise() {
       if (match($0, /; [0-9]+ beyond/)) states_beyond = substr($0, RSTART + 2, RLENGTH - 9) + 0
     }
     /^after the first OK fix/ { after = 1; first_fix = $7 }
+    /^the robot first moved/ { fix_after_moving = $18 }
     after && /^position / { position_rmse = $2 }
     after && /^attitude / { attitude_rmse = $2 }
     END {
       if (answers == "") { exit 1 }
       if (first_fix == "") { first_fix = "-"; position_rmse = "-"; attitude_rmse = "-" }
+      if (fix_after_moving == "") { fix_after_moving = "-" }
       if (states_beyond == "") { states_beyond = "-" }
-      printf "%5d %8d %6d %10d %7d %10s %9s %10s %8s %9s %13s\n", seed, answers, ok, from_first,
-             beyond, first_fix, position_rmse, attitude_rmse, latency_p99[1], latency_p99[2],
-             states_beyond
+      printf "%5d %8d %6d %10d %7d %10s %12s %9s %10s %8s %9s %13s\n", seed, answers, ok,
+             from_first, beyond, first_fix, fix_after_moving, position_rmse, attitude_rmse,
+             latency_p99[1], latency_p99[2], states_beyond
     }' "$2"
 }
 
-header="$(printf "%5s %8s %6s %10s %7s %10s %9s %10s %8s %9s %13s" seed answers ok from_first \
-  beyond first_ok_s pos_rmse_m att_rmse_deg p99_ms ok_p99_ms states_beyond)"
+header="$(printf "%5s %8s %6s %10s %7s %10s %12s %9s %10s %8s %9s %13s" seed answers ok \
+  from_first beyond first_ok_s after_moving_s pos_rmse_m att_rmse_deg p99_ms ok_p99_ms \
+  states_beyond)"
 rows=""
 failed=0
 for ((seed = FIRST_SEED; seed < FIRST_SEED + SEEDS; ++seed)); do
@@ -78,14 +82,22 @@ done
 
 echo "$header"
 printf "%s" "$rows"
-printf "%s" "$rows" | awk '
-  { answers += $2; ok += $3; from_first += $4; beyond += $5; states_beyond += $11; ++runs
-    if ($6 == "-") ++never }
+# The first OK fix after the robot first moved, sorted (a fix before it counts as 0 s),
+# for the median.
+after_moving="$(printf "%s" "$rows" | awk '$7 != "-" { print ($7 < 0 ? 0 : $7) }' | sort -g)"
+median_after_moving="$(printf "%s\n" "$after_moving" | awk 'NF { v[++n] = $1 }
+  END { if (n) print (n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2); else print "-" }')"
+printf "%s" "$rows" | awk -v median="$median_after_moving" '
+  { answers += $2; ok += $3; from_first += $4; beyond += $5; states_beyond += $12; ++runs
+    if ($6 == "-") ++never
+    if ($7 != "-" && $7 <= 5) ++within_5_s
+    if ($7 != "-" && $7 <= 15) ++within_15_s }
   END {
     printf "total: %d runs, %d answers, %d OK (%.1f %%; %.1f %% of the %d from each first OK fix on), " \
-           "%d beyond 3 sigma, %d never fixed, %d robot states beyond 3 sigma\n", runs, answers, ok,
-           answers ? 100.0 * ok / answers : 0, from_first ? 100.0 * ok / from_first : 0, from_first,
-           beyond, never, states_beyond
+           "%d beyond 3 sigma, %d never fixed, %d robot states beyond 3 sigma; first OK fix " \
+           "after first moving: within 5 s on %d, within 15 s on %d, median %s s\n", runs, answers,
+           ok, answers ? 100.0 * ok / answers : 0, from_first ? 100.0 * ok / from_first : 0,
+           from_first, beyond, never, states_beyond, within_5_s, within_15_s, median
     exit beyond > 0
   }' || exit 1
 exit $((failed * 2))

@@ -29,6 +29,7 @@ struct EvalConfig {
   double position_threshold_m = 0.05;
   double rotation_threshold_deg = 0.5;
   double max_ground_truth_gap_s = 0.5;
+  double motion_distance_m = 0.05;
 };
 
 // Footprints for the plot, in the same frame as the trajectories.
@@ -68,6 +69,14 @@ void printFixReport(const EvalConfig& config, const std::vector<lineloc::Stamped
         consistency_options);
   }
   evaluation_options.evaluate_from_ns = *consistency.first_ok_received_ns;
+  if (const std::optional<int64_t> moved_ns =
+          lineloc::firstMotionStamp_ns(ground_truth, config.motion_distance_m)) {
+    std::cout << fmt::format(
+        "\nthe robot first moved {:.3f} s after the ground truth starts; its first OK fix was "
+        "received {:.3f} s after that\n",
+        1e-9 * static_cast<double>(*moved_ns - ground_truth.front().stamp_ns),
+        1e-9 * static_cast<double>(*consistency.first_ok_received_ns - *moved_ns));
+  }
   std::cout << fmt::format(
       "\nafter the first OK fix (received {:.3f} s after the ground truth starts):\n",
       1e-9 *
@@ -104,6 +113,8 @@ int main(int argc, char** argv) {
               "... and its attitude error at most this (deg)");
   options.add("max_ground_truth_gap_s", config.max_ground_truth_gap_s,
               "ground truth is not interpolated across longer gaps (s)");
+  options.add("motion_distance_m", config.motion_distance_m,
+              "the robot first moves when its ground truth first lies this far from its start (m)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

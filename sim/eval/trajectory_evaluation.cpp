@@ -78,6 +78,16 @@ void relativePoseErrors(const std::vector<MatchedPose>& matched, double delta_s,
 
 }  // namespace
 
+std::optional<int64_t> firstMotionStamp_ns(const std::vector<StampedPose>& ground_truth,
+                                           double distance_m) {
+  for (const StampedPose& pose : ground_truth) {
+    if ((pose.pose.translation() - ground_truth.front().pose.translation()).norm() > distance_m) {
+      return pose.stamp_ns;
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<StampedPose>& truth,
                                                         int64_t stamp_ns, int64_t max_gap_ns) {
   const auto after = std::lower_bound(

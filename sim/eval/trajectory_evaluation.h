@@ -71,6 +71,12 @@ struct TrajectoryEvaluation {
 std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<StampedPose>& truth,
                                                         int64_t stamp_ns, int64_t max_gap_ns);
 
+// The first ground-truth stamp (sorted by time) at which the camera lies more
+// than `distance_m` from where it starts: when the robot first moves;
+// nullopt when it never does.
+std::optional<int64_t> firstMotionStamp_ns(const std::vector<StampedPose>& ground_truth,
+                                           double distance_m);
+
 // Both trajectories sorted by time. kNoGroundTruth: fewer than two ground-truth
 // poses. kNoOverlap: no estimate falls inside the ground truth's time span.
 TrajectoryEvaluation evaluateTrajectory(const std::vector<StampedPose>& ground_truth,

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include "sim/eval/trajectory_evaluation.h"
@@ -124,6 +125,19 @@ TEST(TrajectoryEvaluation, ReportsMissingOverlapAndGroundTruth) {
                                   EvaluationOptions{})
                 .find("no evaluation"),
             std::string::npos);
+}
+
+TEST(FirstMotionStamp, IsWhenTheCameraFirstLiesFartherThanTheDistanceFromItsStart) {
+  std::vector<StampedPose> truth(50);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    truth[i].stamp_ns = static_cast<int64_t>(i) * 100'000'000;
+    // Standing for 2 s, then driving east at 1 m/s.
+    truth[i].pose.translation().x() = std::max(0.0, 0.1 * static_cast<double>(i) - 2.0);
+  }
+  EXPECT_EQ(firstMotionStamp_ns(truth, 0.05), std::optional<int64_t>(2'100'000'000));
+  EXPECT_EQ(firstMotionStamp_ns(truth, 0.25), std::optional<int64_t>(2'300'000'000));
+  EXPECT_EQ(firstMotionStamp_ns(truth, 10.0), std::nullopt);
+  EXPECT_EQ(firstMotionStamp_ns({}, 0.05), std::nullopt);
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ AcquisitionSession::Searched AcquisitionSession::search(const LineSetData& line_
     return std::ranges::find(window, kept.first) == window.end();
   });
   searched.decision = hypotheses_.decision(
+      acquisition.min_inliers,
       [&](const PoseWithCovariance& pose) { return !needsAcquisition(pose, options); });
   searched.hypotheses = hypotheses_.size();
   return searched;

@@ -130,6 +130,12 @@ void HypothesisSet::add(const SearchedFrame& frame, const std::vector<ScoredHypo
     if (chosen) {
       hypothesis.latest = aligned[*chosen];
       taken[*chosen] = true;
+      const bool proposed = std::ranges::any_of(aligned, [&](const ScoredHypothesis& other) {
+        return other.carried_index < 0 &&
+               PoseOffset::between(other.T_world_camera.pose, hypothesis.latest.T_world_camera.pose)
+                   .within(options_.same);
+      });
+      hypothesis.proposed += proposed ? 1 : 0;
     } else {
       hypothesis.latest.T_world_camera.pose = carried[i];
       hypothesis.latest.status = AlignmentStatus::kFailed;
@@ -158,7 +164,7 @@ void HypothesisSet::add(const SearchedFrame& frame, const std::vector<ScoredHypo
     if (known) {
       continue;
     }
-    Hypothesis hypothesis{found, {{view, {found.score, 1}}}, 0.0};
+    Hypothesis hypothesis{found, {{view, {found.score, 1}}}, found.carried_index < 0 ? 1 : 0, 0.0};
     for (const SearchedFrame& keyframe : keyframes_) {
       if (keyframe.id == view) {
         continue;
@@ -173,6 +179,7 @@ void HypothesisSet::add(const SearchedFrame& frame, const std::vector<ScoredHypo
     }
     hypotheses_.push_back(std::move(hypothesis));
   }
+  latest_aligned_ = aligned;
   weigh();
 }
 
@@ -221,12 +228,22 @@ void HypothesisSet::weigh() {
 }
 
 std::optional<HypothesisDecision> HypothesisSet::decision(
-    const std::function<bool(const PoseWithCovariance&)>& trackable) const {
+    int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable) const {
   if (hypotheses_.empty()) {
     return std::nullopt;
   }
   const Hypothesis& best = hypotheses_.front();
-  if (best.frames() < 2 || best.latest.status != AlignmentStatus::kOk) {
+  const ScoredHypothesis& latest = best.latest;
+  if (best.proposed < 2 || latest.status != AlignmentStatus::kOk || latest.inliers < min_inliers ||
+      latest.score < options_.none_score) {
+    return std::nullopt;
+  }
+  const bool outscored = std::ranges::any_of(latest_aligned_, [&](const ScoredHypothesis& other) {
+    return other.score > latest.score &&
+           !PoseOffset::between(other.T_world_camera.pose, latest.T_world_camera.pose)
+                .within(options_.same);
+  });
+  if (outscored) {
     return std::nullopt;
   }
   // p_h = exp(E_h - E_best) / sum over "none" and every hypothesis.

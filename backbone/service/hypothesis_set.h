@@ -33,19 +33,23 @@
 // views' keyframes too (moved back by the robot's motion), so that every
 // hypothesis is weighed on every view.
 //
-// The decision. The likeliest hypothesis is taken when it was scored in at
-// least two frames (one frame's noise cannot make it); when its posterior is
-// at least min_posterior; when it explains the views nearly as well as each
+// The decision. The likeliest hypothesis is taken when its posterior is at
+// least min_posterior; when it explains the views nearly as well as each
 // view's own best pose does, exp(E_free - E_h) at most the odds
 // min_posterior / (1 - min_posterior), with E_free = kappa sum_v max_j
 // s_{j,v} / s*_v (else the views fit no one pose moved by the robot's
-// motion: its odometry is wrong); when it aligned to a well-conditioned pose
-// in the latest frame; and, when that alignment is too wide to track from
-// (the view fixes the pose poorly), when the window holds min_wide_views
-// views. The other hypotheses still holding covered_posterior are the
-// ambiguity the answer must cover: the farthest one's offset is returned
-// with it. A standing robot whose view cannot tell its hypotheses apart is
-// undecided until it moves.
+// motion: its odometry is wrong); when the searches' grids proposed it in at
+// least two frames, not only the robot's motion (a local alignment from a
+// carried pose settles in whatever basin holds it, right or wrong, so only a
+// search that finds it again from afar confirms it); when in the latest frame
+// no pose elsewhere scores above it, and it aligned well-conditioned with at least
+// min_inliers inliers (AcquisitionOptions::min_inliers) and a score of at
+// least none_score; and, when that alignment is too wide to track from (the
+// view fixes the pose poorly), when the window holds min_wide_views views.
+// The other hypotheses still holding covered_posterior are the ambiguity the
+// answer must cover: the farthest one's offset is returned with it. A
+// standing robot whose view cannot tell its hypotheses apart is undecided
+// until it moves.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -137,7 +141,7 @@ class HypothesisSet {
   // The hypothesis to take now, if one is (see above); `trackable` tells
   // whether an alignment is narrow enough to track from.
   std::optional<HypothesisDecision> decision(
-      const std::function<bool(const PoseWithCovariance&)>& trackable) const;
+      int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable) const;
 
   // The keyframes of the window's views, oldest first: the frames whose data
   // a caller keeps for `rescore`.
@@ -157,6 +161,8 @@ class HypothesisSet {
     ScoredHypothesis latest;
     // Its scores in each view, by the view's keyframe.
     std::map<uint64_t, ViewScore> views;
+    // Frames whose search's grid proposed it.
+    int proposed = 0;
     double evidence = 0.0;
     int frames() const;
   };
@@ -174,8 +180,9 @@ class HypothesisSet {
   std::deque<SearchedFrame> keyframes_;  // one per view, oldest first
   std::optional<SearchedFrame> last_;    // the latest frame added
   std::vector<Hypothesis> hypotheses_;
-  double none_evidence_ = 0.0;  // E_0
-  double free_evidence_ = 0.0;  // E_free
+  std::vector<ScoredHypothesis> latest_aligned_;  // the latest frame's
+  double none_evidence_ = 0.0;                    // E_0
+  double free_evidence_ = 0.0;                    // E_free
 };
 
 }  // namespace lineloc

@@ -20,10 +20,11 @@ Eigen::Isometry3d at(double x_m, double y_m) {
   return pose;
 }
 
-// A pose a view fits, and how well: its verification score.
+// A pose a view fits, and how well: its verification score and inliers.
 struct Fit {
   Eigen::Isometry3d T_world_camera;
   double score = 0.0;
+  int inliers = 20;
 };
 
 // One frame of a robot driving north: its odometry (metres driven), what
@@ -39,7 +40,7 @@ struct Frame {
 ScoredHypothesis scored(const Fit& fit, int carried_index) {
   return {{fit.T_world_camera, diagonalPoseCovariance(0.05, 0.003)},
           AlignmentStatus::kOk,
-          20,
+          fit.inliers,
           fit.score,
           carried_index};
 }
@@ -56,6 +57,7 @@ std::optional<ScoredHypothesis> alignedFrom(const Frame& frame, const Eigen::Iso
 }
 
 const auto kTrackable = [](const PoseWithCovariance&) { return true; };
+constexpr int kMinInliers = 13;
 
 // Feeds frames to a set as the backbone's searches do.
 class Robot {
@@ -86,7 +88,7 @@ class Robot {
                rescored_frames_.push_back(frame_id);
                return alignedFrom(frames_.at(frame_id), start, -1);
              });
-    return set_.decision(trackable);
+    return set_.decision(kMinInliers, trackable);
   }
 
   const HypothesisSet& set() const { return set_; }
@@ -193,8 +195,36 @@ TEST(HypothesisSet, AHypothesisFoundLateIsWeighedOnTheEarlierFramesToo) {
   Frame first = standingBeforeTwoFits(15.0, 14.0, 1.6);
   first.proposed = {first.fits[1]};
   EXPECT_FALSE(robot.see(first));
-  expectAtTruth(robot.see(movedOn(0.6)), 0.6);
+  EXPECT_FALSE(robot.see(movedOn(0.6))) << "proposed by one search only";
   EXPECT_EQ(robot.rescoredFrames(), std::vector<uint64_t>{0});
+  expectAtTruth(robot.see(movedOn(1.2)), 1.2);
+}
+
+TEST(HypothesisSet, APoseOnlyTheRobotsMotionCarriedIsNotTaken) {
+  Robot robot;
+  // Proposed once; later frames align it from where the motion carries it.
+  Frame first = movedOn(0.0, 25.0);
+  robot.see(first);
+  for (int frame = 1; frame < 6; ++frame) {
+    Frame carried_only = movedOn(0.6 * frame, 25.0);
+    carried_only.proposed.clear();
+    EXPECT_FALSE(robot.see(carried_only)) << "frame " << frame;
+  }
+}
+
+TEST(HypothesisSet, TheLatestFrameMustAlignItBestOfAllWithEnoughInliers) {
+  Robot outscored;
+  outscored.see(standingBeforeTwoFits(25.0, 12.0, 1.6));
+  Frame another_best = standingBeforeTwoFits(25.0, 12.0, 1.6);
+  another_best.proposed.push_back({at(5.0, 30.0), 26.0});
+  EXPECT_FALSE(outscored.see(another_best)) << "another pose scores best in it";
+
+  Robot few_inliers;
+  few_inliers.see(standingBeforeTwoFits(25.0, 12.0, 1.6));
+  Frame weak = standingBeforeTwoFits(25.0, 12.0, 1.6);
+  weak.proposed[0].inliers = weak.fits[0].inliers = kMinInliers - 1;
+  EXPECT_FALSE(few_inliers.see(weak));
+  expectAtTruth(few_inliers.see(standingBeforeTwoFits(25.0, 12.0, 1.6)), 0.0);
 }
 
 TEST(HypothesisSet, KeepsAWindowOfTheLastViews) {

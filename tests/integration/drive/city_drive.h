@@ -289,6 +289,16 @@ class CityDrive : public ::testing::Test {
     return countIn(report, R"(robot states: [^\n]*; ([0-9]+) beyond)");
   }
 
+  // From the report: how long after the robot first moved its first OK fix
+  // came (s; negative: before); NaN when the report does not say.
+  static double firstFixAfterMovingS(const std::string& report) {
+    std::smatch match;
+    return std::regex_search(report, match,
+                             std::regex(R"(first OK fix was received (-?[0-9.]+) s after that)"))
+               ? std::stod(match[1])
+               : std::nan("");
+  }
+
   std::map<int64_t, Eigen::Isometry3d> poses(const fs::path& relative) const {
     return byStamp(readTumFile((work_ / relative).string()));
   }

@@ -2,17 +2,20 @@
 // street network the drives turn through (city_drive.h): a 30 s drive from a
 // standing start, and one whose robot is already moving when its software
 // starts (the navigator's start in motion, the backbone's first search from
-// a moving robot's prior). The robot must be found, answered with a pose on
-// nearly every frame from then on, never with a precise wrong fix, and its
-// attitude within the bound. Its position and the states it reported beyond
-// three sigma are printed, not asserted: through Den Haag's turns they do not
-// yet hold the bounds they hold in Delft (5 cm; no state beyond).
+// a moving robot's prior). The robot must be found within kMaxFirstFixS of
+// first moving, answered with a pose on nearly every frame from then on,
+// never with a precise wrong fix, and its attitude within the bound. Its
+// position RMSE and the states it reported beyond three sigma are printed,
+// not asserted: through Den Haag's turns they do not yet hold the bounds they
+// hold in Delft (5 cm; no state beyond) on every run.
 #include "tests/integration/drive/city_drive.h"
 
 namespace lineloc {
 namespace {
 
 using namespace lineloc::test;
+
+constexpr double kMaxFirstFixS = 5.0;
 
 class DenHaagDrive : public CityDrive {
  protected:
@@ -33,8 +36,9 @@ class DenHaagDrive : public CityDrive {
     backbone->signal(SIGTERM);
     backbone->wait(10'000);
     EXPECT_LE(expectFoundAndAnswered().attitude_rmse_deg, kMaxAttitudeRmseDeg);
-    fmt::print("states beyond three sigma: {}\n",
-               statesBeyondThreeSigma(consistencyReport("drive", "dataset")));
+    const std::string report = consistencyReport("drive", "dataset");
+    EXPECT_LE(firstFixAfterMovingS(report), kMaxFirstFixS) << report;
+    fmt::print("states beyond three sigma: {}\n", statesBeyondThreeSigma(report));
   }
 };
 

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <random>
+#include <utility>
 
 #include "backbone/service/acquisition_session.h"
 #include "tests/unit/backbone/matching/synthetic_street.h"
@@ -79,17 +80,37 @@ OdometryPose odometryAt(const Eigen::Isometry3d& T_world_camera) {
   return {T_world_camera, 0};
 }
 
+// A street, its map, and the robot's frames on it searched by a session.
+class DriveOn {
+ public:
+  DriveOn(Street street, uint32_t seed)
+      : street_(std::move(street)),
+        occlusion_(street_.faces, street_.face_building_ids),
+        map_(preparedMap(street_)),
+        random_(seed) {}
+
+  // Searches `frame` of a drive at `speed_m_s` in `session`; its true pose in `truth`.
+  AcquisitionSession::Searched search(AcquisitionSession& session, int frame, double speed_m_s,
+                                      Eigen::Isometry3d& truth) {
+    truth = truthAt(frame, speed_m_s);
+    const LineSetData line_set = lineSetAt(street_, occlusion_, frame, truth, random_);
+    return session.search(line_set, odometryAt(truth), map_, line_set.predicted_T_world_camera,
+                          LocalizerOptions{});
+  }
+
+ private:
+  Street street_;
+  OcclusionScene occlusion_;
+  std::shared_ptr<const PreparedMap> map_;
+  std::mt19937 random_;
+};
+
 TEST(AcquisitionSession, TakesTheCameraWithinAFewFramesOfADgpsStart) {
-  const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces, street.face_building_ids);
-  const std::shared_ptr<const PreparedMap> map = preparedMap(street);
-  std::mt19937 random(7);
+  DriveOn drive(makeStreet(), 7);
   AcquisitionSession session;
   for (int frame = 0; frame < 8; ++frame) {
-    const Eigen::Isometry3d truth = truthAt(frame);
-    const LineSetData line_set = lineSetAt(street, occlusion, frame, truth, random);
-    const AcquisitionSession::Searched searched = session.search(
-        line_set, odometryAt(truth), map, line_set.predicted_T_world_camera, LocalizerOptions{});
+    Eigen::Isometry3d truth;
+    const AcquisitionSession::Searched searched = drive.search(session, frame, kSpeedMS, truth);
     if (!searched.decision) {
       EXPECT_GT(searched.hypotheses, 0u) << "frame " << frame;
       continue;
@@ -106,34 +127,22 @@ TEST(AcquisitionSession, TakesTheCameraWithinAFewFramesOfADgpsStart) {
 TEST(AcquisitionSession, ARobotDrivingAlongAFeaturelessFacadeIsNeverTaken) {
   Street wall;
   addBox(wall, 8, -50, 9, 200, 10);  // nothing to place the camera along it
-  const OcclusionScene occlusion(wall.faces, wall.face_building_ids);
-  const std::shared_ptr<const PreparedMap> map = preparedMap(wall);
-  std::mt19937 random(9);
+  DriveOn drive(wall, 9);
   AcquisitionSession session;
   for (int frame = 0; frame < 8; ++frame) {
-    const Eigen::Isometry3d truth = truthAt(frame);
-    const LineSetData line_set = lineSetAt(wall, occlusion, frame, truth, random);
-    const AcquisitionSession::Searched searched = session.search(
-        line_set, odometryAt(truth), map, line_set.predicted_T_world_camera, LocalizerOptions{});
-    EXPECT_FALSE(searched.decision.has_value()) << "frame " << frame;
+    Eigen::Isometry3d truth;
+    EXPECT_FALSE(drive.search(session, frame, kSpeedMS, truth).decision.has_value())
+        << "frame " << frame;
   }
 }
 
 TEST(AcquisitionSession, StartsAfreshOnceCleared) {
-  const Street street = makeStreet();
-  const OcclusionScene occlusion(street.faces, street.face_building_ids);
-  const std::shared_ptr<const PreparedMap> map = preparedMap(street);
-  std::mt19937 random(11);
+  DriveOn drive(makeStreet(), 11);
   AcquisitionSession session;
-  const auto searchFrame = [&](int frame) {
-    const Eigen::Isometry3d truth = truthAt(frame, 0.0);
-    const LineSetData line_set = lineSetAt(street, occlusion, frame, truth, random);
-    return session.search(line_set, odometryAt(truth), map, line_set.predicted_T_world_camera,
-                          LocalizerOptions{});
-  };
-  searchFrame(0);
+  Eigen::Isometry3d truth;
+  drive.search(session, 0, 0.0, truth);
   session.clear();
-  EXPECT_FALSE(searchFrame(1).decision) << "its first frame again";
+  EXPECT_FALSE(drive.search(session, 1, 0.0, truth).decision) << "its first frame again";
 }
 
 }  // namespace

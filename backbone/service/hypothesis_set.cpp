@@ -36,14 +36,6 @@ void HypothesisSet::clear() {
   hypotheses_.clear();
 }
 
-int HypothesisSet::Hypothesis::frames() const {
-  int count = 0;
-  for (const auto& [keyframe_id, score] : views) {
-    count += score.frames;
-  }
-  return count;
-}
-
 std::vector<Eigen::Isometry3d> HypothesisSet::carriedStarts(const OdometryPose& odometry) const {
   std::vector<Eigen::Isometry3d> starts;
   if (!last_ || last_->odometry.epoch != odometry.epoch) {

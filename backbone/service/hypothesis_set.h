@@ -164,7 +164,6 @@ class HypothesisSet {
     // Frames whose search's grid proposed it.
     int proposed = 0;
     double evidence = 0.0;
-    int frames() const;
   };
 
   // Whether `frame` starts a new view.

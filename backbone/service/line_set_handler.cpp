@@ -353,13 +353,18 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
   const std::string rival = summary.T_world_camera_rival
                                 ? ", rival at " + describePose(*summary.T_world_camera_rival)
                                 : "";
+  const auto carried_aligned = std::ranges::count_if(
+      summary.aligned_hypotheses,
+      [](const ScoredHypothesis& aligned) { return aligned.carried_index >= 0; });
   spdlog::info(
-      "{} for {} #{}: {} ({}); {} of {} hypotheses aligned, verification scores {:.1f} "
-      "best / {:.1f} rival, {} inliers, best at {}{}, {:.0f} ms (grid search {:.0f} ms)",
+      "{} for {} #{}: {} ({}); {} of {} grid hypotheses and {} carried ones aligned, "
+      "verification scores {:.1f} best / {:.1f} rival, {} inliers, best at {}{}, {:.0f} ms (grid "
+      "search {:.0f} ms)",
       kind, line_set.robot_id, line_set.sequence_number, toString(toFixStatus(alignment.status)),
-      outcome, summary.aligned, summary.hypotheses, summary.best_score, summary.rival_score,
-      alignment.inliers, describePose(alignment.T_world_camera.pose), rival,
-      toMilliseconds(search_ns), toMilliseconds(summary.search_ns));
+      outcome, summary.aligned - carried_aligned, summary.hypotheses, carried_aligned,
+      summary.best_score, summary.rival_score, alignment.inliers,
+      describePose(alignment.T_world_camera.pose), rival, toMilliseconds(search_ns),
+      toMilliseconds(summary.search_ns));
 }
 
 std::optional<PoseWithCovariance> LineSetHandler::movedByOdometry(const SearchResult& search,

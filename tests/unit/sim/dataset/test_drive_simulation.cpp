@@ -2,6 +2,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +46,16 @@ SiteProjection worldProjection(const YAML::Node& world) {
       world["crs"].as<std::string>(),
       Eigen::Vector3d(world["site_origin"][0].as<double>(), world["site_origin"][1].as<double>(),
                       world["site_origin"][2].as<double>()));
+}
+
+// One row of cam0's exposure file: stamp, exposure time (s) and gain (dB), as written.
+std::array<std::string, 3> exposureRow(const std::string& row) {
+  std::istringstream fields(row);
+  std::array<std::string, 3> values;
+  std::getline(fields, values[0], ',');
+  std::getline(fields, values[1], ',');
+  std::getline(fields, values[2]);
+  return values;
 }
 
 TEST(DriveSimulation, WritesADatasetOfTheDriveThroughDelft) {
@@ -211,13 +222,7 @@ TEST(DriveSimulation, TheRealisticCameraExposesEachFrameUnderAutoExposure) {
   int frames = 0;
   while (std::getline(rows, row)) {
     ++frames;
-    std::istringstream fields(row);
-    std::string stamp;
-    std::string exposure_time_s;
-    std::string gain_db;
-    std::getline(fields, stamp, ',');
-    std::getline(fields, exposure_time_s, ',');
-    std::getline(fields, gain_db);
+    const auto [stamp, exposure_time_s, gain_db] = exposureRow(row);
     EXPECT_GE(std::stod(exposure_time_s), config.auto_exposure.min_exposure_time_s) << row;
     EXPECT_LE(std::stod(exposure_time_s), config.auto_exposure.max_exposure_time_s) << row;
     EXPECT_GE(std::stod(gain_db), 0.0) << row;
@@ -256,13 +261,7 @@ std::map<std::string, double> frameGains_db(const fs::path& root) {
   std::getline(rows, row);
   std::map<std::string, double> gains_db;
   while (std::getline(rows, row)) {
-    std::istringstream fields(row);
-    std::string stamp;
-    std::string exposure_time_s;
-    std::string gain_db;
-    std::getline(fields, stamp, ',');
-    std::getline(fields, exposure_time_s, ',');
-    std::getline(fields, gain_db);
+    const auto [stamp, exposure_time_s, gain_db] = exposureRow(row);
     gains_db[stamp] = std::stod(gain_db);
   }
   return gains_db;

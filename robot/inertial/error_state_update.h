@@ -83,8 +83,9 @@ UpdateOutcome applyUpdate(const LinearisedMeasurement<M>& z, double gate, Naviga
 // so that S_p becomes R along the directions where it was wider than R and
 // stays where it was not, and with the gain K = P H^T W (I + S_p W)^-1, the
 // Kalman gain P H^T (S_p + W^-1)^-1 for a W that may be singular; then
-// P = (I - K H) P. It is gated with R as any other. Returns nullopt when S_p
-// is within R along every direction: the measurement adds nothing.
+// P = (I - K H) P. It is gated with R as any other, first: one beyond the gate
+// disagrees with the estimate, whatever it would add. Returns nullopt when it
+// passes the gate and S_p is within R along every direction: it adds nothing.
 template <int M>
 std::optional<UpdateOutcome> applyBoundingUpdate(const LinearisedMeasurement<M>& z, double gate,
                                                  NavigationState& state,
@@ -98,15 +99,15 @@ std::optional<UpdateOutcome> applyBoundingUpdate(const LinearisedMeasurement<M>&
       !z.residual.allFinite()) {
     return UpdateOutcome{UpdateStatus::kDegenerate, 0.0};
   }
+  const double nis = z.residual.dot(llt.solve(z.residual));
+  if (!(nis <= gate)) {
+    return UpdateOutcome{UpdateStatus::kGated, nis};
+  }
   const Eigen::SelfAdjointEigenSolver<MatrixMM> information(
       z.noise.inverse() - predicted_llt.solve(MatrixMM::Identity()));
   const auto clipped = information.eigenvalues().cwiseMax(0.0);
   if (clipped.maxCoeff() <= 0.0) {
     return std::nullopt;
-  }
-  const double nis = z.residual.dot(llt.solve(z.residual));
-  if (!(nis <= gate)) {
-    return UpdateOutcome{UpdateStatus::kGated, nis};
   }
   const MatrixMM W =
       information.eigenvectors() * clipped.asDiagonal() * information.eigenvectors().transpose();

@@ -61,6 +61,13 @@ void requirePositive(double value, const char* name) {
   }
 }
 
+void requireNonNegative(double value, const char* name) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument(
+        fmt::format("inertial navigator: {} must be >= 0, got {}", name, value));
+  }
+}
+
 bool isPositiveDefinite(const Matrix6d& covariance) {
   return covariance.isApprox(covariance.transpose(), 1e-9) &&
          Eigen::LLT<Matrix6d>(covariance).info() == Eigen::Success;
@@ -178,6 +185,7 @@ InertialNavigator::InertialNavigator(const InertialNavigatorConfig& config)
   requirePositive(config.max_ground_speed_mps, "max_ground_speed_mps");
   requirePositive(config.gps_velocity_sigma_mps, "gps_velocity_sigma_mps");
   requirePositive(config.compass_sigma_rad, "compass_sigma_rad");
+  requireNonNegative(config.compass_bias_sigma_rad, "compass_bias_sigma_rad");
   requirePositive(config.zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
   if (config.vision_error_correlation_m != 0.0) {
     requirePositive(config.vision_error_correlation_m, "vision_error_correlation_m");
@@ -478,12 +486,14 @@ MeasurementOutcome InertialNavigator::apply(Measurement& measurement, const ImuS
     return fromUpdate(outcome.status);
   }
   const auto& yaw = std::get<YawPayload>(measurement.payload);
-  const auto z = lineariseYaw(state, yaw.yaw_rad, config_.compass_sigma_rad);
+  const auto z = lineariseYaw(state, yaw.yaw_rad, compassYawSigma_rad());
   if (!z) {
     return MeasurementOutcome::kDegenerate;
   }
   measurement.yaw_residual_rad = z->residual(0);
-  return fromUpdate(applyUpdate(*z, gate_by_dimension_[1], state, covariance).status);
+  const std::optional<UpdateOutcome> outcome =
+      applyBoundingUpdate(*z, gate_by_dimension_[1], state, covariance);
+  return outcome ? fromUpdate(outcome->status) : MeasurementOutcome::kSkipped;
 }
 
 double InertialNavigator::correlatedFixInflation(const Snapshot& snapshot) const {
@@ -592,6 +602,10 @@ Eigen::Vector3d InertialNavigator::initialGyroBias(bool stood_still, double& sig
   return alignment_->gyro_bias_radps;
 }
 
+double InertialNavigator::compassYawSigma_rad() const {
+  return std::hypot(config_.compass_sigma_rad, config_.compass_bias_sigma_rad);
+}
+
 double InertialNavigator::yawFromCompass(double magnetic_heading_rad) const {
   // Grid bearing = magnetic + declination + grid bearing of true north; the
   // world yaw is anticlockwise from east: yaw = pi/2 - grid bearing.
@@ -630,7 +644,7 @@ void InertialNavigator::tryInitialiseFromSensors() {
       with_dgps ? kStillVelocitySigma_mps : config_.max_ground_speed_mps;
   ErrorVector sigma;
   sigma << position_sigma_m, Eigen::Vector3d::Constant(velocity_sigma_mps), tilt_sigma, tilt_sigma,
-      config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
+      compassYawSigma_rad(), Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   startAt(state, sigma.cwiseAbs2().asDiagonal(), latest,
           with_dgps ? StartPosition::kFromSensors : StartPosition::kUnknown, Matrix6d::Zero(),
@@ -696,7 +710,7 @@ void InertialNavigator::tryInitialiseInMotion() {
   ErrorVector sigma;
   sigma << position_sigma_m, config_.gps_velocity_sigma_mps, config_.gps_velocity_sigma_mps,
       vertical_velocity_sigma, attitude->tilt_sigma_rad, attitude->tilt_sigma_rad,
-      config_.initial_yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
+      compassYawSigma_rad(), Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   counters_.gps_velocity.accepted += 2;
   startAt(state, sigma.cwiseAbs2().asDiagonal(), imu_at_start,
@@ -904,8 +918,7 @@ void InertialNavigator::restartHeadingIfCompassKeepsBeingGated() {
   ErrorCovariance covariance = latest.covariance;
   covariance.row(kAttitude + 2).setZero();
   covariance.col(kAttitude + 2).setZero();
-  covariance(kAttitude + 2, kAttitude + 2) =
-      config_.initial_yaw_sigma_rad * config_.initial_yaw_sigma_rad;
+  covariance(kAttitude + 2, kAttitude + 2) = compassYawSigma_rad() * compassYawSigma_rad();
   startAt(state, covariance, latest.imu,
           latest.position_known ? StartPosition::kFromSensors : StartPosition::kUnknown,
           latest.unproven_covariance, latest.velocity_known);

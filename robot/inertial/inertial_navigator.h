@@ -198,7 +198,11 @@
 // vision-tracked pose must not be pulled by them; fused as independent, a
 // standing robot's second fix took the sigma from 5 m to 3.5 m, and the truth
 // lay beyond three of those sigmas in 46 of 831 searches at the start of 50
-// simulated Delft drives (a Gaussian gives 9); compass yaw; zero velocity
+// simulated Delft drives (a Gaussian gives 9); compass yaw, as a bound too,
+// its error shared by every reading (compass_bias_sigma_rad): fused as
+// independent, ten readings a second took the yaw sigma to a fraction of a
+// degree, and a compass 5 degrees off became a heading the filter was sure
+// of and a search range that missed the truth; zero velocity
 // when the IMU is still and the estimated speed small. Each is gated by its
 // normalised innovation squared at `gate_probability` of the chi-square
 // distribution; rejections are counted in health().
@@ -262,15 +266,15 @@ struct InertialNavigatorConfig {
   // Per horizontal axis, of one DGPS velocity (Doppler: 0.05 m/s on a current
   // single-frequency receiver's data sheet, doubled for multipath in a street).
   double gps_velocity_sigma_mps = 0.1;
+  // A compass reading's error: white noise from reading to reading, and an
+  // error all readings share (calibration, mounting, the magnetic field of
+  // the street), which no number of readings averages away. Each reading
+  // bounds the yaw at sigma_c = hypot(white, shared) rather than shrinking it
+  // (see Updates above), and a start from the compass has that yaw sigma.
   double compass_sigma_rad = 2.0 * M_PI / 180.0;
+  double compass_bias_sigma_rad = 2.0 * M_PI / 180.0;
   double magnetic_declination_rad = 0.0;  // magnetic north's bearing from true north, east positive
   double grid_bearing_of_true_north_rad = 0.0;  // SiteProjection::gridBearingOfTrueNorth_rad
-  // Yaw sigma of a start from the compass: one reading's, for the robust mean
-  // of the start-up window (robust_heading.h), so that a disturbance starting
-  // after it (10-40 degrees) is gated. With 10 degrees here, the disturbed
-  // readings of the simulated Delft drive of seed 30 passed the gate and
-  // pulled the heading 35 degrees off, where it gated every vision fix.
-  double initial_yaw_sigma_rad = 2.0 * M_PI / 180.0;
   double gyro_turn_on_bias_sigma_radps = 0.0035;
   double accel_turn_on_bias_sigma_mps2 = 0.05;
 
@@ -335,7 +339,7 @@ struct MeasurementCounters {
   int64_t accepted = 0;
   int64_t gated = 0;
   int64_t degenerate = 0;
-  int64_t skipped = 0;   // DGPS while the pose is better than DGPS
+  int64_t skipped = 0;   // DGPS or compass while the estimate is better than it
   int64_t too_late = 0;  // older than the history, or than the start
   int64_t invalid = 0;   // non-finite, or a covariance that is not positive definite
   int64_t rejected() const { return gated + degenerate + too_late + invalid; }
@@ -557,6 +561,8 @@ class InertialNavigator {
   // body pitching (0.007 rad/s on simulated route 39), not the bias.
   Eigen::Vector3d initialGyroBias(bool stood_still, double& sigma_radps) const;
   double yawFromCompass(double magnetic_heading_rad) const;
+  // sigma_c = hypot(compass_sigma_rad, compass_bias_sigma_rad).
+  double compassYawSigma_rad() const;
 
   InertialNavigatorConfig config_;
   Strapdown strapdown_;

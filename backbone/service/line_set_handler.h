@@ -5,52 +5,21 @@
 // Malformed input is dropped and counted; a map failure is answered with
 // FIX_INTERNAL_ERROR and counted; serving goes on.
 //
-// Ground. A robot that states its camera height above the ground has its
-// predicted height replaced by the model's ground level there plus that
-// height (sigma ground_level_sigma_m) whenever its own is poorer.
+// Each robot's frames are answered by its session (robot_session.h): how a
+// frame is localized (tracked from its prediction or from a taken hypothesis,
+// or searched), the floor and the unproven part of an OK answer, and the
+// proof searches of its tracking (tracking_proof.h). The handler validates,
+// finds the map and the robot's session, runs the session's searches and
+// proofs on the SearchWorker thread (search_worker.h) and answers.
 //
 // Maps. What localization needs of a map view is built once per view, off
 // the frames' path (prepared_maps.h); a frame with no map prepared near it
 // yet is answered with FIX_NO_MATCH_COMPUTED. The tiles around where a robot
 // will be prefetch_lookahead_s later are queued for loading.
 //
-// Acquisition. A frame whose prediction is too poor to track starts a search
-// on the SearchWorker thread (search_worker.h), unless the robot's last one
-// still runs, and is answered at once with FIX_NO_MATCH_COMPUTED: no LineSet
-// waits for a search. The robot's searches form one sequential estimator
-// (acquisition_session.h, hypothesis_set.h): the poses they align are kept
-// as hypotheses, moved between frames by the robot's own motion O (read from
-// its predictions without their DGPS jumps, predicted_motion.h), aligned
-// again in each searched frame and weighed over a window of views, until one
-// is likely enough to take. The robot's next frames are then tracked from it,
-// A O_A^-1 O, for carry_search_s, with carried_start_step_m probes along the
-// horizontal axes (LocalizerOptions::min_start_step_m).
-//
-// Proof. A taken pose can lie in a neighbouring basin, which tracking then
-// follows, and tracking's covariance, from one view's residuals, cannot tell.
-// So every OK fix states an unproven part (PoseFix::unproven_*: one offset
-// the fixes share, which the robot fuses as one, inertial_navigator.h) and
-// carries it in its covariance: the search's resolution (acquired_*_sigma,
-// pose_acquisition.h), the farthest rival the acquisition still held, and
-// until a proof search has aligned around tracking that search's own reach
-// (proof_position_sigma_m, confirm_rotation_rad). Proof searches run over
-// proof_position_sigma_m around the frame's tracked pose: the first at once,
-// the next once the robot has moved acquisition_proven_after_m from the
-// tracking start, then every proof_retry_m. agreeing_proofs_needed of them
-// from elsewhere that agree (within confirm_position_m and
-// confirm_rotation_rad) prove tracking, and the unproven part goes. A pose
-// elsewhere scoring at least ambiguous_score_fraction of the tracked pose
-// (verificationScore, pose_acquisition.h) is a rival the unproven part grows
-// to cover; one the tracked pose scores below that fraction of ends tracking,
-// and the robot is searched for again over at least proof_position_sigma_m.
-// A verdict on a tracking start the robot no longer tracks from is dropped.
-// A robot tracked from its own prediction (a restarted backbone, a robot
-// forgotten and back, or a new odometry chain) is proven alike from its first
-// tracked frame.
-//
-// Covariance. A tracked answer's covariance is raised to the sample
-// covariance of the robot's answers of the last second, each moved to its
-// frame by the robot's motion (fix_scatter.h).
+// Searches. A frame the session searches is answered at once with
+// FIX_NO_MATCH_COMPUTED: no LineSet waits for a search. Its search runs on the
+// worker unless the robot's last one still runs; a proof search likewise.
 //
 // Exposure notices. A robot may send each frame's LineSet without its
 // features at the frame's exposure (ExposureTopic, common/messages/topics.h).
@@ -63,7 +32,7 @@
 // order, up to kMaxWaitingNotices per robot.
 //
 // Forgetting. A robot not heard from for forget_robot_after_s is forgotten
-// (its motion, answers, searches, proofs, notices and cadence), so that a
+// (its session, notices and cadence), so that a
 // backbone serving robots that come and go holds only the ones it serves; one
 // that comes back is served as after a backbone restart. The sweep runs on the
 // LineSets' thread, at most every forget_robot_after_s / 2.
@@ -81,17 +50,14 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
-#include "backbone/service/acquisition_session.h"
-#include "backbone/service/fix_scatter.h"
 #include "backbone/service/frame_cadence.h"
-#include "backbone/service/predicted_motion.h"
 #include "backbone/service/prepared_maps.h"
+#include "backbone/service/robot_session.h"
 #include "backbone/service/search_worker.h"
 #include "common/geodesy/site_sun.h"
 #include "common/messages/message_validator.h"
@@ -127,28 +93,6 @@ struct PipelineOptions {
   // asked for this close to it (PreparedMaps).
   double map_reuse_distance_m = 50.0;
   double prefetch_lookahead_s = 3.0;
-  double ground_level_sigma_m = 0.1;
-  // A proof search's pose within both of these of the tracked one agrees with it.
-  double confirm_position_m = 0.3;
-  double confirm_rotation_rad = 0.5 * M_PI / 180.0;
-  // The acquisition's estimator over the robot's searched frames.
-  HypothesisSetOptions hypotheses;
-  // A taken hypothesis starts tracking for this long after its frame.
-  double carry_search_s = 1.0;
-  // Tracking from a taken hypothesis probes this far along the horizontal
-  // axes (LocalizerOptions::min_start_step_m).
-  double carried_start_step_m = 0.5;
-  // Fixes keep the acquired pose's resolution term until proof searches
-  // from at least this far from where the confirmed search saw the robot
-  // agree with tracking; over this sigma around the tracked pose (three
-  // sigma: a few windows' widths), the first at once, each next one due
-  // proof_retry_m further on, and acquisition_proven_after_m on at least.
-  double acquisition_proven_after_m = 1.0;
-  double proof_position_sigma_m = 0.5;
-  double proof_retry_m = 1.0;
-  // Agreeing proof searches, each proof_retry_m on from the one before, that
-  // prove tracking.
-  int agreeing_proofs_needed = 2;
   // An answer slower than this (a frame period at 30 Hz) is logged with its
   // stage times.
   double slow_answer_ms = 33.0;
@@ -163,8 +107,7 @@ struct PipelineOptions {
   // A robot not heard from for this long is forgotten (see above); one whose
   // radio drops out for seconds keeps its state.
   double forget_robot_after_s = 30.0;
-  PredictedMotionOptions motion;
-  FixScatterOptions fix_scatter;
+  RobotSessionOptions robot;
   LocalizerOptions localizer;
   // When set, each LineSet is localized under the sun of its stamp instead
   // of localizer.visibility.sunlight (none while the sun is down).
@@ -203,33 +146,24 @@ class LineSetHandler {
   // clock), first forgetting the silent robots when that is due: itself too
   // when it was one.
   void hearFrom(const std::string& robot_id, int64_t arrival_ns);
-  // Drops every table's entries of robots not in last_heard_ns_: also those a
-  // search that finished after its robot was forgotten wrote.
-  void forgetUnheardRobots();
-  void prefetchAlongMotion(const LineSetData& line_set);
+  // The robot's session, made when it has none.
+  std::shared_ptr<RobotSession> sessionOf(const std::string& robot_id);
+  void prefetchAlongMotion(RobotSession& session, const LineSetData& line_set);
   // The localizer's options for `line_set`: under sunlightAt its stamp.
   LocalizerOptions localizerOptions(const LineSetData& line_set) const;
-  // Tracks `line_set` from `prior` into `fix`; an OK answer gets the floor of
-  // the robot's recent answers (fix_scatter.h) and is widened until proven.
-  // `visible_from_prior`, when given, is the hidden-line removal for it.
-  void track(const LineSetData& line_set, const OdometryPose& odometry,
-             const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior,
-             const LocalizerOptions& options, PoseFixData& fix,
+  // Tracks `line_set` as `plan` says into `fix` and submits the proof search
+  // its session asks for. `visible_from_prior`, when given, is the hidden-line
+  // removal for it.
+  void track(const std::shared_ptr<RobotSession>& session, const LineSetData& line_set,
+             const OdometryPose& odometry, const std::shared_ptr<const PreparedMap>& map,
+             const RobotSession::FramePlan& plan, PoseFixData& fix,
              const std::vector<VisibleSegment>* visible_from_prior = nullptr);
-  // Runs on the search worker: the robot's acquisition session searches the
-  // frame (`odometry` is its) and, when it takes a hypothesis, tracking starts.
-  void search(const LineSetData& line_set, const OdometryPose& odometry,
+  // Run on the search worker: the session searches the frame, or proves its
+  // tracking at it, and the outcome is logged.
+  void search(RobotSession& session, const LineSetData& line_set, const OdometryPose& odometry,
               std::shared_ptr<const PreparedMap> map, const PoseWithCovariance& prior);
-  // Starts the robot's tracking from the hypothesis `decision` took at
-  // `line_set`'s frame, its rivals and, when it is too wide to track from,
-  // its own sigmas left unproven.
-  void startTrackingFrom(const LineSetData& line_set, const OdometryPose& odometry,
-                         const HypothesisDecision& decision);
-  PoseWithCovariance groundedPrior(const LineSetData& line_set, const PreparedMap& map) const;
-  // The prior a frame of `line_set`'s robot is tracked from in `map` unless a
-  // taken hypothesis is carried: the prediction grounded and, for a robot
-  // searched for again, widened (searchPrior).
-  PoseWithCovariance trackingPrior(const LineSetData& line_set, const PreparedMap& map);
+  void prove(RobotSession& session, const LineSetData& line_set, const PreparedMap& map,
+             const Eigen::Isometry3d& tracked, const ProofRequest& request);
   // A frame of one robot: its sequence number and exposure stamp.
   struct FrameId {
     uint32_t sequence_number = 0;
@@ -257,58 +191,10 @@ class LineSetHandler {
       const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior);
   // Counts a malformed message and logs `kind`'s drop.
   void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
-  // The robot's taken hypothesis moved to `line_set`'s time and narrowed to
-  // the tracking limits (narrowedForTracking), when there is one to carry.
-  std::optional<PoseWithCovariance> carriedSearch(const LineSetData& line_set,
-                                                  const OdometryPose& odometry);
-  // Adds an acquired pose's resolution term (acquired_*_sigma,
-  // pose_acquisition.h), or the farthest rival, or before any proof search
-  // has aligned around tracking the proof search's own prior sigmas, to an
-  // OK fix's covariance until proof searches have agreed with tracking,
-  // stating it as the fix's unproven part (one offset the robot's fixes
-  // share until then), and submits the next proof search when it is due. A
-  // robot with no tracking start, or one of another odometry epoch, has it
-  // set at `fix`.
-  void widenUntilProven(const LineSetData& line_set, const OdometryPose& odometry,
-                        const std::shared_ptr<const PreparedMap>& map, PoseFixData& fix);
-  // A pose found at a frame (by a search, or by tracking a tracking start's
-  // first frame) and the robot's odometry there.
-  struct SearchResult {
-    int64_t stamp_ns = 0;
-    PoseWithCovariance T_world_camera_found;
-    OdometryPose odometry;
-  };
-  enum class Proof { kAgrees, kUndecided, kContradicts };
-  struct ProofVerdict {
-    Proof proof;
-    std::string outcome;
-    // An undecided proof's farthest rival of the tracked pose (see below).
-    PoseOffset rival = {};
-  };
-  // What the poses a proof search `found` around `tracked` say of tracking:
-  // an OK pose elsewhere contradicts it only when the tracked pose scores
-  // below ambiguous_score_fraction of it (verificationScore,
-  // pose_acquisition.h). A pose elsewhere, OK or either of an ambiguous
-  // search's two, that scores at least that fraction of the tracked pose is
-  // its rival: the view does not tell them apart.
-  ProofVerdict judgeProof(const LineSetData& line_set, const PreparedMap& map,
-                          const Eigen::Isometry3d& tracked, const Localization& found) const;
-  // Runs on the search worker: searches around `tracked`, the frame's
-  // tracked pose, `moved_m` from the viewpoint of the tracking start at
-  // `origin`, and proves or ends that tracking. A verdict on a start the
-  // robot no longer tracks from is logged and dropped (see above).
-  void prove(const LineSetData& line_set, const PreparedMap& map, const Eigen::Isometry3d& tracked,
-             const SearchResult& origin, double moved_m);
   // Logs a search's outcome.
   static void logSearch(const char* kind, const LineSetData& line_set, const Alignment& alignment,
                         const SearchSummary& summary, const std::string& outcome,
                         int64_t search_ns);
-  // Whether a pose found where `expected` was predicted lies within
-  // confirm_position_m and confirm_rotation_rad of it.
-  bool agrees(const Eigen::Isometry3d& expected, const Eigen::Isometry3d& found) const;
-  // The robot's prediction, widened to proof_position_sigma_m at least, when a
-  // proof search ended its tracking; else `prior`.
-  PoseWithCovariance searchPrior(const std::string& robot_id, const PoseWithCovariance& prior);
   // Queues `run` on the search worker unless the robot's last search still
   // runs; an exception it throws is logged as `kind`'s failure.
   void submitSearch(const char* kind, const LineSetData& line_set, std::function<void()> run);
@@ -318,58 +204,19 @@ class LineSetHandler {
   // Announces the robots' next tracked frames to the gate (frame_cadence.h).
   void announceNextFrame(const PoseFixData& fix, int64_t arrival_ns);
 
-  struct StampedPosition {
-    int64_t stamp_ns;
-    Eigen::Vector3d position;
-  };
-
   MapTileCache& map_;
   MessageLimits limits_;
   PipelineOptions options_;
   const int64_t silence_ns_;  // forget_robot_after_s
-  // The proof search's prior sigmas (proof_position_sigma_m,
-  // confirm_rotation_rad): the unproven part before one has looked around.
-  const PoseOffset proof_reach_;
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
   // The arrival of each robot's last LineSet, and when silent robots are next
   // looked for (see above).
   std::map<std::string, int64_t> last_heard_ns_;
   int64_t next_forgetting_ns_ = 0;
-  std::map<std::string, StampedPosition> last_position_;
-  std::map<std::string, PredictedMotion> motion_;
-  std::map<std::string, FixScatter> fix_scatter_;
-  // A found at odometry O_A moved by the robot's motion to odometry O: A O_A^-1 O;
-  // nullopt when the two are of different epochs.
-  static std::optional<PoseWithCovariance> movedByOdometry(const SearchResult& search,
-                                                           const OdometryPose& odometry);
-  // Where a robot's tracking started: a confirmed search result, or its
-  // first frame tracked from its own prediction; and the proof searches that
-  // agreed with tracking since (proven at agreeing_proofs_needed).
-  struct TrackingStart {
-    SearchResult origin;
-    // Found by a search, and so carried (carriedSearch).
-    bool searched = false;
-    int agreeing_proofs = 0;
-    // Motion from the origin's viewpoint (m) at which a proof search is due.
-    double proof_due_m = 0.0;
-    // The farthest rival undecided proofs found, which the unproven part of
-    // the fixes covers until tracking is proven.
-    PoseOffset rival = {};
-    // Whether a proof search has aligned around tracking (OK or ambiguous):
-    // until one has, no basin within its reach is ruled out.
-    bool looked_around = false;
-    // Whether this start is the one that began at `other`'s frame.
-    bool startedAt(const SearchResult& other) const {
-      return origin.stamp_ns == other.stamp_ns && origin.odometry.epoch == other.odometry.epoch;
-    }
-  };
-  std::mutex searches_mutex_;
-  // Each robot's acquisition; its frames are searched on the worker, one at a time.
-  std::map<std::string, std::shared_ptr<AcquisitionSession>> acquisition_;
-  std::map<std::string, TrackingStart> tracking_start_;
-  // Robots whose tracking a proof search ended.
-  std::set<std::string> searching_again_;
+  // Each robot's session; a search that outlives its robot's keeps its own.
+  std::mutex sessions_mutex_;
+  std::map<std::string, std::shared_ptr<RobotSession>> sessions_;
   // A robot's notices waiting for their LineSets, oldest first, and its last
   // LineSet taken for answering.
   struct RobotNotices {
@@ -386,7 +233,5 @@ class LineSetHandler {
   // Last, so that it is destroyed first: its searches use the members above.
   SearchWorker search_worker_;
 };
-
-lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);
 
 }  // namespace lineloc

@@ -421,7 +421,7 @@ void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::str
     ++sequence;
   };
   const auto expectUnlookedFix = [&] {
-    expectFix(options.proof_position_sigma_m, options.confirm_rotation_rad);
+    expectFix(options.robot.proof.proof_position_sigma_m, options.robot.proof.confirm_rotation_rad);
   };
   const auto expectUnprovenFix = [&] {
     expectFix(acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad);
@@ -446,7 +446,7 @@ void expectProvenBySearchesFromElsewhere(LineSetHandler& handler, const std::str
   expectUnprovenFix();
   EXPECT_EQ(handler.counters().searches, searches + 2);
   // A metre further on, the second one is due; agreeing too, it proves tracking.
-  driveNorth(options.proof_retry_m);
+  driveNorth(options.robot.proof.proof_retry_m);
   expectUnprovenFix();
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, searches + 3);
@@ -490,7 +490,7 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
   ASSERT_TRUE(fix.has_value());
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   expectWithinThreeSigma(fix->T_world_camera, truth);
-  EXPECT_EQ(fix->unproven_position_sigma_m, options.proof_position_sigma_m);
+  EXPECT_EQ(fix->unproven_position_sigma_m, options.robot.proof.proof_position_sigma_m);
 }
 
 // A proof search judges the tracking start it was submitted for. A robot
@@ -518,11 +518,11 @@ TEST_F(LineSetHandlerTest, AProofThatReturnsAfterTheRobotRestartedIsDropped) {
   };
   // Frame 19 starts tracking and its proof search; frame 18, older, is the
   // restarted robot's first.
-  expectFix(19, options.proof_position_sigma_m);
-  expectFix(18, options.proof_position_sigma_m);
+  expectFix(19, options.robot.proof.proof_position_sigma_m);
+  expectFix(18, options.robot.proof.proof_position_sigma_m);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 1u);
-  expectFix(19, options.proof_position_sigma_m);
+  expectFix(19, options.robot.proof.proof_position_sigma_m);
   handler.waitForSearches();
   EXPECT_EQ(handler.counters().searches, 2u);
   expectFix(20, options.localizer.acquisition.acquired_position_sigma_m);

@@ -1,0 +1,172 @@
+#include "backbone/service/tracking_proof.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace lineloc {
+
+namespace {
+
+// The poses a search found: its best, and an ambiguous search's rival too.
+std::vector<Eigen::Isometry3d> foundPoses(const Localization& found) {
+  std::vector<Eigen::Isometry3d> poses{found.alignment.T_world_camera.pose};
+  if (found.alignment.status == AlignmentStatus::kAmbiguous && found.search &&
+      found.search->T_world_camera_rival) {
+    poses.push_back(*found.search->T_world_camera_rival);
+  }
+  return poses;
+}
+
+}  // namespace
+
+ProofVerdict judgeProof(const LineSetData& line_set, const PreparedMap& map,
+                        const Eigen::Isometry3d& tracked, const Localization& found,
+                        const AcquisitionOptions& acquisition, const PoseOffset& agreement) {
+  const Alignment& alignment = found.alignment;
+  const bool ambiguous = alignment.status == AlignmentStatus::kAmbiguous;
+  if (alignment.status != AlignmentStatus::kOk && !ambiguous) {
+    return {Proof::kUndecided, alignment.message + "; tried again later", {}, false};
+  }
+  const auto agrees = [&](const Eigen::Isometry3d& pose) {
+    return PoseOffset::between(tracked, pose).within(agreement);
+  };
+  if (!ambiguous && agrees(alignment.T_world_camera.pose)) {
+    return {Proof::kAgrees, "agrees with tracking", {}, true};
+  }
+  const auto score = [&](const Eigen::Isometry3d& T_world_camera) {
+    return verificationScore(line_set.segments, map.segments, map.scene, T_world_camera,
+                             line_set.camera, acquisition);
+  };
+  const double tracked_score = score(tracked);
+  const double fraction = acquisition.ambiguous_score_fraction;
+  ProofVerdict verdict{Proof::kUndecided, ambiguous ? alignment.message + "; " : "", {}, true};
+  for (const Eigen::Isometry3d& pose : foundPoses(found)) {
+    if (agrees(pose)) {
+      continue;
+    }
+    const double found_score = score(pose);
+    const PoseOffset offset = PoseOffset::between(tracked, pose);
+    verdict.outcome +=
+        fmt::format("finds a pose {:.2f} m from tracking, which scores {:.1f} to its {:.1f}; ",
+                    offset.position_m, tracked_score, found_score);
+    if (!ambiguous && tracked_score < fraction * found_score) {
+      verdict.proof = Proof::kContradicts;
+      verdict.outcome += "tracking stops; the robot is searched for again";
+      return verdict;
+    }
+    if (found_score >= fraction * tracked_score) {
+      verdict.rival = verdict.rival.farthest(offset);
+    }
+  }
+  if (verdict.rival.position_m > 0.0) {
+    verdict.outcome += "its rival widens the fixes until tracking is proven; ";
+  }
+  verdict.outcome += "tried again later";
+  return verdict;
+}
+
+TrackingProof::TrackingProof(const TrackingProofOptions& options, const LocalizerOptions& localizer)
+    : options_(options), localizer_(localizer) {}
+
+PoseOffset TrackingProof::agreement() const {
+  return {options_.confirm_position_m, options_.confirm_rotation_rad};
+}
+
+void TrackingProof::startFromSearch(int64_t stamp_ns, const OdometryPose& odometry,
+                                    const HypothesisDecision& decision) {
+  const PoseWithCovariance& found = decision.hypothesis.T_world_camera;
+  // A pose too wide to track from is tracked within the tracking limits; its
+  // own width is then part of what the fixes leave unproven.
+  PoseOffset unproven = decision.covered;
+  if (needsAcquisition(found, localizer_)) {
+    unproven = unproven.farthest(
+        {largestPositionSigma(found.covariance), std::sqrt(std::max(0.0, found.covariance(5, 5)))});
+  }
+  start_ = Start{.origin = {stamp_ns, found, odometry}, .searched = true, .rival = unproven};
+  searching_again_ = false;
+}
+
+std::optional<PoseWithCovariance> TrackingProof::carriedStart(int64_t stamp_ns,
+                                                              const OdometryPose& odometry) const {
+  if (!start_ || !start_->searched || start_->origin.odometry.epoch != odometry.epoch) {
+    return std::nullopt;
+  }
+  const TrackingOrigin& origin = start_->origin;
+  const double age_s = (stamp_ns - origin.stamp_ns) * 1e-9;
+  if (!(age_s > 0.0 && age_s <= options_.carry_search_s)) {
+    return std::nullopt;
+  }
+  // A O_A^-1 O.
+  return narrowedForTracking(
+      composeExactMotion(origin.T_world_camera_found,
+                         origin.odometry.T_odom_camera.inverse() * odometry.T_odom_camera),
+      localizer_);
+}
+
+PoseWithCovariance TrackingProof::searchPrior(const PoseWithCovariance& prior) const {
+  if (!searching_again_) {
+    return prior;
+  }
+  PoseWithCovariance widened = prior;
+  const double floor_variance = options_.proof_position_sigma_m * options_.proof_position_sigma_m;
+  for (int axis = 0; axis < 2; ++axis) {
+    widened.covariance(axis, axis) = std::max(widened.covariance(axis, axis), floor_variance);
+  }
+  return widened;
+}
+
+TrackingProof::Unproven TrackingProof::unprovenAt(int64_t stamp_ns, const OdometryPose& odometry,
+                                                  const PoseWithCovariance& T_world_camera_fixed) {
+  Unproven unproven;
+  if (!start_ || start_->origin.odometry.epoch != odometry.epoch) {
+    start_ = Start{.origin = {stamp_ns, T_world_camera_fixed, odometry}};
+    unproven.started_from_prediction = true;
+  }
+  if (start_->agreeing_proofs >= options_.agreeing_proofs_needed) {
+    return unproven;
+  }
+  const double moved_m =
+      (odometry.T_odom_camera.translation() - start_->origin.odometry.T_odom_camera.translation())
+          .norm();
+  if (moved_m >= start_->proof_due_m) {
+    unproven.proof_due = ProofRequest{start_->origin, moved_m};
+  }
+  const PoseOffset proof_reach{options_.proof_position_sigma_m, options_.confirm_rotation_rad};
+  const PoseOffset rival =
+      start_->looked_around ? start_->rival : start_->rival.farthest(proof_reach);
+  const AcquisitionOptions& acquisition = localizer_.acquisition;
+  unproven.offset = rival.farthest(
+      {acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad});
+  return unproven;
+}
+
+bool TrackingProof::apply(const ProofVerdict& verdict, const ProofRequest& request) {
+  if (!start_ || !(start_->origin == request.origin)) {
+    return false;
+  }
+  if (verdict.proof == Proof::kContradicts) {
+    start_.reset();
+    searching_again_ = true;
+    return true;
+  }
+  const bool from_elsewhere = request.moved_m >= options_.acquisition_proven_after_m;
+  start_->agreeing_proofs += verdict.proof == Proof::kAgrees && from_elsewhere ? 1 : 0;
+  start_->rival = start_->rival.farthest(verdict.rival);
+  start_->looked_around |= verdict.looked_around;
+  start_->proof_due_m =
+      std::max(request.moved_m + options_.proof_retry_m, options_.acquisition_proven_after_m);
+  return true;
+}
+
+PoseWithCovariance TrackingProof::proofPrior(const Eigen::Isometry3d& tracked,
+                                             double ground_sigma_m) const {
+  PoseWithCovariance prior{tracked, diagonalPoseCovariance(options_.proof_position_sigma_m,
+                                                           options_.confirm_rotation_rad)};
+  prior.covariance(2, 2) = ground_sigma_m * ground_sigma_m;
+  return prior;
+}
+
+}  // namespace lineloc

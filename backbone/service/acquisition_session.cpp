@@ -38,7 +38,8 @@ AcquisitionSession::Searched AcquisitionSession::search(const LineSetData& line_
   });
   searched.decision = hypotheses_.decision(
       acquisition.min_inliers,
-      [&](const PoseWithCovariance& pose) { return !needsAcquisition(pose, options); });
+      [&](const PoseWithCovariance& pose) { return !needsAcquisition(pose, options); },
+      &searched.undecided);
   searched.hypotheses = hypotheses_.size();
   return searched;
 }

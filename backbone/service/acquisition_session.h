@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "backbone/matching/localizer.h"
@@ -26,8 +27,9 @@ class AcquisitionSession {
   struct Searched {
     // The frame's own search: its best pose and summary, for the log.
     Acquisition acquisition;
-    // The hypothesis taken, if one is.
+    // The hypothesis taken, if one is; else why not, for the log.
     std::optional<HypothesisDecision> decision;
+    std::string undecided;
     size_t hypotheses = 0;
   };
 

@@ -1,7 +1,10 @@
 #include "backbone/service/hypothesis_set.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace lineloc {
 
@@ -220,15 +223,36 @@ void HypothesisSet::weigh() {
 }
 
 std::optional<HypothesisDecision> HypothesisSet::decision(
-    int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable) const {
-  if (hypotheses_.empty()) {
+    int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable,
+    std::string* undecided) const {
+  const auto undecidedBecause = [&](std::string why) -> std::optional<HypothesisDecision> {
+    if (undecided != nullptr) {
+      *undecided = std::move(why);
+    }
     return std::nullopt;
+  };
+  if (hypotheses_.empty()) {
+    return undecidedBecause("no hypothesis");
   }
   const Hypothesis& best = hypotheses_.front();
   const ScoredHypothesis& latest = best.latest;
-  if (best.proposed < 2 || latest.status != AlignmentStatus::kOk || latest.inliers < min_inliers ||
+  // p_h = exp(E_h - E_best) / sum over "none" and every hypothesis.
+  double normaliser = std::exp(none_evidence_ - best.evidence);
+  for (const Hypothesis& hypothesis : hypotheses_) {
+    normaliser += std::exp(hypothesis.evidence - best.evidence);
+  }
+  HypothesisDecision decision{best.latest, 1.0 / normaliser, {}};
+  const std::string likeliest =
+      fmt::format("the likeliest, posterior {:.4f} over {} views, proposed by {} grids, ",
+                  decision.posterior, keyframes_.size(), best.proposed);
+  if (best.proposed < 2) {
+    return undecidedBecause(likeliest + "was not proposed by two frames' grids");
+  }
+  if (latest.status != AlignmentStatus::kOk || latest.inliers < min_inliers ||
       latest.score < options_.none_score) {
-    return std::nullopt;
+    return undecidedBecause(likeliest + fmt::format("aligned in the latest frame with {} inliers "
+                                                    "and score {:.1f}, not OK",
+                                                    latest.inliers, latest.score));
   }
   const bool outscored = std::ranges::any_of(latest_aligned_, [&](const ScoredHypothesis& other) {
     return other.score > latest.score &&
@@ -236,27 +260,21 @@ std::optional<HypothesisDecision> HypothesisSet::decision(
                 .within(options_.same);
   });
   if (outscored) {
-    return std::nullopt;
+    return undecidedBecause(likeliest + "was outscored in the latest frame");
   }
-  // p_h = exp(E_h - E_best) / sum over "none" and every hypothesis.
-  double normaliser = std::exp(none_evidence_ - best.evidence);
-  for (const Hypothesis& hypothesis : hypotheses_) {
-    normaliser += std::exp(hypothesis.evidence - best.evidence);
-  }
-  HypothesisDecision decision{best.latest, 1.0 / normaliser, {}};
   if (decision.posterior < options_.min_posterior) {
-    return std::nullopt;
+    return undecidedBecause(likeliest + "is not likely enough");
   }
   // Each frame explained by a pose of its own, against the one hypothesis
   // moved by the robot's motion: views that no one pose explains (the
   // robot's motion is not what its odometry says) take none.
   const double min_odds = options_.min_posterior / (1.0 - options_.min_posterior);
   if (free_evidence_ - best.evidence > std::log(min_odds)) {
-    return std::nullopt;
+    return undecidedBecause(likeliest + "does not explain the views as their own poses do");
   }
   if (!trackable(best.latest.T_world_camera) &&
       static_cast<int>(keyframes_.size()) < options_.min_wide_views) {
-    return std::nullopt;
+    return undecidedBecause(likeliest + "is too wide to track from one view");
   }
   for (size_t i = 1; i < hypotheses_.size(); ++i) {
     if (std::exp(hypotheses_[i].evidence - best.evidence) / normaliser >=

@@ -58,6 +58,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "backbone/matching/pose_acquisition.h"
@@ -139,9 +140,11 @@ class HypothesisSet {
            const Rescore& rescore);
 
   // The hypothesis to take now, if one is (see above); `trackable` tells
-  // whether an alignment is narrow enough to track from.
+  // whether an alignment is narrow enough to track from. When none is,
+  // `undecided`, if given, says why the likeliest is not, for the log.
   std::optional<HypothesisDecision> decision(
-      int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable) const;
+      int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable,
+      std::string* undecided = nullptr) const;
 
   // The keyframes of the window's views, oldest first: the frames whose data
   // a caller keeps for `rescore`.

@@ -155,7 +155,9 @@ void LineSetHandler::search(RobotSession& session, const LineSetData& line_set,
   const Alignment& alignment = searched.acquisition.alignment;
   std::string outcome = alignment.message.empty() ? "" : alignment.message + "; ";
   outcome += fmt::format("{} hypotheses kept", searched.hypotheses);
-  if (searched.decision) {
+  if (!searched.decision) {
+    outcome += "; undecided: " + searched.undecided;
+  } else {
     outcome += fmt::format(
         "; takes one at {} with posterior {:.4f}, covering rivals up to {:.2f} m and {:.2f} deg: "
         "tracking",

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -88,8 +89,11 @@ class Robot {
                rescored_frames_.push_back(frame_id);
                return alignedFrom(frames_.at(frame_id), start, -1);
              });
-    return set_.decision(kMinInliers, trackable);
+    return set_.decision(kMinInliers, trackable, &undecided_);
   }
+
+  // Why the last decision took none.
+  const std::string& undecided() const { return undecided_; }
 
   const HypothesisSet& set() const { return set_; }
   const std::vector<uint64_t>& rescoredFrames() const { return rescored_frames_; }
@@ -97,6 +101,7 @@ class Robot {
  private:
   HypothesisSet set_;
   std::vector<Frame> frames_;
+  std::string undecided_;
   std::vector<uint64_t> rescored_frames_;
 };
 
@@ -134,6 +139,7 @@ TEST(HypothesisSet, AStandingRobotWhoseViewFitsTwoPosesStaysUndecided) {
   }
   EXPECT_EQ(robot.set().size(), 2u);
   EXPECT_EQ(robot.set().windowFrames(), std::vector<uint64_t>{0}) << "one view";
+  EXPECT_NE(robot.undecided().find("is not likely enough"), std::string::npos) << robot.undecided();
 }
 
 TEST(HypothesisSet, TakesTheTruthOnceTheRobotHasMovedPastAViewThatFitsTwoPoses) {

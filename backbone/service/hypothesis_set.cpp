@@ -242,9 +242,11 @@ std::optional<HypothesisDecision> HypothesisSet::decision(
     normaliser += std::exp(hypothesis.evidence - best.evidence);
   }
   HypothesisDecision decision{best.latest, 1.0 / normaliser, {}};
-  const std::string likeliest =
-      fmt::format("the likeliest, posterior {:.4f} over {} views, proposed by {} grids, ",
-                  decision.posterior, keyframes_.size(), best.proposed);
+  const Eigen::Vector3d& position = latest.T_world_camera.pose.translation();
+  const std::string likeliest = fmt::format(
+      "the likeliest, at ({:.2f}, {:.2f}) m, posterior {:.4f} over {} views, proposed by {} "
+      "grids, ",
+      position.x(), position.y(), decision.posterior, keyframes_.size(), best.proposed);
   if (best.proposed < 2) {
     return undecidedBecause(likeliest + "was not proposed by two frames' grids");
   }

@@ -14,23 +14,18 @@
 // conservative (model_alignment.h); gates that wide hold two model lines for
 // many true building edges, which the alignment then leaves out as ambiguous,
 // while the window frames beside the edges, each near one model line only,
-// stay in and pull the pose. On a Delft frame (tests/integration/drive) the
-// wide first round kept 15 true edges and 16 window edges and ended 0.5 m off
-// with a 5 cm sigma; the narrow one kept 29 true and 4 others and ended 1 cm
-// off.
+// stay in and pull the pose.
 //
 // One start is not enough when the prediction's centre is itself off by a
 // standard deviation (the first frames after a search, whose pose is only as
 // good as its grid): the alignment settles in whichever basin holds the
 // centre, and a view whose lines fit two depths a few decimetres apart gives a
-// precise answer in the wrong one. On a simulated Delft drive (seed 10) a
-// prediction 0.15 m short along the view, with a 0.16 m sigma, aligned 0.13 m
-// short reporting 5 cm, while from the truth it aligned within 2 cm; every
-// later fix of that standstill kept the offset. Tracking therefore also aligns
-// from sigma points of the prediction, its centre moved by +-start_sigma
-// standard deviations along each principal axis of the position covariance and
-// about the vertical. When an alignment that settled (OK, or ill-conditioned:
-// it fits the image but leaves the pose too wide to answer with) lies outside
+// precise answer in the wrong one, which every later fix of a standstill
+// keeps. Tracking therefore also aligns from sigma points of the prediction,
+// its centre moved by +-start_sigma standard deviations along each principal
+// axis of the position covariance and about the vertical. When an alignment
+// that settled (OK, or ill-conditioned: it fits the image but leaves the pose
+// too wide to answer with) lies outside
 // the first OK one's covariance (beyond chi^2_6(0.9973)), each is scored by
 // coverage against a sharp distance map, as acquisition verifies its
 // hypotheses (pose_acquisition.h); the best OK one is answered, its covariance
@@ -40,61 +35,40 @@
 // horizontal axes the sigma points lie at least min_start_step_m from the
 // centre, with the covariance along the axis widened to reach them: a
 // prediction can be more confident than its error allows (the robot fuses
-// fixes whose errors are correlated), and from 0.15 m short along that view
-// with a 3 cm sigma the alignment settled 0.13 m short, beyond three of its
-// sigmas. 0.15 m is the reach of the search's fine grid, whose neighbouring
-// basins an acquired pose can carry into the fixes after it. The height is not
-// floored: a ground robot's camera rides at a known height, and probing 0.15 m
-// up and down let rivals of a few centimetres widen the answers (seed 3: 48 %
-// of frames within 5 cm and 0.5 degrees, 71 % without).
+// fixes whose errors are correlated). 0.15 m is the reach of the search's
+// fine grid, whose neighbouring basins an acquired pose can carry into the
+// fixes after it. The height is not floored: a ground robot's camera rides at
+// a known height, and probing up and down lets rivals of a few centimetres
+// widen the answers.
 //
 // A sigma point probes the basins near the prediction; it cannot make a view
 // determine the pose. When the centre's own alignment is ill-conditioned, that
 // is the answer: from some sigma point a different subset of the same few
-// matches can squeeze under max_position_sigma_m, and on a Delft frame with
-// eleven matches (tests/integration/drive) one did so 1.2 m off reporting
-// 0.4 m. And an OK alignment counts only within chi^2_6(0.9973) of its start
-// in the sum of their covariances, the innovation gate of a Kalman update: in
-// a view with few model lines a widened point's gates took it a metre along
-// the view, and the centre's alignment settled 0.47 m from a prediction 8 cm
-// from the truth, reporting 0.16 m. When the centre's alignment is out of its
-// reach and no sigma point's is within, the answer is kInconsistent.
+// matches can squeeze under max_position_sigma_m. And an OK alignment counts
+// only within chi^2_6(0.9973) of its start in the sum of their covariances,
+// the innovation gate of a Kalman update: in a view with few model lines a
+// widened point's gates can take it a metre along the view. When the
+// centre's alignment is out of its reach and no sigma point's is within, the
+// answer is kInconsistent.
 //
 // Where the lines leave the pose open (the centre's alignment ill-conditioned,
 // or too few matched, and no start's OK), the model's corners complete the
 // centre's alignment (completeWithCorners, model_alignment.h), and the
 // completion is the answer when it is OK and within the prior's reach. Corners
-// serve nowhere else. Matched from the truth on the README's two-minute Delft
-// drive, two thirds of the corners lay 1-3.8 px off: window corners standing
-// in for building vertices the image does not show. In every alignment they
-// answered 98.1 % of that drive's frames OK from the first fix, where lines
-// alone answer 96.9 %, but raised the position RMSE from 2.2 to 3.7 cm; in
-// every alignment the lines left open, the narrow first rounds included, 98.5 %
-// and 3.8 cm. Completing the answer only: 98.7 % OK, 2.3 cm, none beyond three
-// sigma, with the alignment's position limit at 0.5 m; 99.6 % and 2.4 cm at
-// 0.75 m (max_position_sigma_m, model_alignment.h).
+// serve nowhere else: many of the corners an image shows are window corners
+// standing in for building vertices it does not show, which pull every
+// alignment they join, so they only complete what the lines leave open.
 //
 // The starts align without the façade-side cut (model_alignment.h), and only
 // the OK alignment answered takes its round, before its rivals widen it: a
-// round in every start's alignment made a tracking frame on one core a third
-// dearer (7.2 against 5.5 ms, medians of seven interleaved runs of
-// bench_localization_stages), for an answer that uses one of them.
+// round in every start's alignment would cost a third more per frame for an
+// answer that uses one of them.
 //
 // Every decision above uses the alignments' own covariances. The answer is
 // then widened for how few matches estimated it (widenForConfidence,
 // model_alignment.h: scaled by confidenceScale(2 n - 6, confidence) for its n
-// inliers; 1.45 for 14 inliers, 1.8 for 10). On the 50 simulated Delft
-// drives, 12 of the 14 OK answers (of 18463) beyond chi^2_6(0.9973) of their
-// covariance had fewer than 16 inliers; scaled, 10 of 18187 were, on two
-// drives whose first fixes tracked a search's pose 0.26 m and 0.3 m off (the
-// backbone's service now keeps a search's resolution in such fixes until the
-// robot has moved, line_set_handler.h).
-//
-// Over 12 simulated drives with predictions drawn from their own covariance
-// (0.15 m and 0.3 degrees horizontally, 3 cm and 0.05 degrees in height, roll
-// and pitch), 86 of 617 OK answers were beyond three sigma with the centre
-// alone, 28 of 591 with the sigma points and 27 of 628 with the floor; from
-// 5 cm and 0.1 degrees, 36 of 606, 4 of 611 and 5 of 622.
+// inliers; 1.45 for 14 inliers, 1.8 for 10): answers from few matches are
+// the ones beyond their unscaled covariance.
 #pragma once
 
 #include <cstdint>
@@ -127,10 +101,7 @@ struct LocalizerOptions {
   int threads = 0;
   // Tracking's hidden-line removal. Its sunlight, when set, is tracking's
   // alone: the acquisition's search and hypotheses keep the corners between
-  // walls lit alike. On the 50 simulated Delft drives, dropping them there
-  // too left 4 more drives without a fix in 20 s (fewer true inliers for the
-  // acquisition's inlier rule) and started one (seed 2) 0.3 m and 0.8
-  // degrees off.
+  // walls lit alike, whose true inliers its inlier rule needs.
   VisibilityOptions visibility;
   // Tracking's model corners, from its visible pieces (visible_corners.h).
   CornerOptions corners;

@@ -44,15 +44,10 @@
 // An ill-conditioned alignment is not answered with its pose and wide
 // covariance either, as a partial fix for the robot's filter to take the
 // well-determined directions from (Zhang, Kaess & Singh, "On degeneracy of
-// optimization-based state estimation problems", ICRA 2016). Tried on the
-// README's two-minute demo: 299 of its 367 ill-conditioned frames (6-12
-// inliers, down a street past parked cars) had a finite covariance with a
-// largest position sigma under 5 m, but only 10 left a single direction open
-// (the others also 0.2-1.6 m across the street and 0.5-14 degrees in yaw).
-// Their errors held for seconds (0.23 m across the street, inside a 0.42 m
-// sigma, for two seconds); fused at 30 Hz as the robot fuses fixes, they left
-// it 5.7-8.7 cm RMS off over 35-50 s, where dead reckoning alone gave
-// 2.5-3.9 cm, and three were beyond three sigma.
+// optimization-based state estimation problems", ICRA 2016): such frames
+// rarely leave a single direction open, their errors hold for seconds
+// inside their wide covariance, and fused at frame rate as independent they
+// pull the robot's filter further off than dead reckoning drifts.
 //
 // Where the lines leave the pose open, completeWithCorners adds the model's
 // corners, matched with the robot's as point correspondences (the projected
@@ -91,13 +86,10 @@ struct AlignmentOptions {
   // An inlier's final normalized residual is below this (standard deviations).
   double inlier_threshold_sigma = 3.0;
   // Position standard deviation (largest principal axis) beyond which the
-  // alignment is ill-conditioned. Down a narrow street of LoD1 boxes, its
-  // façades' feet hidden by parked cars, the lines and the few corners the
-  // image shows fix the position along it to 0.5-0.7 m, and every other
-  // direction well. On the README's two-minute drive answering them (0.5 m
-  // before) took the answers OK from the first fix from 98.7 % to 99.6 %, the
-  // position RMSE from 2.3 to 2.4 cm, with no fix and no robot state beyond
-  // three sigma: the robot's filter takes from each the directions it fixes.
+  // alignment is ill-conditioned. Down a narrow street whose façades' feet
+  // are hidden by parked cars, the lines and the few corners the image shows
+  // fix the position along it to 0.5-0.7 m, and every other direction well:
+  // the robot's filter takes from such an answer the directions it fixes.
   double max_position_sigma_m = 0.75;
   // Each round's refinement stops when a step lowers the cost by less than
   // this fraction, or moves the pose by less than this relative amount: far
@@ -118,51 +110,18 @@ struct AlignmentOptions {
   // A ground line (a building's foot, where its wall meets the pavement) is
   // surveyed less well than its roof: city models take a building's base from
   // terrain points around it, and pavements, kerbs and slopes put the visible
-  // foot decimetres off. The simulated Delft drives render a flat ground at the
-  // model's median base, about which the bases spread -0.1..0.45 m (5-95 %):
-  // aligned from the truth, seed 1's ground lines lay 1.4 px off on average and
-  // held its poses 0.8 cm low (0.05 cm with this sigma).
+  // foot decimetres off (a model's bases spread -0.1..0.45 m about its
+  // median, 5-95 %).
   double ground_line_sigma_m = 0.15;
   // Scale c of the refinement's Cauchy loss c^2 log(1 + r^2 / c^2), in
   // standard deviations of the residual r. Window frames and doors put image
-  // edges parallel to the building edges and 1.5-4 px beside them. Of the
-  // vertical model lines matched from the truth on simulated Delft frames,
-  // 18-31 % took such an edge, half or more with no image edge at the model
-  // line itself (a corner the image does not show). Their residuals are 2-5
-  // standard deviations (medians 2.8-4.7 on three drives), where with c = 2
-  // each pulled about as hard as an inlier at one (the influence is
-  // r / (1 + r^2 / c^2)); with c = 0.7 it pulls a third as hard. Along a
-  // street only the vertical edges fix the position, and a few of them held
-  // the fixes of every drive 2-6 cm along it. With c = 0.7 and the ground
-  // lines' sigma above, the position RMSE of 50 simulated drives fell from a
-  // median of 4.1 cm (over 5 cm on 18) to 2.8 cm (over 5 cm on 8), with no
-  // fix beyond three sigma; with the ground lines at model_sigma_m, seed 9
-  // tracked its start's neighbouring basin, 0.6 m RMS off with 55 fixes
-  // beyond three sigma (10 drives). The narrower basin needs a prior within a
-  // few pixels: from 0.3 m off on the synthetic street of the unit tests,
-  // detail 1-2 px beside the edges left some alignments unconverged;
-  // acquisition's hypotheses keep c = 2 (pose_acquisition.h).
-  //
-  // What c = 0.7 leaves. Aligned frame by frame from the truth (a 5 cm, 0.2
-  // degree prior) on every fourth driving frame of simulated Delft seeds 19, 11,
-  // 23 and 47, the poses sat 5.2, 5.7, 5.2 and 4.1 cm ahead along the view on
-  // average, as those drives' online fixes did (6.2, 5.7, 5.6, 3.4): the bias is
-  // the views', not the filter's or the fixes' timing, and a pinhole render of
-  // seed 19 keeps it (4.8 cm), so not the lens either. Against the truth, about a
-  // quarter of its vertical lines' matches lay 0.5-1.5 px beside them, on the
-  // façade's side: outward from the image centre on both sides of the street,
-  // which a camera nearer the façades explains; the rest lay 0.02 px off on
-  // average. The simulator's windows sit on a grid that ignores where walls end,
-  // so a corner often cuts a window or lies beside its frame. Rendered without
-  // windows (pinhole), seed 19's frames sat 0.7 cm ahead, but only 52 of 107
-  // aligned, on 8-13 inliers (median 9; the rest ill-conditioned or short of
-  // matches), where with windows 101 aligned, on 10-18 (median 12), a quarter of
-  // the vertical ones such edges. Leaving out the vertical matches more than one
-  // standard deviation outward took seed 19's bias from 5.2 to 3.4 cm (4.8 cm
-  // beyond two), so those edges are not all of it. Windows kept 0.5 m in from
-  // every wall's end (pinhole) took the edges beside corners away, but made a
-  // basin of their own: 35 of 83 aligned frames settled 0.3-0.7 m off, most of
-  // them ahead, each corner on the window column beside it.
+  // edges parallel to the building edges and 1.5-4 px beside them (a fifth to
+  // a third of the vertical lines matched from the truth take one), with
+  // residuals of 2-5 standard deviations: the influence r / (1 + r^2 / c^2)
+  // at c = 0.7 lets such an edge pull a third as hard as an inlier at one,
+  // where at c = 2 it pulls as hard, and along a street those few vertical
+  // edges fix the position. The narrower basin needs a prior within a few
+  // pixels; acquisition's hypotheses keep c = 2 (pose_acquisition.h).
   double loss_scale_sigma = 0.7;
   // Once the rounds have ended (the pose stopped moving, or max_rounds ran
   // out), an OK alignment takes one more that leaves out each match whose image
@@ -171,21 +130,13 @@ struct AlignmentOptions {
   // frames and doors lie on that side of a building edge only, and a loss
   // symmetric about the line cannot tell them from the edge; beyond the façade
   // there is sky or a farther building, which put no detail at the line. In a
-  // street both sides' façades lie outward in the image, so their detail held
-  // the pose ahead of the truth (above). Cut from afar, the true edges would
-  // go too: the cut waits for the rounds to end. Leaving out matches on one side
+  // street both sides' façades lie outward in the image, so their detail holds
+  // the pose ahead of the truth. Cut from afar, the true edges would go too:
+  // the cut waits for the rounds to end. Leaving out matches on one side
   // biases the rest by phi(k) / Phi(k) standard deviations the other way (0.29
   // at k = 1) where the edges' own noise is that wide; at the truth most of
-  // them lie well within it. Over 49 simulated Delft drives (seeds 1-50; 41's
-  // robot never started), with rounds until the pose stopped moving again, the
-  // median position RMSE went from 2.37 to 2.17 cm and the drives over 5 cm
-  // from 10 to 5, with no fix beyond three sigma; the mean error along the
-  // view of seed 19's driving fixes from 6.3 to 3.0 cm, seed 11's from 6.0 to
-  // 2.7. One round did as well on six of them, and costs less: a tracking frame
-  // on one core took 5.9 ms without the cut, 7.8 ms with one round in the
-  // alignment from every start and 8.9 ms with rounds to convergence (medians,
-  // bench_localization_stages). Tracking cuts only the alignment it answers
-  // with (localizer.h).
+  // them lie well within it. Tracking cuts only the alignment it answers with
+  // (localizer.h).
   double facade_side_cut_sigma = 1.0;
   // Image segments whose best candidate is not this much better (chi^2) than
   // the second, within the first round, are left out: ambiguous under the prior.

@@ -15,14 +15,6 @@
 // not separate them: a wrong pose near a façade full of windows finds as many
 // lines to agree with.
 //
-// Coverage alone does not separate them either. Of 299 searches at the start
-// of 50 simulated Delft drives, re-run with the truth as one more hypothesis,
-// the truth's alignment covered less than the best wrong one in 31; in 12
-// once K is taken off. Seed 20 stands still before a long façade: a pose
-// 14.7 m along the street scored 13.0 against the truth's 12.1 on coverage,
-// with its roof line laid on a row of window tops, and 1113 px of those
-// windows in its sky against the truth's 142.
-//
 // A hypothesis keeps the prior's height, which a ground robot knows to a
 // decimetre; one whose alignment leaves it beyond height_gate_sigmas of that
 // has matched the model at another height (window rows for a roof line) and
@@ -32,68 +24,8 @@
 // window's width away (a near-parallel line taken for the right one): its
 // covariance, once widened for its inliers' redundancy (widenForConfidence,
 // model_alignment.h), gets the search's own resolution, acquired_*_sigma,
-// added, so the robot takes it as a start, and tracking (tight gates, many
-// frames) brings it to centimetres. That term is not scaled with the rest:
-// scaled, it left acquired poses wider than tracking takes (seed 14 of the 50
-// simulated Delft drives: ten searches confirmed each other and not one frame
-// was tracked from them).
-//
-// Where first fixes are lost. Every simulated Delft drive stands still for its
-// first 5.7 s, so a first fix within 5 s comes from a standing view. Of the 606
-// searches from a standstill over 50 drives, each aligned hypothesis logged
-// against the truth (right: within 0.3 m horizontally and 0.5 degrees of yaw),
-// 69 were answered OK and right, 11 OK and wrong (10 never confirmed, one 0.42
-// m off confirmed: seed 9's neighbouring basin); 82 ambiguous and 99 with too
-// few inliers had the right pose as their best; 26 had it among their other
-// aligned hypotheses; 319 had no right one at all. The search's recall, not the
-// choice among its hypotheses, loses most first fixes. The rivals that made a
-// right best ambiguous were mostly neighbours: three in four lay within 1.6 m
-// (median 1.0 m) and 2 degrees (median 1.3) of it, a yaw traded for a sideways
-// shift along a far façade.
-//
-// The grid's settings do not win them back. The 831 searches of the first 6 s
-// of 50 drives, replayed offline against the truth: in 298 of the 597 without
-// a right hypothesis the truth scored above the best one on the fine level, so
-// the coarse level lost it. Yet 24 hypotheses instead of 12 proposed the right
-// one in 287 searches instead of 234 and answered fewer right (62 OK and right
-// against 76: more rivals, more ambiguity); a 0.35 m coarse step answered 82
-// right but 29 wrong (20 before); a full-resolution coarse map, a 24 px
-// truncation or 1.5 m visibility cells gained nothing. A wider yaw range costs
-// most: with every prior's yaw sigma raised to 10 degrees, 25 drives had a
-// search OK and right instead of 38, so the compass's heading (to a fraction
-// of a degree once fused) is worth keeping tight.
-//
-// Nor do more starts: the coarse score is what loses the truth. Replayed
-// again, refining the 36 best distinct coarse poses and aligning the 12 best
-// refined proposed the right pose in 308 searches instead of 234, but
-// answered 69 OK and right (76) and 13 OK and wrong (20), in twice the time
-// (107 ms median). On the coarse map the true pose itself scored below the
-// best hypothesis in 674 of the 831 searches, and in 587 with the image
-// edges it leaves in open sky taken off as verification takes them; on the
-// verification map it outscored the best aligned hypothesis in 542. Nor do
-// the prior's yaw or the alignments' residuals tell a rival apart: counting
-// only rivals within two yaw sigmas of the prior, or with a residual RMS
-// within 1.2 times the best one's, answered 99 and 115 searches right but 38
-// and 43 wrong, against 68 and 18 (a replica of the rule above).
-//
-// Nor does carrying a search's aligned poses into the next one. Replayed
-// again, each search also aligning the four best distinct poses the one
-// before it aligned (moved by the true motion), the right pose was the
-// best of 353 searches instead of 286, but 222 of them were ambiguous
-// instead of 171 (the carried wrong poses compete as rivals too), and 27
-// drives had two searches confirm the right pose within 5 s instead of 34.
-// Nor a looser ambiguity rule: with ambiguous_score_fraction 0.75, 38
-// drives did, but seed 20's searches confirmed a pose 3 m along its façade.
-//
-// Nor does a coarse score that bounds its cell. Scoring each coarse pose by
-// c(q) = 1 - clamp(d - r, 0, 3 px) / 3 px, r the most sample q can move
-// within the pose's cell (0.25 m, 0.25 degrees) given its depth, favours
-// poses beside a wall, where every near line may move tens of pixels: from
-// DGPS starts with a 5 m sigma, the replayed search proposed the right pose
-// in none of 185 searches (45 with the score above). Capped at r = 8 px it
-// proposed 30 of 129 (43). A best-first branch and bound on the uncapped
-// bound, down to leaves of 0.125 m and 0.125 degrees, scored 20000 cells
-// without one leaf beating the bounds of the cells still open.
+// added, unscaled, so that the robot takes it as a start and tracking
+// (tight gates, many frames) brings it to centimetres.
 #pragma once
 
 #include <limits>
@@ -111,12 +43,9 @@ struct AcquisitionOptions {
   // A hypothesis's alignment keeps a wide loss (model_alignment.h,
   // loss_scale_sigma): it starts up to the fine grid's reach from the truth,
   // and from a wrong hypothesis the narrow loss of tracking fits the lines
-  // near it and ignores the rest. On the synthetic street of the unit tests, a
-  // search whose alignments at the truth the height gate ruled out answered
-  // with it a pose 1.45 m off (e^T Sigma^-1 e 60). Nor does it leave out the
-  // matches on a façade's side (facade_side_cut_sigma), which needs the pose
-  // within a pixel or so: with the cut, the search on simulated Delft seed 50
-  // found no pose in 95 attempts over its 20 s drive; without, its first at 11 s.
+  // near it and ignores the rest. Nor does it leave out the matches on a
+  // façade's side (facade_side_cut_sigma), which needs the pose within a
+  // pixel or so.
   AlignmentOptions alignment = [] {
     AlignmentOptions wide_loss;
     wide_loss.loss_scale_sigma = 2.0;
@@ -138,53 +67,28 @@ struct AcquisitionOptions {
   // The best aligned hypothesis needs this many inliers: a wrong pose near a
   // façade finds a handful of window lines to agree with, the right one most
   // of the building outlines in view. Hypotheses with fewer still compete (a
-  // weak but better-scoring one is never passed over for a worse one). Of
-  // the searches of 50 simulated Delft drives whose best hypothesis aligned
-  // and was not ambiguous, 21 of 64 with 11-12 inliers were more than 0.3 m
-  // off; with 13, 3 of 37; with 14, 4 of 77; with 15, 2 of 64; with 16 or
-  // more, 13 of 134. From 13 on, inliers no longer tell the right pose from
-  // one a basin away; the confirming search and the fixes' widening until
-  // the robot has moved do (line_set_handler.h).
+  // weak but better-scoring one is never passed over for a worse one).
   int min_inliers = 13;
   // A second aligned hypothesis scoring at least this fraction of the best
   // one, farther than distinct_position_m or distinct_yaw_rad from it, makes
-  // the answer ambiguous. Over the 299 searches above, with at least
-  // min_inliers: 80 accepted within 1 m and 1 degree of the truth and 1
-  // farther (9 m); on coverage alone with 0.75, 64 and 3 (two of them seed
-  // 20's confirmed wrong pose).
+  // the answer ambiguous.
   double ambiguous_score_fraction = 0.65;
   // The best aligned hypothesis must score at least this, whatever its
   // rivals score: below it the view holds too little evidence for the
   // fraction above to mean anything (a best of 2.6 against a rival of -13.8
-  // passes it). Over the 831 searches of the first 6 s of 50 simulated Delft
-  // drives, the truth itself scored 6.0 at the least (median 15.3). On the
-  // README's 50 drives, of the 243 OK searches, the 8 scoring below it
-  // (2.0-4.1) were 0.86 m and 11.9-14.7 m from the truth; two of them, 11.9 m
-  // off, confirmed each other (seed 21: 2.6 and 4.1). The lowest right one
-  // scored 5.2 (seed 33's start).
+  // passes it); the truth itself scores above it.
   double min_verification_score = 5.0;
   // An aligned hypothesis farther than this many of the prior's height
   // sigmas from its height is not the camera: the search keeps the prior's
   // height, which a ground robot knows from the model's ground level to a
-  // decimetre (line_set_handler.h). Of the 1902 searches of 50 simulated
-  // Delft drives, none whose best hypothesis aligned within 0.3 m of the
-  // truth was more than 0.2 m off in height; of the 34 OK ones farther off,
-  // 6 were 0.31-0.5 m off in height, two of them (seed 45) confirmed each
-  // other 1.5 m from the truth, 0.4 m above it.
+  // decimetre (robot_session.h).
   double height_gate_sigmas = 3.0;
   // The weakest image segment a search takes (ImageSegment::contrast, the
   // mean grey-level step across it); tracking takes every one the robot sends.
-  // The robot sends the steps down to about 12 grey levels (robot_agent.h):
-  // where walls in shade meet each other and the street, which tracking down
-  // a narrow street needs, but also the faint window frames, shadows and cars
-  // that are in no model. Searched too, those confirmed poses about half a metre off on
-  // 3 of 50 simulated Delft drives (seed 9: 0.5 m, tracked 0.8 m off to the
-  // end of its drive; seed 6: two fixes beyond three sigma). Searching only
-  // the segments of 20 and over, the 50 drives had no fix beyond three sigma
-  // and their first OK fix within 5 s on 34 (29 with the front end keeping
-  // only the steps of 24 and over). Seed 3's long street of LoD1 boxes still
-  // fits a search's best pose a metre along it: its searches confirmed one
-  // 1.1 m off, which tracking kept, under fixes whose covariance covered it.
+  // The faint steps (about 12 grey levels and up, robot_agent.h) hold the
+  // walls in shade that tracking down a narrow street needs, but also window
+  // frames, shadows and cars that no model holds, which a search from afar
+  // fits as readily as a building's outline.
   double min_segment_contrast = 20.0;
   SkyEdgeOptions sky_edges;
 };

@@ -6,10 +6,8 @@
 //
 // A view whose lines fit two alignments a few centimetres and a few tenths
 // of a degree apart can flip between them from frame to frame, each answer
-// reporting the covariance of its own basin. On simulated Delft seed 46 (a
-// view down a long street), the fixes of one second alternated between 5 cm
-// and 0.07 deg and 13 cm and 0.27 deg from the truth, against a yaw sigma of
-// 0.08 deg: two of them lay beyond chi^2_6(0.9973) of their covariance.
+// reporting the covariance of its own basin, and so one answer in a few lies
+// beyond its covariance.
 //
 // Each recent answer A_i of the robot is moved to the new answer's frame by
 // the robot's own motion (predicted_motion.h), A_i O_i^-1 O, and taken as
@@ -21,10 +19,7 @@
 // either basin then covers the other one in proportion to how often the
 // answers fall there. The answers' errors are correlated from frame to frame
 // (one view, one model), so S is a lower bound on their spread, never
-// grounds to shrink Sigma. Offline over the OK fixes of 50 simulated Delft
-// drives (20871), with the true motion: both fixes beyond three sigma came
-// within (NEES 27.4 and 23.4 to 9.4 and 5.9), 1054 grew, 99 % by at most
-// 11 % in position sigma.
+// grounds to shrink Sigma.
 #pragma once
 
 #include <cstdint>

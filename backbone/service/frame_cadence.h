@@ -5,13 +5,6 @@
 // for it (foreground_gate.h): no search piece is then still running when the
 // frame arrives, nor while the robot extracts its lines, when the two share a
 // machine.
-//
-// Over 20 simulated Delft drives (seeds 1-20), the OK answers of the six
-// frames from each proof search's start had an exposure -> fix p99 of
-// 12.4 ms with searches at nice 10 beside them, 12.5 ms with searches stepping
-// aside only while a frame is answered, and 10.5 ms stepping aside from 8 ms
-// before it is due; the other answers' p99 was 8.8, 9.4 and 8.7 ms. Proof
-// searches then take 73 ms (median) instead of 59.
 #pragma once
 
 #include <cstdint>

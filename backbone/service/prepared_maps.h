@@ -7,9 +7,8 @@
 // whose view is not prepared yet is localized in the most recently prepared
 // one built around a point within reuse_distance_m of it (the tiles the robot
 // moves into while its next view is built), and answered without a pose when
-// there is none: a robot's first frame. Before, that first frame loaded and
-// prepared the map itself: 36-60 ms on most of 50 simulated Delft drives, up
-// to 727 ms on five, while the frames behind it waited.
+// there is none: a robot's first frame, which would otherwise wait for a map
+// to load and be prepared, and the frames behind it with it.
 #pragma once
 
 #include <Eigen/Core>

@@ -8,11 +8,9 @@ namespace lineloc {
 namespace {
 
 // Searches run below tracking, the DDS threads and, on a shared machine, the
-// robot and its replay's decoding (thread_priority.h). Under SCHED_IDLE
-// instead, which any waking time-shared thread preempts at once, seeds 1-4 of
-// the simulated Delft drive, run four times each way in turn, gave the same
-// exposure -> fix p99 median, 8.5 ms: the foreground gate already keeps the
-// searches from running beside a tracked frame.
+// robot and its replay's decoding (thread_priority.h); SCHED_IDLE gains
+// nothing over a nice value, the foreground gate already keeping the searches
+// from running beside a tracked frame.
 constexpr int kSearchNice = 10;
 
 }  // namespace

@@ -28,9 +28,9 @@
 // the vertical corner between two walls the sun lights alike. Without that
 // rule, the window columns inset from such corners on a street view fit the
 // model's outline as seen from 0.25-0.35 m behind the true camera along its
-// view, and tracking on the simulated Delft drives settled there, precise and
-// wrong. A probed point is in shadow where the ray from it towards the sun
-// meets a face: the shadow another building casts.
+// view, and tracking settles there, precise and wrong. A probed point is in
+// shadow where the ray from it towards the sun meets a face: the shadow
+// another building casts.
 //
 // The same probes predict a piece's polarity, which side of it is brighter,
 // where the model can tell: the sky, where a ray upwards meets no face, is

@@ -8,12 +8,9 @@
 // yield points of their own; a piece that is running when a frame arrives
 // runs to its end.
 //
-// A lower priority is not enough. Two cores busy with nice-19 spinners took
-// the backbone's tracked frame (bench_localization_stages, BM_BackboneTracking)
-// from 2.0 ms to 5.4 ms, and SCHED_IDLE spinners to 3.3 ms: its parallelFor
-// threads start and wake beside them. On the 50 simulated Delft drives, 49 of
-// the 128 OK answers slower than 10 ms came within two frames of the start of
-// a proof search, which runs while the robot is tracked (2.5 % of the answers).
+// A lower priority is not enough: a tracked frame's parallel threads start
+// and wake beside niced (even SCHED_IDLE) background threads, which slow it
+// by half or more; the answers slowest to come are those beside a search.
 //
 // Foreground work that comes at a known time (a tracked robot's next frame)
 // can be announced: from expectForegroundFrom's time on, background work waits

@@ -1,10 +1,8 @@
 // Runs a task every period on a thread of its own, from construction until
 // destruction: work that must go on beside a latency-critical loop without
-// ever holding it up. The backbone's stats file is such work: written on the
-// serving thread, creating and renaming it took up to 126 ms at times while
-// other processes wrote files, and every LineSet arriving meanwhile waited
-// (8 of 49 simulated Delft drives had an exposure -> fix p99 of 69-468 ms,
-// their answers coming back in bursts).
+// ever holding it up: a file written on a serving thread can take a hundred
+// milliseconds while other processes write theirs, and every message arriving
+// meanwhile waits (the backbone's stats file).
 //
 // The task runs a period after construction, then a period after each run
 // ended; destruction wakes the thread at once and waits only for a run under

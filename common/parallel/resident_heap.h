@@ -3,12 +3,9 @@
 // block above its mmap threshold (128 KiB at start, raised to the largest
 // block freed) with fresh pages, and returns the free top of a heap beyond
 // its trim threshold (twice that) to the kernel; every later touch of those
-// pages is a page fault. The backbone's verification map alone is eight
-// 640 x 480 byte maps, 2.4 MB: built per frame in the service, it took 7-8 ms,
-// nearly all of it faulting its pages in, against 0.6 ms when the memory
-// stays (BM_VerificationMap); on simulated Delft seeds 1 and 2 the exposure
-// -> fix p99 was 18.5 and 16.2 ms with the memory returned, 8.6 and 8.3 ms with
-// it kept. Blocks up to max_mmap_threshold come from the heap, and freed
+// pages is a page fault: a frame's buffers of a few megabytes take ten times
+// longer to build when their pages fault in again each frame. Blocks up to
+// max_mmap_threshold come from the heap, and freed
 // memory stays with the process up to trim_threshold. Best effort, as
 // lowerThreadPriority (thread_priority.h): a refusal changes nothing.
 #pragma once

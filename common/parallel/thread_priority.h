@@ -9,12 +9,10 @@
 // always allowed, raising needs privilege) leaves the priority as it was.
 //
 // Latency-critical work above them: runThreadRealtime puts the calling
-// thread under SCHED_FIFO, which no time-shared thread preempts. On two cores
-// shared by the robot and the backbone (perf sched, a simulated Delft drive),
-// the backbone's exposure thread, woken while the receive thread held the
-// other core, was queued on the core extracting the robot's lines and, after
-// waiting 1.4-2.6 ms there while the other core sat idle, preempted the
-// extraction for 3-4 ms: a 2.8 ms front end became 6-7 ms. A nice value does
+// thread under SCHED_FIFO, which no time-shared thread preempts: on cores
+// shared by the robot and the backbone, a backbone thread woken while the
+// other core is busy is otherwise queued on the core extracting the robot's
+// lines and preempts the extraction for milliseconds. A nice value does
 // not prevent it: a thread waking from sleep is placed ahead of a running one
 // however niced. It needs CAP_SYS_NICE or an RLIMIT_RTPRIO (ulimit -r) of at
 // least the priority asked for.

@@ -8,9 +8,7 @@
 // robot's own intervals are read on its steady clock, so a wall clock that is
 // stepped or slewed meanwhile (NTP, chrony disciplined by GPS time) does not
 // enter them; only the legs to and from the backbone compare the robot's wall
-// clock with the backbone's. (Measured from a wall-clock exposure time, a
-// simulated drive once reported 3.2 s: its machine's clock stepped 3.2 s, then
-// slewed 5 ms/s.)
+// clock with the backbone's.
 #pragma once
 
 #include <cstddef>

@@ -12,197 +12,110 @@
 // until the IMU reaches it. Both paths run the same arithmetic, so a fix
 // delivered 300 ms late gives the same state as one delivered on time.
 //
-// Start-up. Standing still for `alignment.window_ns` gives roll, pitch and gyro
-// bias (stillness_detector.h); the compass, corrected for magnetic declination
-// and meridian convergence, gives yaw, the robust mean of the window's
-// readings (robust_heading.h: a disturbance over part of the window is left
-// out); DGPS gives position; all with large covariances but the yaw's, one
-// compass reading's; only if the robot has not moved since power-on. Without
-// a DGPS fix by the end of that window (an outage, a receiver still
-// acquiring), the filter starts there all the same, its position unknown
-// (kUnknownPositionSigma_m): the IMU carries the attitude and velocity of a
-// robot that drives off meanwhile, and the first DGPS or vision fix accepted
-// gives the position. Until one does, predictAt, state and health say
-// "initialising": a prediction with no position would send the backbone's
-// search to the wrong street. (A start that waited for DGPS never came on a
-// simulated Delft drive whose DGPS came back 9 s after the robot drove off,
-// seed 41.) Nothing but the IMU then says the robot stands, and a robot
-// cruising straight is as quiet: one whose software restarts while it cruises
-// through an outage would start at zero velocity, which zero-velocity updates
-// hold, with the window's mean rate (the body pitching on a changing grade,
-// 0.007 rad/s on simulated route 39) as its gyro bias; the tilt drifts, gravity
-// leaks into the velocity, every DGPS velocity is gated once the receiver is
-// back, and the filter diverges (route 39 restarted 8 s in, DGPS back 6 s
-// later: 97 m/s off 50 s on). Such a start takes the velocity as unknown
-// (sigma max_ground_speed_mps) and the gyro bias within its turn-on spread,
-// and holds zero-velocity updates off until a DGPS velocity or a vision fix
-// is accepted. Nor does a start in motion (below) take a still window's gyro
-// bias: once the robot has moved, a window the IMU calls still is a cruise.
+// Start-up, standing. Standing still for `alignment.window_ns` gives roll,
+// pitch and gyro bias (stillness_detector.h); the compass, corrected for
+// magnetic declination and meridian convergence, gives yaw, the robust mean of
+// the window's readings (robust_heading.h: a disturbance over part of the
+// window is left out); DGPS gives position; all with large covariances; only
+// if the robot has not moved since power-on. Without a DGPS fix by the end of
+// that window the filter starts all the same, its position unknown
+// (kUnknownPositionSigma_m), and the first DGPS or vision fix accepted gives
+// it; until then predictAt, state and health say "initialising": a prediction
+// with no position would send the backbone's search to the wrong street.
+// Such a start, which only the IMU calls still, may be a cruise as quiet as a
+// standstill: it takes the velocity as unknown (sigma max_ground_speed_mps)
+// and the gyro bias within its turn-on spread, and holds zero-velocity
+// updates off until a DGPS velocity or a vision fix is accepted.
 //
-// A robot that has moved since power-on (started while driving, or whose
-// software restarted mid-drive) has no standstill to level from. It starts in
-// motion instead, from two consecutive DGPS velocities (the receiver's
-// Doppler, NMEA RMC) at most kMaxVelocityMatchingBaseline_ns apart: roll and
-// pitch by velocity matching against the IMU between them, yaw from the
-// compass readings between them (in_motion_alignment.h); velocity the
-// receiver's, the vertical one zero within a steep street's grade times the
-// speed; position the DGPS fix of the same epoch, or unknown as above; gyro
-// and accelerometer biases zero within their turn-on spread.
+// Start-up, moving. A robot that has moved since power-on (started while
+// driving, or whose software restarted mid-drive) starts from two consecutive
+// DGPS velocities (the receiver's Doppler, NMEA RMC) at most
+// kMaxVelocityMatchingBaseline_ns apart: roll and pitch by velocity matching
+// against the IMU between them, yaw from the compass readings between them
+// (in_motion_alignment.h); velocity the receiver's, the vertical one zero
+// within a steep street's grade times the speed; position the DGPS fix of the
+// same epoch, or unknown as above; gyro and accelerometer biases zero within
+// their turn-on spread.
 //
 // DGPS velocities. Before a start, two consecutive ones beyond
-// kMovingSpeedSigmas of their noise say the robot moves, and bar the standstill
-// start: a robot cruising straight at constant speed is as quiet to the IMU as
-// a standing one. One alone may be multipath (a signal reflected off a facade
-// throws the receiver's Doppler by a metre per second): it holds the standstill
-// start until the next epoch confirms it or denies it, and a denied one is
-// counted gated. Taken as motion at once, one such epoch in simulated route 1's
-// first second barred the standing robot's start, the navigator started in
-// motion from it, and the filter ended beyond its covariance (1.5 m/s off: 63
-// of the next 66 velocities gated). Two consecutive epochs thrown alike still
-// start a standing robot in motion, and a start in motion from a thrown epoch
-// (the IMU saw the robot move) takes a tilt as wrong as the epoch is (1 m/s: 6
-// degrees); only a third epoch could tell. After the start each one updates the
-// filter as the antenna's horizontal velocity over ground
-// (measurement_models.h; the receiver's Doppler error is white, unlike its
-// position's). That bounds the velocity, and so the position's drift, while
-// vision has no fix, and keeps the filter's speed from falling below
-// zero_velocity_max_speed_mps on such a road, where zero-velocity updates would
-// hold it at zero (with DGPS positions alone, simulated route 39 was held there
-// 0.72 m/s off).
+// kMovingSpeedSigmas of their noise say the robot moves and bar the
+// standstill start; one alone may be multipath (a signal reflected off a
+// façade throws the Doppler by a metre per second): it holds the standstill
+// start until the next epoch confirms or denies it, and a denied one is
+// counted gated. After the start each one updates the filter as the
+// antenna's horizontal velocity over ground (measurement_models.h; the
+// Doppler's error is white, unlike the position's): that bounds the velocity,
+// and so the drift, while vision has no fix, and keeps a quiet cruise from
+// being held at zero by zero-velocity updates.
 //
 // Vision fixes before any start (the window not yet full, or a robot that
 // never stood still and has no DGPS velocity) start the filter from their
 // pose: at once when it has stood still since power-on, else from two fixes
 // at most 0.5 s apart, whose difference gives the velocity.
 //
-// Restart. Vision fixes gated without a break for `vision_gated_restart_after_ns`
-// mean the filter, not the fixes, is wrong, but only when their residuals
-// against the filter move together: position residuals a + b t and attitude
-// residuals a constant, each fix within its own covariance's gate. The filter
-// then restarts at the newest fix's pose with its own velocity plus the drift
-// b; the IMU biases start again as at power-on. A burst of wrong fixes (a car's edges taken
-// for a building's) is shorter than that, and a backbone switching between
-// two wrong solutions breaks the common offset: restarting from either, with
-// the velocity of two fixes a frame apart, threw away a good filter.
+// Restart. Vision fixes gated without a break for
+// `vision_gated_restart_after_ns` mean the filter, not the fixes, is wrong,
+// but only when their residuals against the filter move together: position
+// residuals a + b t and attitude residuals a constant, each fix within its own
+// covariance's gate. The filter then restarts at the newest fix's pose with
+// its own velocity plus the drift b; the IMU biases start again as at
+// power-on. A burst of wrong fixes is shorter than that, and a backbone
+// switching between two wrong solutions breaks the common offset.
 //
-// Heading restart. A heading started from a compass that was disturbed over
-// the whole start-up window (a robot parked beside a car) is precise and
-// wrong: the undisturbed readings that follow are gated, and the backbone's
-// search, which trusts the heading, finds no fix to correct it. Compass
-// readings gated without a break for `compass_gated_restart_after_ns`, with
-// no vision fix applied meanwhile, whose residuals agree on one offset (their
-// robust mean, robust_heading.h, holding kMinAgreeingCompassFraction of
-// them), turn the filter's heading and velocity by that offset and give the
-// yaw its start-up sigma again. Only readings that left the history count:
-// their outcomes are final.
+// Heading restart. A heading started from a compass disturbed over the whole
+// start-up window (a robot parked beside a car) is precise and wrong.
+// Compass readings gated without a break for `compass_gated_restart_after_ns`,
+// with no vision fix applied meanwhile, whose residuals agree on one offset
+// (their robust mean holding kMinAgreeingCompassFraction of them), turn the
+// filter's heading and velocity by that offset and give the yaw its start-up
+// sigma again. Only readings that left the history count: their outcomes are
+// final.
 //
 // Fixes of an unchanged view. A vision fix shares its error with the fixes
-// of a similar view: the same edges, matched the same way. At a standstill it
-// is the same error, and 30 fixes a second fused as independent shrink the
-// covariance around it until the pose is precise and wrong (a simulated Delft
-// drive, seed 10: a search's fix 0.15 m short, honest with a 0.16 m sigma,
-// became 205 precise wrong fixes over the next seconds). The error is
+// of a similar view: the same edges, matched the same way. The error is
 // modelled as a first-order Gauss-Markov process in the camera's motion,
 // rho = exp(-(|dp| / L_p + |dtheta| / L_theta)) between a fix and the last
 // one applied; each fix updates with its covariance times (1 + rho) /
-// (1 - rho), the factor by which N samples of such a process tell less than N
-// independent ones (the variance of their mean is sigma^2 (1 + rho) /
-// ((1 - rho) N)), and is gated with its covariance as it is. The correlation
-// lengths are a centimetre and a tenth of a degree: a standing robot's fixes
-// count once, a moving robot's (a few centimetres apart at 30 Hz) nearly
-// fully. Fixes are correlated over metres of travel too (0.8 within 0.5 m on
-// the 120 s Delft drive, 0.54 at 1-2 m), but their jackknife covariances are
-// already wider than their errors (NEES median about 1 against 5.35 for six
-// degrees of freedom), and with L_p = 5 cm the filter followed a run of fixes
-// drifting 0.25 m off on that drive (81 OK fixes beyond three sigma).
-// Counted nearly in full, though, a run of fixes sharing one error shrinks the
-// filter's covariance below that error: on simulated Delft drives the camera
-// looks along the street, where the fixes' error is largest and held for
-// seconds (seed 19: 5-8 cm ahead for 4 s, inside their 0.1 m sigma), and the
-// state the robot reported put the truth beyond the 99.73 % chi2(3) bound in
-// 29, 44 and 26 of about 308 states after the first fix (seeds 19, 49, 2),
-// claiming 2-3 cm. So the covariance the filter reports (state, health) is
-// never less than f = shared_fix_error_fraction of the last applied fix's:
-// the share of a fix's error no run of fixes averages away, 0.54 at 1-2 m
-// above. The tilt too: gravity bounds it only to an accelerometer bias over g
-// (0.3 degrees), and a run of fixes tilted alike pulls it (seed 12: fixes
-// +0.01 to +0.05 degrees off about the world's x axis and -0.03 to -0.10
-// about its y axis for a second left the state 0.03-0.05 degrees off, sure
-// of its tilt to 0.015 degrees: 9 states beyond the bound). The
-// filter's own covariance, its updates and the predictions for the backbone
-// keep the model above.
+// (1 - rho), the factor by which N samples of such a process tell less than
+// N independent ones (the variance of their mean is sigma^2 (1 + rho) /
+// ((1 - rho) N)), and is gated with its covariance as it is. L_p and
+// L_theta are a centimetre and a tenth of a degree: a standing robot's fixes
+// count once, a moving robot's nearly fully. Fixes share part of their error
+// over metres of travel too, so the covariance the filter reports (state,
+// health) is never less than f = shared_fix_error_fraction of the last
+// applied fix's: the share of a fix's error no run of fixes averages away;
+// the tilt likewise, which gravity bounds only to an accelerometer bias over
+// g. The filter's own covariance, its updates and the predictions for the
+// backbone keep the model above.
 //
-// Forgetting the shared error. Once a run of fixes sharing one error has
-// shrunk the filter's own covariance, it held the state on that error after
-// the fixes had left it: simulated Delft seed 16 tracked for three seconds
-// with fixes flipping between two basins 0.2-0.3 m apart, their covariance
-// raised to the flipping's scatter (0.13 m, fix_scatter.h), and its state
-// stayed 0.15 m off through the next five seconds of fixes 5 mm from the
-// truth. The shared error b is a first-order Gauss-Markov process in travel,
-// b' = rho_s b + w, rho_s = exp(-d / L_s), Var(w) = (1 - rho_s^2) f (R - U);
-// L_s = 2.5 m fits the correlations above (exp(-0.5 / 2.5) = 0.82,
-// exp(-1.5 / 2.5) = 0.55). The filter estimates the pose in the fixes' frame,
-// the truth plus b, as it does for the unproven offset below, so as it moves
-// d from the last applied fix its pose covariance grows by (1 - rho_s^2) S,
-// S the variance of the shared error the state holds: each applied fix, of
-// covariance R, takes a share w of it, S = (1 - w) S + w f (R - U), level
-// part (the tilt stays on gravity), w the part of the position variance its
-// update took out. A standing robot forgets nothing, one that drove L_s most
-// of it. S from the last fix alone left a state whose last fix was a wide
-// one (seed 50: a fix whose R - U was 0.66 m in height) as wide as that fix
-// after L_s, too wide to track from: 88 frames searched for instead. With L_s =
-// 2 m, three seconds of fixes switching between two wrong poses 0.6 m apart
-// (a unit test) grew the covariance of the dead-reckoning filter until it
-// took one. It is off by default (shared_fix_error_length_m 0): on the
-// README's two-minute drive, forgetting over L_s = 2.5 m grew the
-// predictions at 37.7 s, entering the narrow street, from 4.5 cm to 0.32 m
-// in height, too wide to track from; the backbone answered no frame for the
-// next 14 s, the robot's height drifted 2 m on the IMU, and its position
-// RMSE from the first fix went from 3.6 cm to 0.32 m (2884 frames OK of
-// 3546, against 3267). Over seeds 1-50, 20 s each, it had kept seed 16's
-// one fix beyond three sigma away and cost seed 50 12 of its 315 answers.
-// Taking each direction's own share of a fix instead of the position's,
-// so that a fix wide in height hands S nothing of it, did not win the drive
-// back (0.33 m).
+// Forgetting the shared error (off by default: shared_fix_error_length_m 0).
+// The shared error b is a first-order Gauss-Markov process in travel,
+// b' = rho_s b + w, rho_s = exp(-d / L_s), Var(w) = (1 - rho_s^2) f (R - U).
+// The filter estimates the pose in the fixes' frame, the truth plus b, so as
+// it moves d from the last applied fix its pose covariance grows by
+// (1 - rho_s^2) S, S the variance of the shared error the state holds: each
+// applied fix, of covariance R, takes a share w of it, S = (1 - w) S +
+// w f (R - U), level part, w the part of the position variance its update
+// took out.
 //
-// Unproven fixes. A fix tracked from a search the backbone has not yet proven
-// (line_set_handler.h) carries the search's resolution as an unproven part U
-// of its covariance R: an offset its error shares with every fix after it
-// until a search from elsewhere proves them, not noise on each. Fused as
-// noise, it held each fix to a small share of the filter (seed 3 of the
-// simulated Delft drives: fixes 1-5 cm off with a 0.19 m sigma, a filter 7 cm
-// sure of its position took an eighth of each and, its velocity 0.2 m/s off
-// after 13 s on DGPS, stayed 10 cm off). A Schmidt-Kalman filter would carry
-// the offset as a "consider" state o ~ N(0, U) in z = h(x) + o + v; here the
-// filter estimates the pose relative to the fixes' frame instead: it gates a
-// fix with R, so a fix whose offset moved within U still passes; updates with
-// R - U, what tracking measured, so the fixes' motion and drift count in
-// full; and adds the last applied fix's U to the covariance it reports
-// (state, health), so that its absolute uncertainty is never less than the
-// fixes'.
-//
-// The tilt part of U (roll and pitch) stays noise on each fix: a frame tilted
-// against gravity is no frame the IMU moves in (in a test with a 0.3 degree
-// offset drawn about every axis, the position error relative to the fixes was
-// 4.1 cm RMS instead of 2.2 cm, and outside its covariance in a fifth of the
-// checks). The predictions for the backbone (predictAt) leave U out: the
-// backbone tracks in the frame its own fixes define and proves that frame
-// with searches of its own; given U, tracking's sigma points reached the
-// neighbouring basins every frame and answered them as ambiguous (simulated
-// Delft seeds 19 and 50: 79 and 92 ambiguous answers, 85 % and 70 % of the
-// frames from the first fix OK instead of 99 % and 97 %).
+// Unproven fixes. A fix tracked from a pose the backbone has not yet proven
+// (tracking_proof.h) carries an unproven part U of its covariance R: an
+// offset its error shares with every fix after it until proven, not noise
+// on each. As in a Schmidt-Kalman filter's "consider" state o ~ N(0, U) in
+// z = h(x) + o + v, the filter estimates the pose relative to the fixes'
+// frame: it gates a fix with R, so a fix whose offset moved within U still
+// passes; updates with R - U, what tracking measured, so the fixes' motion
+// and drift count in full; and adds the last applied fix's U to the
+// covariance it reports (state, health). The tilt part of U stays noise on
+// each fix: a frame tilted against gravity is no frame the IMU moves in. The
+// predictions for the backbone (predictAt) leave U out: the backbone tracks
+// in the frame its own fixes define and proves that frame itself.
 //
 // Updates. Vision pose fix (6-DoF, its own covariance); DGPS antenna position
 // as a bound (applyBoundingUpdate, error_state_update.h): its errors are
 // correlated over minutes, so repeated fixes add no information, and a
-// vision-tracked pose must not be pulled by them; fused as independent, a
-// standing robot's second fix took the sigma from 5 m to 3.5 m, and the truth
-// lay beyond three of those sigmas in 46 of 831 searches at the start of 50
-// simulated Delft drives (a Gaussian gives 9); compass yaw, as a bound too,
-// its error shared by every reading (compass_bias_sigma_rad): fused as
-// independent, ten readings a second took the yaw sigma to a fraction of a
-// degree, and a compass 5 degrees off became a heading the filter was sure
-// of and a search range that missed the truth; zero velocity
+// vision-tracked pose must not be pulled by them; compass yaw, as a bound too,
+// its error shared by every reading (compass_bias_sigma_rad); zero velocity
 // when the IMU is still and the estimated speed small. Each is gated by its
 // normalised innovation squared at `gate_probability` of the chi-square
 // distribution; rejections are counted in health().
@@ -257,7 +170,7 @@ struct InertialNavigatorConfig {
   // stillness only the IMU saw (see above).
   double max_ground_speed_mps = 3.0;
   // Covers the speed a trailing window misses when the robot pulls away (a few
-  // cm/s); 0.02 m/s made the along-track NEES of the simulated drives 1.6 per axis.
+  // cm/s).
   double zero_velocity_sigma_mps = 0.05;
   int64_t zero_velocity_interval_ns = 100'000'000;
 
@@ -558,7 +471,7 @@ class InertialNavigator {
   // The gyro bias of the last still window when `stood_still` says the robot
   // stood there, else zero within its turn-on spread: a window only the IMU
   // calls still may be a cruise on a changing grade, whose mean rate is the
-  // body pitching (0.007 rad/s on simulated route 39), not the bias.
+  // body pitching, not the bias.
   Eigen::Vector3d initialGyroBias(bool stood_still, double& sigma_radps) const;
   double yawFromCompass(double magnetic_heading_rad) const;
   // sigma_c = hypot(compass_sigma_rad, compass_bias_sigma_rad).

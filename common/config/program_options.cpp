@@ -1,6 +1,7 @@
 #include "common/config/program_options.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <iostream>
@@ -14,6 +15,11 @@ ProgramOptions::ProgramOptions(const std::string& program, const std::string& de
                   "YAML file with any of these options as keys (flags override it)");
   app_.add_flag("--print-config", print_config_,
                 "print every option as a documented YAML config file, then exit");
+  app_.set_version_flag("--version", fmt::format("{} (lineloc {})", program, LINELOC_VERSION));
+  app_.add_option("--log-level", log_level_,
+                  "level of the log: trace, debug, info, warn, error, critical or off")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
 }
 
 void ProgramOptions::printConfig() const {
@@ -75,6 +81,7 @@ std::optional<int> ProgramOptions::parse(int argc, const char* const* argv) {
   } catch (const CLI::ParseError& error) {
     return app_.exit(error);
   }
+  spdlog::set_level(spdlog::level::from_str(log_level_));
   try {
     if (!config_path_.empty()) {
       applyConfigFile(config_path_);

@@ -3,7 +3,9 @@
 // Each option is declared once, with its default (the variable's current value)
 // and its documentation: YAML key `robot_id` is also flag `--robot-id`. The
 // YAML file is named by `--config FILE`; keys it does not know are an error, so
-// a typo never silently leaves a default in force.
+// a typo never silently leaves a default in force. Every program also takes
+// `--version` and `--log-level` (trace, debug, info, warn, error, critical,
+// off: the level of its log, info by default).
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -88,6 +90,7 @@ class ProgramOptions {
   CLI::App app_;
   std::string config_path_;
   bool print_config_ = false;
+  std::string log_level_ = "info";
   std::vector<Binding> bindings_;
 };
 

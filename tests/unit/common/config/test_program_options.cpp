@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <fstream>
@@ -116,6 +117,23 @@ TEST_F(ProgramOptionsTest, FixedSizeVectorRefusesTooFewValues) {
 
 TEST_F(ProgramOptionsTest, UnknownFlagExitsNonZero) {
   EXPECT_NE(parse({"--no-such-flag"}).value_or(0), 0);
+}
+
+TEST_F(ProgramOptionsTest, VersionPrintsTheProgramAndLinelocVersionsThenExits) {
+  ::testing::internal::CaptureStdout();
+  EXPECT_EQ(parse({"--version"}), 0);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  EXPECT_NE(printed.find("test (lineloc "), std::string::npos) << printed;
+}
+
+TEST_F(ProgramOptionsTest, LogLevelSetsTheLogsLevel) {
+  EXPECT_EQ(parse({"--log-level", "warn"}), std::nullopt);
+  EXPECT_EQ(spdlog::get_level(), spdlog::level::warn);
+  spdlog::set_level(spdlog::level::info);
+}
+
+TEST_F(ProgramOptionsTest, AnUnknownLogLevelIsAnError) {
+  EXPECT_NE(parse({"--log-level", "loud"}).value_or(0), 0);
 }
 
 }  // namespace

@@ -114,7 +114,7 @@ trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 
 echo "demo: robot and backbone running in real time over DDS"
 "$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
-  --calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
+  --camera-calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
   --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
   --start-at-s "$ROBOT_START_S" --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
   --fix-log-out "$OUT/fixes.txt" --state-log-out "$OUT/states.txt" \

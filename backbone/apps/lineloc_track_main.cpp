@@ -25,7 +25,7 @@ namespace {
 struct TrackConfig {
   std::string model;
   std::string images;
-  std::string calib;
+  std::string camera_calibration;
   std::vector<double> init = {0, 0, 1.5, 0, 0, 0, 1};
   double init_position_sigma_m = 0.5;
   double init_rotation_sigma_deg = 2.0;
@@ -57,7 +57,7 @@ int run(const TrackConfig& config) {
       "{:.3f}, {:.3f})\n",
       local.buildings, local.model.lines.size(), local.model.faces.size(), local.origin.x(),
       local.origin.y(), local.origin.z());
-  const CameraCalibration calibration = readCameraCalibration(config.calib);
+  const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
   PoseWithCovariance start;
   start.pose =
       makePose({config.init[0], config.init[1], config.init[2]},
@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
                                   "Model-based camera tracking in a city model, offline");
   options.add("model", config.model, "city model file (CityJSON, CityJSON Lines, OBJ, GeoJSON)");
   options.add("images", config.images, "image folder or EuRoC/ASL camera folder");
-  options.add("calib", config.calib, "camera calibration (OpenCV YAML layout)");
+  options.add("camera_calibration", config.camera_calibration,
+              "camera calibration (OpenCV YAML layout)");
   options.addFixedSize("init", config.init, 7,
                        "first frame's T_world_camera: tx ty tz qx qy qz qw");
   options.add("init_position_sigma_m", config.init_position_sigma_m,

@@ -306,14 +306,14 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
                     config.robot_id));
   }
   requireRealtimePriority(config.realtime_priority);
-  if (config.calibration.empty()) {
+  if (config.camera_calibration.empty()) {
     throw std::runtime_error("calibration: a camera calibration file is required");
   }
   if (!(config.start_at_s >= 0.0 && config.start_at_s < 1e9)) {
     throw std::runtime_error(
         fmt::format("start_at_s must be >= 0 seconds, got {}", config.start_at_s));
   }
-  const CameraCalibration calibration = readCameraCalibration(config.calibration);
+  const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
   const PoseWithCovariance configured = configuredPose(config);
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
   SensorStreams streams =

@@ -24,7 +24,7 @@ namespace lineloc {
 struct RobotConfig {
   std::string robot_id = "robot1";
   std::string images;
-  std::string calibration;
+  std::string camera_calibration;
   // Without IMU data: the predicted T_world_camera, tx ty tz qx qy qz qw (site frame).
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};
   double predicted_position_sigma_m = 5.0;

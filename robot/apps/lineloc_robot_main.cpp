@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
   options.add("robot_id", config.robot_id, "this robot's id, [A-Za-z0-9][A-Za-z0-9_.-]*");
   options.add("images", config.images,
               "EuRoC/ASL dataset (cam0/, imu0/, gps0/, compass0/), cam0/ folder or image folder");
-  options.add("calibration", config.calibration, "camera calibration (OpenCV YAML layout)");
+  options.add("camera_calibration", config.camera_calibration,
+              "camera calibration (OpenCV YAML layout)");
   options.addFixedSize("predicted_pose", config.predicted_pose, 7,
                        "without IMU data: predicted T_world_camera, tx ty tz qx qy qz qw");
   options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,

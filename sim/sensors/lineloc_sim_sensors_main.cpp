@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 #include "common/config/program_options.h"
 #include "sim/sensors/sensor_logs.h"
@@ -11,11 +12,10 @@
 int main(int argc, char** argv) {
   lineloc::sim::SensorLogConfig config;
   config.folder = "sim_sensors";
-  double declination_deg = 0.0;
+  double magnetic_declination_deg = 0.0;
   double compass_sigma_deg = config.compass.sigma_rad * 180.0 / M_PI;
-  double origin_easting = config.site_origin.x();
-  double origin_northing = config.site_origin.y();
-  double origin_height = config.site_origin.z();
+  std::vector<double> site_origin = {config.site_origin.x(), config.site_origin.y(),
+                                     config.site_origin.z()};
   lineloc::ProgramOptions options("lineloc-sim-sensors",
                                   "simulated IMU, DGPS and compass logs of a ground robot");
   options.add("output", config.folder, "dataset folder to write (created)");
@@ -29,18 +29,16 @@ int main(int argc, char** argv) {
   options.add("gps_outage_probability", config.gps.outage_probability,
               "probability per DGPS fix that an outage starts");
   options.add("compass_sigma_deg", compass_sigma_deg, "compass white noise (degrees)");
-  options.add("declination_deg", declination_deg,
+  options.add("magnetic_declination_deg", magnetic_declination_deg,
               "magnetic declination at the site, east positive (degrees)");
-  options.add("crs", config.crs, "site CRS: UTM:<zone><N|S> or EPSG:<code>");
-  options.add("origin_easting", origin_easting, "site origin easting in the CRS (m)");
-  options.add("origin_northing", origin_northing, "site origin northing in the CRS (m)");
-  options.add("origin_height", origin_height, "site origin height (m)");
+  options.add("site_crs", config.crs, "CRS of the site frame: UTM:<zone><N|S> or EPSG:<code>");
+  options.addFixedSize("site_origin", site_origin, 3, "site origin x y z in that CRS (m)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }
   config.compass.sigma_rad = compass_sigma_deg * M_PI / 180.0;
-  config.compass.magnetic_declination_rad = declination_deg * M_PI / 180.0;
-  config.site_origin = Eigen::Vector3d(origin_easting, origin_northing, origin_height);
+  config.compass.magnetic_declination_rad = magnetic_declination_deg * M_PI / 180.0;
+  config.site_origin = Eigen::Vector3d(site_origin[0], site_origin[1], site_origin[2]);
   try {
     const auto summary = lineloc::sim::writeSensorLogs(config);
     std::cout << fmt::format(

@@ -19,15 +19,15 @@ namespace {
 
 struct FeaturesConfig {
   std::string image;
-  std::string calib;
+  std::string camera_calibration;
   std::string out;
   lineloc::FeatureExtractorOptions extractor = lineloc::trackingFrontEndOptions();
 };
 
 // Without a calibration file: an ideal camera of the image's size.
 lineloc::CameraCalibration calibrationFor(const FeaturesConfig& config, const cv::Mat& image) {
-  if (!config.calib.empty()) {
-    return lineloc::readCameraCalibration(config.calib);
+  if (!config.camera_calibration.empty()) {
+    return lineloc::readCameraCalibration(config.camera_calibration);
   }
   lineloc::CameraCalibration calibration;
   calibration.camera.width = image.cols;
@@ -54,7 +54,7 @@ void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
   lineloc::EdgeDetectorOptions& edges = config.extractor.edges;
   lineloc::LineExtractorOptions& lines = config.extractor.lines;
   lineloc::ForstnerOptions& corners = config.extractor.corners;
-  options.add("calib", config.calib,
+  options.add("camera_calibration", config.camera_calibration,
               "camera calibration (OpenCV YAML layout); empty: an ideal camera of the image size");
   options.add("out", config.out, "overlay image to write; empty: none");
   options.add("smoothing_sigma_px", edges.smoothing_sigma_px,

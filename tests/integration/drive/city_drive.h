@@ -200,14 +200,15 @@ class CityDrive : public ::testing::Test {
   std::unique_ptr<ChildProcess> startRobot(const std::string& robot_id = "drive",
                                            const fs::path& dataset = "dataset") const {
     std::vector<std::string> args = dds();
-    args.insert(args.end(),
-                {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--calibration",
-                 (work_ / dataset / "cam0" / "calibration.yaml").string(), "--site-crs",
-                 "EPSG:7415", "--camera-height-m", fmt::format("{}", city_.camera_height_m),
-                 "--trajectory-out", (work_ / (robot_id + "-fixes.tum")).string(),
-                 "--fused-trajectory-out", (work_ / (robot_id + "-fused.tum")).string(),
-                 "--fix-log-out", (work_ / (robot_id + "-fixes.txt")).string(), "--state-log-out",
-                 (work_ / (robot_id + "-states.txt")).string(), "--site-origin"});
+    args.insert(
+        args.end(),
+        {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--camera-calibration",
+         (work_ / dataset / "cam0" / "calibration.yaml").string(), "--site-crs", "EPSG:7415",
+         "--camera-height-m", fmt::format("{}", city_.camera_height_m), "--trajectory-out",
+         (work_ / (robot_id + "-fixes.tum")).string(), "--fused-trajectory-out",
+         (work_ / (robot_id + "-fused.tum")).string(), "--fix-log-out",
+         (work_ / (robot_id + "-fixes.txt")).string(), "--state-log-out",
+         (work_ / (robot_id + "-states.txt")).string(), "--site-origin"});
     args.insert(args.end(), city_.origin.begin(), city_.origin.end());
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot", args,
                                           (work_ / (robot_id + ".log")).string());

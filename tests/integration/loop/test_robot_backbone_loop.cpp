@@ -211,7 +211,7 @@ class RobotBackboneLoop : public ::testing::Test {
                   robot_id,
                   "--images",
                   (work_ / "images").string(),
-                  "--calibration",
+                  "--camera-calibration",
                   (work_ / "camera.yml").string(),
                   "--predicted-pose",
                   "5",

@@ -23,9 +23,9 @@
 // motion (fix_scatter.h), and carries the part of it tracking has not proven
 // yet (tracking_proof.h), whose proof searches the session asks for.
 //
-// Threads: frames (hear, prior, planFor, answer) come on one thread; searches
-// and proofs on another, one at a time per robot; the tracking proof they
-// share is locked.
+// Threads: frames (hear, planFor, answer, positionAhead) come on one thread,
+// and prior on that one or the exposure notices'; searches and proofs on
+// another, one at a time per robot; the tracking proof they share is locked.
 #pragma once
 
 #include <cstdint>
@@ -56,7 +56,7 @@ struct RobotSessionOptions {
   TrackingProofOptions proof;
 };
 
-// A tracked OK answer's status for a localization.
+// The PoseFix status that states an alignment's outcome.
 lineloc_msg_FixStatus toFixStatus(AlignmentStatus status);
 
 class RobotSession {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <iostream>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -14,11 +15,12 @@
 
 int main(int argc, char** argv) {
   lineloc::DriveSimulationConfig config;
-  config.city_model = LINELOC_BUNDLED_CITY_MODEL;
   config.output = "sim_dataset";
   lineloc::ProgramOptions options("lineloc-sim",
                                   "simulated drive through a city model -> EuRoC/ASL dataset");
-  options.add("city_model", config.city_model, "CityJSON (.json) or CityJSON Lines (.jsonl) file");
+  options.add("city_model", config.city_model,
+              "CityJSON (.json) or CityJSON Lines (.jsonl) file (required; lineloc bundles "
+              "data/citymodels/delft.json)");
   options.add("crs", config.crs, "CRS of the model, e.g. EPSG:7415 (empty: the one it names)");
   options.addFixedSize(
       "site_origin", config.site_origin, 3,
@@ -133,6 +135,10 @@ int main(int argc, char** argv) {
               "constant bias added to every compass reading, clockwise positive (deg)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
+  }
+  if (config.city_model.empty()) {
+    std::cerr << "lineloc-sim: --city-model is required (e.g. data/citymodels/delft.json)\n";
+    return 2;
   }
   config.compass.bias_rad = compass_bias_deg * std::numbers::pi / 180.0;
   try {

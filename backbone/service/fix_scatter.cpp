@@ -24,7 +24,7 @@ PoseWithCovariance FixScatter::floorAndAdd(int64_t stamp_ns, const OdometryPose&
     std::vector<Eigen::Matrix<double, 6, 1>> differences(1, Eigen::Matrix<double, 6, 1>::Zero());
     for (const RecentAnswer& recent : recent_) {
       const Eigen::Isometry3d moved =
-          recent.T_world_camera * recent.odometry.T_odom_camera.inverse() * odometry.T_odom_camera;
+          recent.T_world_camera * motionBetween(recent.odometry, odometry);
       differences.push_back(poseError(answer.pose, moved));
     }
     floored.covariance = coveringCovariance(

@@ -21,16 +21,6 @@ bool PoseOffset::within(const PoseOffset& limit) const {
   return position_m <= limit.position_m && rotation_rad <= limit.rotation_rad;
 }
 
-namespace {
-
-// T_world_camera of a pose at odometry `from` moved by the robot's motion to `to`.
-Eigen::Isometry3d moved(const Eigen::Isometry3d& T_world_camera, const OdometryPose& from,
-                        const OdometryPose& to) {
-  return T_world_camera * from.T_odom_camera.inverse() * to.T_odom_camera;
-}
-
-}  // namespace
-
 HypothesisSet::HypothesisSet(const HypothesisSetOptions& options) : options_(options) {}
 
 void HypothesisSet::clear() {
@@ -45,7 +35,8 @@ std::vector<Eigen::Isometry3d> HypothesisSet::carriedStarts(const OdometryPose& 
     return starts;
   }
   for (const Hypothesis& hypothesis : hypotheses_) {
-    starts.push_back(moved(hypothesis.latest.T_world_camera.pose, last_->odometry, odometry));
+    starts.push_back(hypothesis.latest.T_world_camera.pose *
+                     motionBetween(last_->odometry, odometry));
   }
   return starts;
 }
@@ -166,7 +157,7 @@ void HypothesisSet::add(const SearchedFrame& frame, const std::vector<ScoredHypo
       }
       // There only when it settles within `same` of where the motion puts it.
       const Eigen::Isometry3d start =
-          moved(found.T_world_camera.pose, frame.odometry, keyframe.odometry);
+          found.T_world_camera.pose * motionBetween(frame.odometry, keyframe.odometry);
       const std::optional<ScoredHypothesis> there = rescore(keyframe.id, start);
       const bool settled_there =
           there && PoseOffset::between(start, there->T_world_camera.pose).within(options_.same);
@@ -225,14 +216,11 @@ void HypothesisSet::weigh() {
 std::optional<HypothesisDecision> HypothesisSet::decision(
     int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable,
     std::string* undecided) const {
-  const auto undecidedBecause = [&](std::string why) -> std::optional<HypothesisDecision> {
+  if (hypotheses_.empty()) {
     if (undecided != nullptr) {
-      *undecided = std::move(why);
+      *undecided = "no hypothesis";
     }
     return std::nullopt;
-  };
-  if (hypotheses_.empty()) {
-    return undecidedBecause("no hypothesis");
   }
   const Hypothesis& best = hypotheses_.front();
   const ScoredHypothesis& latest = best.latest;
@@ -242,19 +230,25 @@ std::optional<HypothesisDecision> HypothesisSet::decision(
     normaliser += std::exp(hypothesis.evidence - best.evidence);
   }
   HypothesisDecision decision{best.latest, 1.0 / normaliser, {}};
-  const Eigen::Vector3d& position = latest.T_world_camera.pose.translation();
-  const std::string likeliest = fmt::format(
-      "the likeliest, at ({:.2f}, {:.2f}) m, posterior {:.4f} over {} views, proposed by {} "
-      "grids, ",
-      position.x(), position.y(), decision.posterior, keyframes_.size(), best.proposed);
+  const auto undecidedBecause = [&](const std::string& why) -> std::optional<HypothesisDecision> {
+    if (undecided != nullptr) {
+      const Eigen::Vector3d& position = latest.T_world_camera.pose.translation();
+      *undecided = fmt::format(
+          "the likeliest, at ({:.2f}, {:.2f}) m, posterior {:.4f} over {} views, proposed by {} "
+          "grids, {}",
+          position.x(), position.y(), decision.posterior, keyframes_.size(), best.proposed, why);
+    }
+    return std::nullopt;
+  };
   if (best.proposed < 2) {
-    return undecidedBecause(likeliest + "was not proposed by two frames' grids");
+    return undecidedBecause("was not proposed by two frames' grids");
   }
   if (latest.status != AlignmentStatus::kOk || latest.inliers < min_inliers ||
       latest.score < options_.none_score) {
-    return undecidedBecause(likeliest + fmt::format("aligned in the latest frame with {} inliers "
-                                                    "and score {:.1f}, not OK",
-                                                    latest.inliers, latest.score));
+    return undecidedBecause(
+        fmt::format("aligned in the latest frame with {} inliers "
+                    "and score {:.1f}, not OK",
+                    latest.inliers, latest.score));
   }
   const bool outscored = std::ranges::any_of(latest_aligned_, [&](const ScoredHypothesis& other) {
     return other.score > latest.score &&
@@ -262,21 +256,21 @@ std::optional<HypothesisDecision> HypothesisSet::decision(
                 .within(options_.same);
   });
   if (outscored) {
-    return undecidedBecause(likeliest + "was outscored in the latest frame");
+    return undecidedBecause("was outscored in the latest frame");
   }
   if (decision.posterior < options_.min_posterior) {
-    return undecidedBecause(likeliest + "is not likely enough");
+    return undecidedBecause("is not likely enough");
   }
   // Each frame explained by a pose of its own, against the one hypothesis
   // moved by the robot's motion: views that no one pose explains (the
   // robot's motion is not what its odometry says) take none.
   const double min_odds = options_.min_posterior / (1.0 - options_.min_posterior);
   if (free_evidence_ - best.evidence > std::log(min_odds)) {
-    return undecidedBecause(likeliest + "does not explain the views as their own poses do");
+    return undecidedBecause("does not explain the views as their own poses do");
   }
   if (!trackable(best.latest.T_world_camera) &&
       static_cast<int>(keyframes_.size()) < options_.min_wide_views) {
-    return undecidedBecause(likeliest + "is too wide to track from one view");
+    return undecidedBecause("is too wide to track from one view");
   }
   for (size_t i = 1; i < hypotheses_.size(); ++i) {
     if (std::exp(hypotheses_[i].evidence - best.evidence) / normaliser >=

@@ -37,6 +37,12 @@ struct OdometryPose {
   uint64_t epoch = 0;
 };
 
+// The camera's motion from odometry pose `from` to `to`, O_from^-1 O_to: a
+// pose A found at `from` is A O_from^-1 O_to at `to` (both of one epoch).
+inline Eigen::Isometry3d motionBetween(const OdometryPose& from, const OdometryPose& to) {
+  return from.T_odom_camera.inverse() * to.T_odom_camera;
+}
+
 class PredictedMotion {
  public:
   explicit PredictedMotion(const PredictedMotionOptions& options = {});

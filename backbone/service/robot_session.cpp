@@ -59,16 +59,14 @@ PoseWithCovariance RobotSession::prior(const LineSetData& line_set, const Prepar
 RobotSession::FramePlan RobotSession::planFor(const LineSetData& line_set,
                                               const OdometryPose& odometry,
                                               const PreparedMap& map) const {
-  const PoseWithCovariance own = prior(line_set, map);
+  const PoseWithCovariance grounded = groundedPrior(line_set, map);
+  const std::lock_guard<std::mutex> lock(proof_mutex_);
+  const PoseWithCovariance own = proof_.searchPrior(grounded);
   if (!needsAcquisition(own, localizer_)) {
     return {Plan::kTrack, own, 0.0};
   }
-  std::optional<PoseWithCovariance> carried;
-  {
-    const std::lock_guard<std::mutex> lock(proof_mutex_);
-    carried = proof_.carriedStart(line_set.stamp_ns, odometry);
-  }
-  if (carried) {
+  if (const std::optional<PoseWithCovariance> carried =
+          proof_.carriedStart(line_set.stamp_ns, odometry)) {
     return {Plan::kTrack, *carried, options_.carried_start_step_m};
   }
   return {Plan::kSearch, own, 0.0};
@@ -124,18 +122,12 @@ RobotSession::Proved RobotSession::prove(const LineSetData& line_set, const Prep
                                          const Eigen::Isometry3d& tracked,
                                          const ProofRequest& request,
                                          const LocalizerOptions& options) {
-  PoseWithCovariance prior;
-  PoseOffset agreement;
-  {
-    const std::lock_guard<std::mutex> lock(proof_mutex_);
-    prior = proof_.proofPrior(tracked, options_.ground_level_sigma_m);
-    agreement = proof_.agreement();
-  }
+  const PoseWithCovariance prior = proof_.proofPrior(tracked, options_.ground_level_sigma_m);
   Proved proved;
   proved.localization = localize(line_set.segments, line_set.corners, map.segments, map.scene,
                                  prior, line_set.camera, options);
-  proved.verdict =
-      judgeProof(line_set, map, tracked, proved.localization, options.acquisition, agreement);
+  proved.verdict = judgeProof(line_set, map, tracked, proved.localization, options.acquisition,
+                              proof_.agreement());
   const std::lock_guard<std::mutex> lock(proof_mutex_);
   proved.applied = proof_.apply(proved.verdict, request);
   return proved;

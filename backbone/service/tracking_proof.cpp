@@ -101,8 +101,7 @@ std::optional<PoseWithCovariance> TrackingProof::carriedStart(int64_t stamp_ns,
   }
   // A O_A^-1 O.
   return narrowedForTracking(
-      composeExactMotion(origin.T_world_camera_found,
-                         origin.odometry.T_odom_camera.inverse() * odometry.T_odom_camera),
+      composeExactMotion(origin.T_world_camera_found, motionBetween(origin.odometry, odometry)),
       localizer_);
 }
 

@@ -29,7 +29,7 @@
 // longer tracks from is dropped.
 //
 // Not thread-safe: its owner serialises the frames' and the proof searches'
-// calls.
+// calls, but for proofPrior and agreement, which read its options only.
 #pragma once
 
 #include <cstdint>

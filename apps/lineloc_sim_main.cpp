@@ -3,6 +3,7 @@
 // dataset folder.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <iostream>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "common/config/program_options.h"
+#include "common/progress/progress_meter.h"
 #include "common/time/utc_time.h"
 #include "sim/dataset/drive_simulation.h"
 
@@ -21,11 +23,12 @@ int main(int argc, char** argv) {
   options.add("city_model", config.city_model,
               "CityJSON (.json) or CityJSON Lines (.jsonl) file (required; lineloc bundles "
               "data/citymodels/delft.json)");
-  options.add("crs", config.crs, "CRS of the model, e.g. EPSG:7415 (empty: the one it names)");
+  options.add("city_model_crs", config.crs,
+              "CRS of the city model, e.g. EPSG:7415 (empty: the one it names)");
   options.addFixedSize(
       "site_origin", config.site_origin, 3,
       "model coordinates x y z of the site origin (empty: centre of the buildings)");
-  options.add("output", config.output, "dataset folder to create (must be empty or absent)");
+  options.add("out", config.output, "dataset folder to create (must be empty or absent)");
   options.add("seed", config.seed, "seed of every random choice: same seed, same bytes");
   options.add("duration_s", config.duration_s, "length of the drive (s)");
   options.add("waypoints", config.waypoints,
@@ -129,7 +132,8 @@ int main(int argc, char** argv) {
   options.add("gps_outage_probability", config.gps.outage_probability,
               "probability per fix that an outage starts");
   options.add("compass_rate_hz", config.compass.rate_hz, "compass rate (Hz)");
-  options.add("compass_sigma_rad", config.compass.sigma_rad, "compass white noise (rad)");
+  double compass_sigma_deg = config.compass.sigma_rad * 180.0 / std::numbers::pi;
+  options.add("compass_sigma_deg", compass_sigma_deg, "compass white noise (deg)");
   double compass_bias_deg = 0.0;
   options.add("compass_bias_deg", compass_bias_deg,
               "constant bias added to every compass reading, clockwise positive (deg)");
@@ -140,6 +144,7 @@ int main(int argc, char** argv) {
     std::cerr << "lineloc-sim: --city-model is required (e.g. data/citymodels/delft.json)\n";
     return 2;
   }
+  config.compass.sigma_rad = compass_sigma_deg * std::numbers::pi / 180.0;
   config.compass.bias_rad = compass_bias_deg * std::numbers::pi / 180.0;
   try {
     if (!camera_covered_s.empty()) {
@@ -151,7 +156,10 @@ int main(int argc, char** argv) {
     if (!start_utc.empty()) {
       config.drive.start_stamp_ns = lineloc::parseUtcTime_ns(start_utc);
     }
-    const lineloc::DriveSimulationSummary summary = lineloc::simulateDrive(config);
+    lineloc::ProgressMeter meter("rendering " + config.output, "images", std::cerr,
+                                 lineloc::ProgressMeter::styleOf(STDERR_FILENO));
+    const lineloc::DriveSimulationSummary summary =
+        lineloc::simulateDrive(config, meter.callback());
     fmt::print(
         "lineloc-sim: {} images ({:.1f} frames/s rendering on one core), {} IMU samples, {} GPS "
         "fixes, {} compass readings; route {:.0f} m with {} cars, {} trees, {} poles, {} "

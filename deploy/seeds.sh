@@ -68,9 +68,20 @@ header="$(printf "%5s %8s %6s %10s %7s %10s %12s %9s %10s %8s %9s %13s" seed ans
   states_beyond)"
 rows=""
 failed=0
+# Progress, one line per drive: how many are done and, at the mean time per
+# drive so far, how long the rest take.
+progress() {
+  local done=$1 elapsed_s=$SECONDS left=""
+  if ((done > 0)); then
+    left=", about $(((SEEDS - done) * elapsed_s / done / 60 + 1)) min left"
+  fi
+  echo "seeds: $done/$SEEDS drives done in $((elapsed_s / 60)) min $((elapsed_s % 60)) s$left; seed $2 next"
+}
+
+SECONDS=0
 for ((seed = FIRST_SEED; seed < FIRST_SEED + SEEDS; ++seed)); do
   log="$OUT/$seed.log"
-  echo "seeds: seed $seed of $FIRST_SEED..$((FIRST_SEED + SEEDS - 1))"
+  progress $((seed - FIRST_SEED)) "$seed"
   if ! LINELOC_DEMO_SEED="$seed" LINELOC_DEMO_OUT="$OUT/$seed" "$ROOT/deploy/demo.sh" >"$log" 2>&1 ||
     ! row="$(summarise "$seed" "$log")"; then
     echo "seeds: seed $seed failed, see $log" >&2

@@ -50,7 +50,7 @@ int resolveSourceCrs(const CityModel& model, const std::string& source,
   if (model.epsg && options.file_epsg && *model.epsg != *options.file_epsg) {
     throw ModelError(
         source, "", "conflicting CRS",
-        fmt::format("the file says EPSG:{}, --crs says EPSG:{}", *model.epsg, *options.file_epsg));
+        fmt::format("the file says EPSG:{}, --city-model-crs says EPSG:{}", *model.epsg, *options.file_epsg));
   }
   if (model.epsg) {
     return *model.epsg;
@@ -59,7 +59,7 @@ int resolveSourceCrs(const CityModel& model, const std::string& source,
     return *options.file_epsg;
   }
   throw ModelError(source, "", "no CRS",
-                   "the file names no coordinate reference system; give it with --crs EPSG:N");
+                   "the file names no coordinate reference system; give it with --city-model-crs EPSG:N");
 }
 
 void validateAll(CityModel& model, const std::string& source, const LoadOptions& options) {
@@ -180,7 +180,7 @@ LoadReport summarise(const std::string& source, const PreparedModel& prepared) {
 
 bool storeModel(Connection& connection, const LoadOptions& options, const SourceRecord& record,
                 const PreparedModel& prepared,
-                const std::function<void(size_t, size_t)>& progress) {
+                const ProgressCallback& progress) {
   const size_t total = prepared.model.buildings.size();
   const int srid = prepared.model.epsg.value_or(prepared.source_epsg);
   bool unchanged = false;
@@ -201,7 +201,7 @@ bool storeModel(Connection& connection, const LoadOptions& options, const Source
 }
 
 LoadReport loadFile(const std::string& path, const LoadOptions& options, Connection* connection,
-                    const std::function<void(size_t, size_t)>& progress) {
+                    const ProgressCallback& progress) {
   const std::string text = readFile(path);
   const std::string source_name = std::filesystem::path(path).filename().string();
   std::optional<int> target_epsg = options.site_epsg;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "common/progress/progress_meter.h"
 #include "db/citymodel/city_model.h"
 #include "db/citymodel/footprint_reader.h"
 #include "db/citymodel/line_extraction.h"
@@ -28,7 +29,7 @@ InputFormat detectFormat(const std::string& path, std::string_view text);
 
 struct LoadOptions {
   std::string site = "default";
-  std::optional<int> file_epsg;                // --crs: for files that name no CRS
+  std::optional<int> file_epsg;                // for files that name no CRS
   std::optional<int> site_epsg;                // CRS of a new site; default: the file's
   std::optional<Eigen::Vector3d> site_origin;  // origin of a new site; default: centre of the data
   citymodel::ReadOptions read;
@@ -76,12 +77,12 @@ LoadReport summarise(const std::string& source, const PreparedModel& prepared);
 // one transaction; a new site gets the model's CRS and `options.site_origin`,
 // or the centre of the data. Returns false when the source was unchanged.
 bool storeModel(Connection& connection, const LoadOptions& options, const SourceRecord& record,
-                const PreparedModel& prepared, const std::function<void(size_t, size_t)>& progress);
+                const PreparedModel& prepared, const ProgressCallback& progress);
 
 // The whole load of one file. `connection` may be null for a dry run.
 // `progress(done, total)` reports buildings written.
 LoadReport loadFile(const std::string& path, const LoadOptions& options, Connection* connection,
-                    const std::function<void(size_t, size_t)>& progress);
+                    const ProgressCallback& progress);
 
 // SHA-256 of `bytes`, lowercase hex.
 std::string sha256Hex(std::string_view bytes);

@@ -107,9 +107,9 @@ std::string resolveCrs(const DriveSimulationConfig& config, const citymodel::Cit
     return config.crs;
   }
   if (!model.epsg) {
-    throw std::runtime_error(
-        fmt::format("{}: the city model names no CRS; give one with --crs (e.g. EPSG:7415)",
-                    config.city_model));
+    throw std::runtime_error(fmt::format(
+        "{}: the city model names no CRS; give one with --city-model-crs (e.g. EPSG:7415)",
+        config.city_model));
   }
   return fmt::format("EPSG:{}", *model.epsg);
 }
@@ -211,7 +211,8 @@ Sunlight drivingSunlight(const DriveSimulationConfig& config, const SiteSun& sit
   return *sun;
 }
 
-DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
+DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
+                                     const ProgressCallback& progress) {
   if (!(config.camera_rate_hz > 0.0) || !(config.duration_s > 0.0) || config.output.empty()) {
     throw std::runtime_error("camera_rate_hz and duration_s must be positive and output given");
   }
@@ -371,8 +372,9 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config) {
       const int64_t stamp_ns = stamps_ns[summary.images];
       writer.writeImage(stamp_ns + camera_offset_ns, image);
       writer.writeCameraGroundTruth({stamp_ns, cameraPose(stamp_ns)});
-      if (++summary.images % 200 == 0) {
-        spdlog::info("{} images rendered", summary.images);
+      ++summary.images;
+      if (progress) {
+        progress(summary.images, stamps_ns.size());
       }
     }
   }

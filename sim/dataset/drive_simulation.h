@@ -14,6 +14,7 @@
 
 #include "common/geodesy/site_sun.h"
 #include "common/geometry/sunlight.h"
+#include "common/progress/progress_meter.h"
 #include "sim/render/auto_exposure.h"
 #include "sim/render/camera_sensor.h"
 #include "sim/render/city_renderer.h"
@@ -103,9 +104,11 @@ struct DriveSimulationSummary {
   double render_cpu_s = 0.0;
 };
 
-// Throws std::runtime_error naming the input that is missing or malformed,
+// `progress(done, total)` reports the images written. Throws
+// std::runtime_error naming the input that is missing or malformed,
 // std::invalid_argument naming a camera option out of its range.
-DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config);
+DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
+                                     const ProgressCallback& progress = nullptr);
 
 // The sun the drive's images are rendered under, given by its azimuth and
 // elevation; throws std::invalid_argument for an elevation outside [-90, 90]

@@ -59,11 +59,11 @@ void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
   options.add("out", config.out, "overlay image to write; empty: none");
   options.add("smoothing_sigma_px", edges.smoothing_sigma_px,
               "Gaussian pre-smoothing (px), >= 0.5; 0: none");
-  options.add("min_gradient", edges.min_gradient,
+  options.add("min_edge_gradient", edges.min_gradient,
               "edge threshold's floor (grey levels per px); above it, the noise sets it");
   options.add("split_distance_px", lines.split_distance_px, "split-and-merge tolerance (px)");
-  options.add("min_length_px", lines.min_length_px, "shortest segment kept (px)");
-  options.add("min_contrast", lines.min_contrast,
+  options.add("min_segment_length_px", lines.min_length_px, "shortest segment kept (px)");
+  options.add("min_segment_contrast", lines.min_contrast,
               "weakest segment kept (mean grey-level step), besides the a contrario test");
   options.add("max_false_alarms", lines.max_false_alarms,
               "a contrario test: expected segments from noise alone per image");

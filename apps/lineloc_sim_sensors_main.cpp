@@ -18,12 +18,12 @@ int main(int argc, char** argv) {
                                      config.site_origin.z()};
   lineloc::ProgramOptions options("lineloc-sim-sensors",
                                   "simulated IMU, DGPS and compass logs of a ground robot");
-  options.add("output", config.folder, "dataset folder to write (created)");
+  options.add("out", config.folder, "dataset folder to write (created)");
   options.add("seed", config.trajectory.seed, "random seed: same seed, same files");
   options.add("duration_s", config.trajectory.duration_s, "length of the drive (s)");
   options.add("initial_still_s", config.trajectory.initial_still_s,
               "standing still at the start, for the IMU alignment (s)");
-  options.add("max_speed_mps", config.trajectory.max_speed_mps, "highest driving speed (m/s)");
+  options.add("max_speed_m_s", config.trajectory.max_speed_mps, "highest driving speed (m/s)");
   options.add("imu_rate_hz", config.imu.rate_hz, "IMU sample rate (Hz)");
   options.add("imu_noise", config.imu.noise, "false: exact IMU samples, zero biases");
   options.add("gps_outage_probability", config.gps.outage_probability,

@@ -60,7 +60,7 @@ case "$CITY" in
     SITE="$(basename "$CITY" | sed 's/\..*//')"
     SITE_CRS="${LINELOC_DEMO_SITE_CRS:-}"
     # A CRS given for a file that names none.
-    [ -z "$SITE_CRS" ] || MODEL_CRS=(--crs "$SITE_CRS")
+    [ -z "$SITE_CRS" ] || MODEL_CRS=(--city-model-crs "$SITE_CRS")
     read -r -a SITE_ORIGIN <<<"${LINELOC_DEMO_SITE_ORIGIN:-}"
     if [ ${#SITE_ORIGIN[@]} -ne 3 ]; then
       echo "demo: a city model file needs LINELOC_DEMO_SITE_ORIGIN=\"x y z\" (its CRS, near its centre)" >&2
@@ -98,11 +98,11 @@ CONNINFO="$("$ROOT/deploy/pg.sh" conninfo)"
 READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-migrate" --db "$CONNINFO"
 "$BIN/lineloc-load" --db "$CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
-  --origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
+  --site-origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
 echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)${SIM_ARGS[*]:+, ${SIM_ARGS[*]}}"
 "$BIN/lineloc-sim" --city-model "$CITY_MODEL" "${MODEL_CRS[@]}" --site-origin "${SITE_ORIGIN[@]}" \
-  --output "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
+  --out "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
   --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
   --start-utc "$START_UTC" --sun-from-clock "${SIM_ARGS[@]}"
 

@@ -148,7 +148,7 @@ class CityDrive : public ::testing::Test {
     fs::create_directories(work_);
     ASSERT_TRUE(fs::exists(city_.model)) << "city model missing: " << city_.model;
     std::vector<std::string> load = {"--db", database_.conninfo(), "--site", city_.site,
-                                     "--origin"};
+                                     "--site-origin"};
     load.insert(load.end(), city_.origin.begin(), city_.origin.end());
     load.push_back(city_.model.string());
     runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
@@ -165,7 +165,7 @@ class CityDrive : public ::testing::Test {
                      const std::vector<std::string>& options = {}) const {
     std::vector<std::string> simulate = {"--city-model",
                                          city_.model.string(),
-                                         "--output",
+                                         "--out",
                                          (work_ / dataset).string(),
                                          "--seed",
                                          std::to_string(seed),

@@ -40,10 +40,24 @@ constexpr int kQueries = 400;
 constexpr int kLoadBuildings = 2000;
 constexpr int kNaiveLoadBuildings = 200;
 
+// Creates database `name` in the cluster `server` connects to, when missing.
+void createDatabaseIfMissing(Connection& server, const std::string& name) {
+  if (server.execParams("SELECT 1 FROM pg_database WHERE datname = $1", {name}).rows() == 0) {
+    server.exec(fmt::format("CREATE DATABASE {}", name));
+  }
+}
+
 std::string benchConninfo() {
-  const char* conninfo = std::getenv("LINELOC_BENCH_DB");
-  return conninfo != nullptr ? conninfo
-                             : "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc_bench";
+  if (const char* conninfo = std::getenv("LINELOC_BENCH_DB")) {
+    return conninfo;
+  }
+  static const std::string conninfo = [] {
+    const std::string cluster = "host=127.0.0.1 port=55432 user=lineloc";
+    Connection server(cluster + " dbname=lineloc");
+    createDatabaseIfMissing(server, "lineloc_bench");
+    return cluster + " dbname=lineloc_bench";
+  }();
+  return conninfo;
 }
 
 const lineloc::citymodel::SyntheticCityOptions& cityOptions() {
@@ -79,9 +93,7 @@ Connection& loadDatabase() {
   static Connection connection = [] {
     Connection city(benchConninfo());
     const std::string name = city.exec("SELECT current_database()").text(0, 0) + "_load";
-    if (city.execParams("SELECT 1 FROM pg_database WHERE datname = $1", {name}).rows() == 0) {
-      city.exec(fmt::format("CREATE DATABASE {}", name));
-    }
+    createDatabaseIfMissing(city, name);
     // libpq takes the last value of a repeated keyword.
     Connection db(benchConninfo() + " dbname=" + name);
     lineloc::db::applyMigrations(db, lineloc::db::embeddedMigrations());

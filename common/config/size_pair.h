@@ -1,7 +1,6 @@
-#pragma once
-
 // Parsing of "AxB" size pairs as users type them on command lines: a
 // chessboard of 9x6 inner corners, an image of 640x480 pixels.
+#pragma once
 
 #include <optional>
 #include <string_view>

@@ -3,53 +3,14 @@
 // output, and an overlay on the undistorted image.
 #include <spdlog/spdlog.h>
 
-#include <Eigen/Core>
 #include <iostream>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
-#include <opencv2/imgcodecs.hpp>
 
-#include "common/camera/camera_calibration.h"
 #include "common/config/program_options.h"
-#include "robot/input/image_sequence.h"
-#include "robot/vision/features/feature_extractor.h"
-#include "robot/vision/features/feature_report.h"
+#include "robot/vision/features/features_tool.h"
 
 namespace {
 
-struct FeaturesConfig {
-  std::string image;
-  std::string camera_calibration;
-  std::string out;
-  lineloc::FeatureExtractorOptions extractor = lineloc::trackingFrontEndOptions();
-};
-
-// Without a calibration file: an ideal camera of the image's size.
-lineloc::CameraCalibration calibrationFor(const FeaturesConfig& config, const cv::Mat& image) {
-  if (!config.camera_calibration.empty()) {
-    return lineloc::readCameraCalibration(config.camera_calibration);
-  }
-  lineloc::CameraCalibration calibration;
-  calibration.camera.width = image.cols;
-  calibration.camera.height = image.rows;
-  calibration.camera.fx = calibration.camera.fy = std::max(image.cols, image.rows);
-  calibration.camera.cx = 0.5 * (image.cols - 1);
-  calibration.camera.cy = 0.5 * (image.rows - 1);
-  return calibration;
-}
-
-cv::Mat undistortForDisplay(const cv::Mat& image, const lineloc::CameraCalibration& calibration) {
-  if (calibration.distortion.empty()) {
-    return image;
-  }
-  cv::Mat K;
-  cv::eigen2cv(calibration.camera.K(), K);
-  cv::Mat undistorted;
-  cv::undistort(image, undistorted, K, calibration.distortion);
-  return undistorted;
-}
-
-void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
+void addOptions(lineloc::ProgramOptions& options, lineloc::FeaturesToolConfig& config) {
   options.app().add_option("image", config.image, "image file (8-bit grey or colour)")->required();
   lineloc::EdgeDetectorOptions& edges = config.extractor.edges;
   lineloc::LineExtractorOptions& lines = config.extractor.lines;
@@ -78,7 +39,7 @@ void addOptions(lineloc::ProgramOptions& options, FeaturesConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  FeaturesConfig config;
+  lineloc::FeaturesToolConfig config;
   lineloc::ProgramOptions options(
       "lineloc-features", "line segments and corners of one image, as the robot sends them");
   addOptions(options, config);
@@ -86,21 +47,12 @@ int main(int argc, char** argv) {
     return *exit_code;
   }
   try {
-    const cv::Mat image = lineloc::readGreyImage(config.image);
-    const lineloc::CameraCalibration calibration = calibrationFor(config, image);
-    lineloc::FeatureExtractor extractor(calibration, config.extractor);
-    const lineloc::FrameFeatures& features = extractor.extract(image);
-    lineloc::writeFeaturesText(std::cout, features);
-    if (!config.out.empty() &&
-        !cv::imwrite(config.out,
-                     lineloc::drawFeatures(undistortForDisplay(image, calibration), features))) {
-      throw std::runtime_error("cannot write overlay '" + config.out + "'");
-    }
+    const lineloc::FeaturesToolSummary summary = lineloc::runFeaturesTool(config, std::cout);
     spdlog::info(
         "{}: noise sigma {:.2f} grey levels, {} segments ({} rejected as explained by the noise), "
         "{} corners",
-        config.image, features.noise_sigma, features.segments.size(), features.rejected_segments,
-        features.corners.size());
+        config.image, summary.noise_sigma, summary.segments, summary.rejected_segments,
+        summary.corners);
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

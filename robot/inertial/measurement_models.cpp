@@ -116,4 +116,11 @@ PoseWithCovariance cameraPoseOf(const NavigationState& state, const ErrorCovaria
   return pose;
 }
 
+Matrix6d bodyPoseCovarianceOf(const Eigen::Isometry3d& T_world_camera,
+                              const Matrix6d& camera_covariance,
+                              const Eigen::Isometry3d& T_body_camera) {
+  return composeExactMotion({T_world_camera, camera_covariance}, T_body_camera.inverse())
+      .covariance;
+}
+
 }  // namespace lineloc

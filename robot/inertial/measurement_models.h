@@ -54,4 +54,11 @@ double wrapAngle(double angle_rad);
 PoseWithCovariance cameraPoseOf(const NavigationState& state, const ErrorCovariance& covariance,
                                 const Eigen::Isometry3d& T_body_camera);
 
+// The covariance of the body's pose error [dp; dtheta] from that of the
+// camera's pose T_world_camera: the camera's pose moved by the exact camera ->
+// body transform, the inverse of cameraPoseOf's lever-arm Jacobian.
+Matrix6d bodyPoseCovarianceOf(const Eigen::Isometry3d& T_world_camera,
+                              const Matrix6d& camera_covariance,
+                              const Eigen::Isometry3d& T_body_camera);
+
 }  // namespace lineloc

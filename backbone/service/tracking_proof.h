@@ -3,7 +3,7 @@
 // neighbouring basin, which tracking then follows, and tracking's covariance,
 // from one view's residuals, cannot tell. So until tracking is proven, every
 // OK fix states an unproven part U (PoseFix::unproven_*: one offset the fixes
-// share, which the robot fuses as one, inertial_navigator.h) and carries it
+// share, which the robot fuses as one, correlated_fix_model.h) and carries it
 // in its covariance:
 //   U = max(acquired_*_sigma, R, P),
 // the search's resolution (pose_acquisition.h), the farthest rival R still

@@ -219,13 +219,7 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
   DriveSimulationSummary summary;
   const citymodel::CityModel model = readCityModelFile(config.city_model);
   const std::string crs = resolveCrs(config, model);
-  if (!config.site_origin.empty() && config.site_origin.size() != 3) {
-    throw std::runtime_error("site_origin must have three numbers x y z");
-  }
-  const Eigen::Vector3d origin =
-      config.site_origin.empty()
-          ? defaultSiteOrigin(model)
-          : Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2]);
+  const Eigen::Vector3d origin = siteOriginOf(model, config.site_origin);
   const CityMesh city = buildCityMesh(model, origin);
   const OccupancyMap map(city.mesh);
   const std::vector<Eigen::Vector2d> route = planRoute(config, map);

@@ -19,13 +19,7 @@ std::optional<SceneMesh> loadFootprints(const EvaluationReportConfig& config) {
     return std::nullopt;
   }
   const citymodel::CityModel model = readCityModelFile(config.city_model);
-  if (!config.site_origin.empty() && config.site_origin.size() != 3) {
-    throw std::runtime_error("site_origin must have three numbers x y z");
-  }
-  const Eigen::Vector3d origin =
-      config.site_origin.empty()
-          ? defaultSiteOrigin(model)
-          : Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2]);
+  const Eigen::Vector3d origin = siteOriginOf(model, config.site_origin);
   return buildCityMesh(model, origin).mesh;
 }
 

@@ -37,6 +37,17 @@ Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model) {
   return {std::round(centre.x()), std::round(centre.y()), 0.0};
 }
 
+Eigen::Vector3d siteOriginOf(const citymodel::CityModel& model,
+                             const std::vector<double>& site_origin) {
+  if (site_origin.empty()) {
+    return defaultSiteOrigin(model);
+  }
+  if (site_origin.size() != 3) {
+    throw std::runtime_error("site_origin must have three numbers x y z");
+  }
+  return {site_origin[0], site_origin[1], site_origin[2]};
+}
+
 CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d& site_origin) {
   if (model.buildings.empty()) {
     throw std::invalid_argument("buildCityMesh: the city model has no buildings");

@@ -49,6 +49,11 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
 // the default site origin.
 Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model);
 
+// `site_origin` (model coordinates x y z) when given, else defaultSiteOrigin.
+// Throws std::runtime_error when it holds other than three numbers.
+Eigen::Vector3d siteOriginOf(const citymodel::CityModel& model,
+                             const std::vector<double>& site_origin);
+
 // Reads a CityJSON or CityJSON Lines (.jsonl) file into a model (buildings at
 // the highest level of detail). Throws naming the file when it is unreadable
 // or malformed.

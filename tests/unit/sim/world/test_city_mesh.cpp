@@ -8,6 +8,15 @@
 namespace lineloc {
 namespace {
 
+TEST(CityMesh, ASiteOriginIsTheOneGivenOrTheDefault) {
+  const std::filesystem::path path =
+      std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";
+  const citymodel::CityModel model = readCityModelFile(path.string());
+  EXPECT_EQ(siteOriginOf(model, {}), defaultSiteOrigin(model));
+  EXPECT_EQ(siteOriginOf(model, {84900.0, 447600.0, 1.0}), Eigen::Vector3d(84900.0, 447600.0, 1.0));
+  EXPECT_THROW(siteOriginOf(model, {84900.0, 447600.0}), std::runtime_error);
+}
+
 TEST(CityMesh, DelftModelBecomesASceneAroundTheSiteOrigin) {
   const std::filesystem::path path =
       std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json";

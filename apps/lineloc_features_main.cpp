@@ -11,7 +11,7 @@
 namespace {
 
 void addOptions(lineloc::ProgramOptions& options, lineloc::FeaturesToolConfig& config) {
-  options.app().add_option("image", config.image, "image file (8-bit grey or colour)")->required();
+  options.addPositional("image", config.image, "image file (8-bit grey or colour)", true);
   lineloc::EdgeDetectorOptions& edges = config.extractor.edges;
   lineloc::LineExtractorOptions& lines = config.extractor.lines;
   lineloc::ForstnerOptions& corners = config.extractor.corners;

@@ -12,11 +12,9 @@ int main(int argc, char** argv) {
   lineloc::FlowToolConfig config;
   lineloc::ProgramOptions options("lineloc-flow",
                                   "SAD optical flow of two frames, or disparity of a stereo pair");
-  options.app()
-      .add_option("images", config.images, "two frames (A B), or left and right with --stereo")
-      ->expected(2)
-      ->required();
-  options.app().add_flag("--stereo", config.stereo, "the images are a rectified stereo pair");
+  options.addPositional("images", config.images,
+                        "two frames (A B), or left and right with --stereo", 2, true);
+  options.addFlag("stereo", config.stereo, "the images are a rectified stereo pair");
   options.add("out", config.out, "PNG picture of the flow (colour code | arrows) or disparity");
   options.add("flo", config.flo, "also write the flow here, Middlebury .flo (empty: no)");
   options.add("pfm", config.pfm, "also write the disparity here, PFM (empty: no)");

@@ -15,10 +15,9 @@ int main(int argc, char** argv) {
   lineloc::db::LoadJobConfig config;
   lineloc::ProgramOptions program(
       "lineloc-load", "Load city models into a lineloc database: buildings, faces, 3D lines");
-  program.app().add_option(
-      "files", config.files,
-      "City models: .json/.city.json (CityJSON 1.1/2.0), .jsonl (CityJSON "
-      "Lines), .obj (Wavefront, needs --city-model-crs), .geojson (footprints)");
+  program.addPositional("files", config.files,
+                        "City models: .json/.city.json (CityJSON 1.1/2.0), .jsonl (CityJSON "
+                        "Lines), .obj (Wavefront, needs --city-model-crs), .geojson (footprints)");
   program.add("db", config.db, "libpq connection string of the database (a writing role)");
   program.add("site", config.site, "site to load into; created when new");
   program.add("city_model_crs", config.city_model_crs,

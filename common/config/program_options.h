@@ -6,12 +6,13 @@
 // a typo never silently leaves a default in force. Every program also takes
 // `--version` and `--log-level` (trace, debug, info, warn, error, critical,
 // off: the level of its log, info by default).
+//
+// The parsers (CLI11, yaml-cpp) stay behind this header: a program's main,
+// which only declares its options, does not compile them.
 #pragma once
 
-#include <yaml-cpp/yaml.h>
-
-#include <CLI/CLI.hpp>
-#include <functional>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,29 +22,34 @@ namespace lineloc {
 class ProgramOptions {
  public:
   ProgramOptions(const std::string& program, const std::string& description);
+  ~ProgramOptions();
+  ProgramOptions(const ProgramOptions&) = delete;
+  ProgramOptions& operator=(const ProgramOptions&) = delete;
 
-  // Declares an option. T is anything both CLI11 and yaml-cpp convert
-  // (numbers, strings, bool, std::vector of those).
+  // Declares an option. T is one of the types program_options.cpp
+  // instantiates: bool (true/false after the flag), int, unsigned, int64_t,
+  // uint64_t, double, float, std::string, and std::vector of each but bool.
   template <typename T>
-  void add(const std::string& key, T& value, const std::string& help) {
-    bind(key, app_.add_option(flagFor(key), value, help)->capture_default_str(), value);
-  }
+  void add(const std::string& key, T& value, const std::string& help);
 
   // Declares a vector option that takes exactly `count` values on the command
-  // line (`--origin 84900 447600 0`), so it does not swallow the positional
-  // arguments after it; the YAML key, or leaving it out, may still leave it empty.
+  // line (`--site-origin 84900 447600 0`), so it does not swallow the
+  // positional arguments after it; the YAML key, or leaving it out, may still
+  // leave it empty.
   template <typename T>
   void addFixedSize(const std::string& key, std::vector<T>& value, int count,
-                    const std::string& help) {
-    CLI::Option* option = app_.add_option(flagFor(key), value, help)->capture_default_str();
-    bind(key, option->expected(count)->allow_extra_args(false), value);
-  }
+                    const std::string& help);
 
   // Declares a boolean that is a bare flag on the command line (`--dry-run`)
   // and a true/false key in the YAML file.
-  void addFlag(const std::string& key, bool& value, const std::string& help) {
-    bind(key, app_.add_flag(flagFor(key), value, help)->capture_default_str(), value);
-  }
+  void addFlag(const std::string& key, bool& value, const std::string& help);
+
+  // Declares positional arguments, command line only: `count` of them (-1:
+  // any number), at least one when `required`.
+  void addPositional(const std::string& name, std::vector<std::string>& values,
+                     const std::string& help, int count = -1, bool required = false);
+  void addPositional(const std::string& name, std::string& value, const std::string& help,
+                     bool required);
 
   // Parses argv and the config file. Returns an exit code when the program
   // should stop now (after --help or --print-config, or with an error already
@@ -51,47 +57,14 @@ class ProgramOptions {
   // value after the config file and flags: a complete, commented config file.
   std::optional<int> parse(int argc, const char* const* argv);
 
-  // Applies a parsed YAML map (`source` names it in errors) to the options not
-  // given on the command line. Throws std::runtime_error on unknown keys or bad values.
-  void applyConfig(const YAML::Node& root, const std::string& source);
-
-  CLI::App& app() { return app_; }
+  // Applies a YAML map (`source` names it in errors) to the options not given
+  // on the command line. Throws std::runtime_error on malformed YAML, unknown
+  // keys or bad values.
+  void applyConfig(const std::string& yaml, const std::string& source);
 
  private:
-  struct Binding {
-    std::string key;
-    CLI::Option* option;
-    std::function<void(const YAML::Node&, const std::string&)> apply;
-    std::function<YAML::Node()> current;
-  };
-
-  // The YAML key `key` sets `value` unless the command line gave `option`.
-  template <typename T>
-  void bind(const std::string& key, CLI::Option* option, T& value) {
-    const auto apply = [option, &value, key](const YAML::Node& node, const std::string& file) {
-      if (option->count() > 0) {
-        return;
-      }
-      try {
-        value = node.as<T>();
-      } catch (const YAML::Exception& error) {
-        throwBadValue(file, key, node, error.what());
-      }
-    };
-    bindings_.push_back({key, option, apply, [&value] { return YAML::Node(value); }});
-  }
-
-  static std::string flagFor(const std::string& key);
-  [[noreturn]] static void throwBadValue(const std::string& file, const std::string& key,
-                                         const YAML::Node& node, const std::string& why);
-  void applyConfigFile(const std::string& path);
-  void printConfig() const;
-
-  CLI::App app_;
-  std::string config_path_;
-  bool print_config_ = false;
-  std::string log_level_ = "info";
-  std::vector<Binding> bindings_;
+  struct Parsers;
+  std::unique_ptr<Parsers> parsers_;
 };
 
 }  // namespace lineloc

@@ -26,7 +26,7 @@ class ProgramOptionsTest : public ::testing::Test {
     options_.add("domain_id", values_.domain_id, "domain");
     options_.add("pose", values_.pose, "pose");
     options_.addFixedSize("origin", values_.origin, 3, "origin x y z");
-    options_.app().add_option("files", values_.files, "input files");
+    options_.addPositional("files", values_.files, "input files");
   }
 
   std::string writeConfig(const std::string& text) {
@@ -62,10 +62,9 @@ TEST_F(ProgramOptionsTest, YamlSetsAndFlagsOverride) {
 }
 
 TEST_F(ProgramOptionsTest, UnknownKeyIsAnErrorNamingIt) {
-  EXPECT_THROW(options_.applyConfig(YAML::Load("rate_hz: 1\nrobot_idd: x\n"), "c.yml"),
-               std::runtime_error);
+  EXPECT_THROW(options_.applyConfig("rate_hz: 1\nrobot_idd: x\n", "c.yml"), std::runtime_error);
   try {
-    options_.applyConfig(YAML::Load("robot_idd: x\n"), "c.yml");
+    options_.applyConfig("robot_idd: x\n", "c.yml");
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("c.yml:1: unknown key 'robot_idd'"), std::string::npos)
         << error.what();
@@ -73,10 +72,9 @@ TEST_F(ProgramOptionsTest, UnknownKeyIsAnErrorNamingIt) {
 }
 
 TEST_F(ProgramOptionsTest, BadValuesAreErrors) {
-  EXPECT_THROW(options_.applyConfig(YAML::Load("rate_hz: fast\n"), "c.yml"), std::runtime_error);
-  EXPECT_THROW(options_.applyConfig(YAML::Load("domain_id: [1, 2]\n"), "c.yml"),
-               std::runtime_error);
-  EXPECT_THROW(options_.applyConfig(YAML::Load("- a\n- b\n"), "c.yml"), std::runtime_error);
+  EXPECT_THROW(options_.applyConfig("rate_hz: fast\n", "c.yml"), std::runtime_error);
+  EXPECT_THROW(options_.applyConfig("domain_id: [1, 2]\n", "c.yml"), std::runtime_error);
+  EXPECT_THROW(options_.applyConfig("- a\n- b\n", "c.yml"), std::runtime_error);
 }
 
 TEST_F(ProgramOptionsTest, MissingOrBrokenFileExitsNonZero) {
@@ -98,7 +96,7 @@ TEST_F(ProgramOptionsTest, PrintedConfigReadsBackToTheSameValues) {
   options.add("domain_id", reread.domain_id, "domain");
   options.add("pose", reread.pose, "pose");
   options.addFixedSize("origin", reread.origin, 3, "origin x y z");
-  options.applyConfig(YAML::Load(printed), "printed.yml");
+  options.applyConfig(printed, "printed.yml");
   EXPECT_EQ(reread.robot_id, "rover-9");
   EXPECT_EQ(reread.pose, (std::vector<double>{4, 5, 6}));
   EXPECT_DOUBLE_EQ(reread.rate_hz, 10.0);

@@ -213,6 +213,26 @@ void HypothesisSet::weigh() {
   }
 }
 
+bool HypothesisSet::leadsEveryView(const Hypothesis& hypothesis) const {
+  if (static_cast<int>(keyframes_.size()) < options_.max_views) {
+    return false;
+  }
+  for (const uint64_t view : windowFrames()) {
+    const auto own = hypothesis.views.find(view);
+    if (own == hypothesis.views.end() || own->second.mean() < options_.none_score) {
+      return false;
+    }
+    for (const Hypothesis& other : hypotheses_) {
+      const auto score = other.views.find(view);
+      if (&other != &hypothesis && score != other.views.end() &&
+          score->second.mean() > own->second.mean()) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 std::optional<HypothesisDecision> HypothesisSet::decision(
     int min_inliers, const std::function<bool(const PoseWithCovariance&)>& trackable,
     std::string* undecided) const {
@@ -240,8 +260,8 @@ std::optional<HypothesisDecision> HypothesisSet::decision(
     }
     return std::nullopt;
   };
-  if (best.proposed < 2) {
-    return undecidedBecause("was not proposed by two frames' grids");
+  if (best.proposed < 2 && !leadsEveryView(best)) {
+    return undecidedBecause("was neither proposed by two frames' grids nor led every view");
   }
   if (latest.status != AlignmentStatus::kOk || latest.inliers < min_inliers ||
       latest.score < options_.none_score) {

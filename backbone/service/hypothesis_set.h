@@ -41,7 +41,10 @@
 // motion: its odometry is wrong); when the searches' grids proposed it in at
 // least two frames, not only the robot's motion (a local alignment from a
 // carried pose settles in whatever basin holds it, right or wrong, so only a
-// search that finds it again from afar confirms it); when in the latest frame
+// search that finds it again from afar confirms it), or it led every view of
+// a full window (max_views views, the robot's motion between each: a wrong
+// basin that one view's alignment settles in rarely stays the best pose of
+// views seen from metres apart); when in the latest frame
 // no pose elsewhere scores above it, and it aligned well-conditioned with at least
 // min_inliers inliers (AcquisitionOptions::min_inliers) and a score of at
 // least none_score; and, when that alignment is too wide to track from (the
@@ -169,6 +172,9 @@ class HypothesisSet {
     double evidence = 0.0;
   };
 
+  // Whether the window holds max_views views and `hypothesis` scored at least
+  // none_score and no less than any other hypothesis in each of them.
+  bool leadsEveryView(const Hypothesis& hypothesis) const;
   // Whether `frame` starts a new view.
   bool startsView(const SearchedFrame& frame) const;
   // Drops the views that leave the window when `frame` joins it; returns

@@ -206,16 +206,40 @@ TEST(HypothesisSet, AHypothesisFoundLateIsWeighedOnTheEarlierFramesToo) {
   expectAtTruth(robot.see(movedOn(1.2)), 1.2);
 }
 
-TEST(HypothesisSet, APoseOnlyTheRobotsMotionCarriedIsNotTaken) {
+TEST(HypothesisSet, APoseOnlyTheRobotsMotionCarriesIsTakenOnceItLedAFullWindowOfViews) {
   Robot robot;
   // Proposed once; later frames align it from where the motion carries it.
-  Frame first = movedOn(0.0, 25.0);
-  robot.see(first);
-  for (int frame = 1; frame < 6; ++frame) {
+  robot.see(movedOn(0.0, 25.0));
+  const int full_window = HypothesisSetOptions{}.max_views;
+  for (int frame = 1; frame < full_window - 1; ++frame) {
     Frame carried_only = movedOn(0.6 * frame, 25.0);
     carried_only.proposed.clear();
     EXPECT_FALSE(robot.see(carried_only)) << "frame " << frame;
+    EXPECT_NE(robot.undecided().find("nor led every view"), std::string::npos) << robot.undecided();
   }
+  Frame last = movedOn(0.6 * (full_window - 1), 25.0);
+  last.proposed.clear();
+  expectAtTruth(robot.see(last), 0.6 * (full_window - 1));
+}
+
+TEST(HypothesisSet, APoseOnlyTheRobotsMotionCarriesIsNotTakenWhileAViewPreferredAnother) {
+  Robot robot;
+  robot.see(movedOn(0.0, 25.0));
+  // The second view's grid finds another pose that covers that view better.
+  Frame rival_view = movedOn(0.6, 25.0);
+  rival_view.proposed = {{at(6.0, 20.6), 27.0}};
+  robot.see(rival_view);
+  const int full_window = HypothesisSetOptions{}.max_views;
+  for (int frame = 2; frame <= full_window; ++frame) {
+    Frame carried_only = movedOn(0.6 * frame, 25.0);
+    carried_only.proposed.clear();
+    EXPECT_FALSE(robot.see(carried_only))
+        << "frame " << frame << ": the rival's view is in the window";
+  }
+  // Once the rival's view has left the window, the truth led every view in it.
+  Frame later = movedOn(0.6 * (full_window + 1), 25.0);
+  later.proposed.clear();
+  expectAtTruth(robot.see(later), 0.6 * (full_window + 1));
 }
 
 TEST(HypothesisSet, TheLatestFrameMustAlignItBestOfAllWithEnoughInliers) {

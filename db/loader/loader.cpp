@@ -48,9 +48,9 @@ CityModel readModel(std::string_view text, const std::string& source, InputForma
 int resolveSourceCrs(const CityModel& model, const std::string& source,
                      const LoadOptions& options) {
   if (model.epsg && options.file_epsg && *model.epsg != *options.file_epsg) {
-    throw ModelError(
-        source, "", "conflicting CRS",
-        fmt::format("the file says EPSG:{}, --city-model-crs says EPSG:{}", *model.epsg, *options.file_epsg));
+    throw ModelError(source, "", "conflicting CRS",
+                     fmt::format("the file says EPSG:{}, --city-model-crs says EPSG:{}",
+                                 *model.epsg, *options.file_epsg));
   }
   if (model.epsg) {
     return *model.epsg;
@@ -58,8 +58,9 @@ int resolveSourceCrs(const CityModel& model, const std::string& source,
   if (options.file_epsg) {
     return *options.file_epsg;
   }
-  throw ModelError(source, "", "no CRS",
-                   "the file names no coordinate reference system; give it with --city-model-crs EPSG:N");
+  throw ModelError(
+      source, "", "no CRS",
+      "the file names no coordinate reference system; give it with --city-model-crs EPSG:N");
 }
 
 void validateAll(CityModel& model, const std::string& source, const LoadOptions& options) {
@@ -179,8 +180,7 @@ LoadReport summarise(const std::string& source, const PreparedModel& prepared) {
 }
 
 bool storeModel(Connection& connection, const LoadOptions& options, const SourceRecord& record,
-                const PreparedModel& prepared,
-                const ProgressCallback& progress) {
+                const PreparedModel& prepared, const ProgressCallback& progress) {
   const size_t total = prepared.model.buildings.size();
   const int srid = prepared.model.epsg.value_or(prepared.source_epsg);
   bool unchanged = false;

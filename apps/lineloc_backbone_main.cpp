@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backbone/service/backbone_service.h"
+#include "common/config/option_values.h"
 #include "common/config/program_options.h"
 #include "common/parallel/resident_heap.h"
 
@@ -59,10 +60,7 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, requestStop);
   lineloc::keepFreedMemoryResident();
   try {
-    if (!sun_deg.empty()) {
-      config.sunlight =
-          lineloc::Sunlight::fromAzimuthElevation(sun_deg[0], sun_deg[1], config.ambient_fraction);
-    }
+    config.sunlight = lineloc::sunOption(sun_deg, config.ambient_fraction, "sun");
     const lineloc::BackboneCounters counters = lineloc::runBackbone(config, g_stop);
     std::cout << fmt::format(
         "lineloc-backbone: {} received, {} answered ({} with a pose, {} searched from a poor "

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "common/config/option_values.h"
 #include "db/citymodel/synthetic_city.h"
 #include "db/loader/line_export.h"
 #include "db/migrations.h"
@@ -21,18 +22,6 @@ std::optional<int> epsgOf(const std::string& value) {
     return std::nullopt;
   }
   return citymodel::parseEpsgCode(value);
-}
-
-std::optional<Eigen::Vector3d> pointOf(const std::vector<double>& values,
-                                       const std::string& option) {
-  if (values.empty()) {
-    return std::nullopt;
-  }
-  if (values.size() != 3) {
-    throw std::invalid_argument(
-        fmt::format("{} needs 3 numbers: x y z (got {})", option, values.size()));
-  }
-  return Eigen::Vector3d(values[0], values[1], values[2]);
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -53,8 +42,9 @@ LoadOptions loadOptionsOf(const LoadJobConfig& config) {
   options.lines.coplanar_angle_rad = config.coplanar_angle_deg * std::numbers::pi / 180.0;
   options.file_epsg = epsgOf(config.city_model_crs);
   options.site_epsg = epsgOf(config.site_crs);
-  options.site_origin = pointOf(config.site_origin, "--site-origin");
-  options.obj_offset = pointOf(config.obj_offset, "--obj-offset").value_or(Eigen::Vector3d::Zero());
+  options.site_origin = pointOption(config.site_origin, "site_origin");
+  options.obj_offset =
+      pointOption(config.obj_offset, "obj_offset").value_or(Eigen::Vector3d::Zero());
   return options;
 }
 

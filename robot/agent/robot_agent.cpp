@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "common/camera/camera_calibration.h"
+#include "common/config/option_values.h"
 #include "common/geodesy/site_projection.h"
 #include "common/geometry/pose.h"
 #include "common/messages/message_validator.h"
@@ -35,22 +36,6 @@ constexpr int64_t kPollNs = 2'000'000;
 // this long after its exposure when no answer comes (ImagePrefetcher): by
 // then the answer is late beyond the latency it is measured against.
 constexpr int64_t kDecodeUnansweredAfterNs = 15'000'000;
-
-PoseWithCovariance configuredPose(const RobotConfig& config) {
-  const std::vector<double>& p = config.predicted_pose;
-  if (p.size() != 7) {
-    throw std::runtime_error("predicted_pose needs 7 numbers: tx ty tz qx qy qz qw");
-  }
-  const Eigen::Quaterniond q(p[6], p[3], p[4], p[5]);
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
-    throw std::runtime_error("predicted_pose: quaternion is not of unit norm");
-  }
-  PoseWithCovariance pose;
-  pose.pose = makePose({p[0], p[1], p[2]}, q);
-  pose.covariance = diagonalPoseCovariance(config.predicted_position_sigma_m,
-                                           config.predicted_rotation_sigma_deg * M_PI / 180.0);
-  return pose;
-}
 
 // Receives the PoseFix answers for this robot, checks them and hands the good
 // ones on; records latency from each frame's exposure.
@@ -211,12 +196,11 @@ std::unique_ptr<NmeaGpsDecoder> gpsDecoder(const RobotConfig& config) {
   if (config.site_crs.empty()) {
     return nullptr;
   }
-  if (config.site_origin.size() != 3) {
-    throw std::runtime_error("site_origin needs 3 numbers: x y z");
+  const std::optional<Eigen::Vector3d> origin = pointOption(config.site_origin, "site_origin");
+  if (!origin) {
+    throw std::invalid_argument("site_origin: x y z needed with site_crs");
   }
-  return std::make_unique<NmeaGpsDecoder>(SiteProjection(
-      config.site_crs,
-      Eigen::Vector3d(config.site_origin[0], config.site_origin[1], config.site_origin[2])));
+  return std::make_unique<NmeaGpsDecoder>(SiteProjection(config.site_crs, *origin));
 }
 
 InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGpsDecoder* gps,
@@ -314,7 +298,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         fmt::format("start_at_s must be >= 0 seconds, got {}", config.start_at_s));
   }
   const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
-  const PoseWithCovariance configured = configuredPose(config);
+  const PoseWithCovariance configured =
+      poseOption(config.predicted_pose, config.predicted_position_sigma_m,
+                 config.predicted_rotation_sigma_deg, "predicted_pose");
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
   SensorStreams streams =
       loadSensorStreams(config.images, gps.get(), static_cast<int64_t>(config.start_at_s * 1e9));

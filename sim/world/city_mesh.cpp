@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/config/option_values.h"
 #include "common/geometry/polygon_triangulation.h"
 #include "db/citymodel/cityjson_reader.h"
 
@@ -39,13 +40,7 @@ Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model) {
 
 Eigen::Vector3d siteOriginOf(const citymodel::CityModel& model,
                              const std::vector<double>& site_origin) {
-  if (site_origin.empty()) {
-    return defaultSiteOrigin(model);
-  }
-  if (site_origin.size() != 3) {
-    throw std::runtime_error("site_origin must have three numbers x y z");
-  }
-  return {site_origin[0], site_origin[1], site_origin[2]};
+  return pointOption(site_origin, "site_origin").value_or(defaultSiteOrigin(model));
 }
 
 CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d& site_origin) {

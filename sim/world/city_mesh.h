@@ -50,7 +50,7 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
 Eigen::Vector3d defaultSiteOrigin(const citymodel::CityModel& model);
 
 // `site_origin` (model coordinates x y z) when given, else defaultSiteOrigin.
-// Throws std::runtime_error when it holds other than three numbers.
+// Throws std::invalid_argument when it holds other than three numbers.
 Eigen::Vector3d siteOriginOf(const citymodel::CityModel& model,
                              const std::vector<double>& site_origin);
 

@@ -106,11 +106,11 @@ TEST_F(OfflineTracking, RefusesAPredictedPoseThatIsNoPose) {
   try {
     runOfflineTracking(config, out);
     FAIL() << "six numbers accepted as a pose";
-  } catch (const std::runtime_error& error) {
+  } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("predicted_pose"), std::string::npos) << error.what();
   }
   config.predicted_pose = {1.0, 2.0, 1.5, 0.0, 0.0, 0.0, 0.0};
-  EXPECT_THROW(runOfflineTracking(config, out), std::runtime_error);
+  EXPECT_THROW(runOfflineTracking(config, out), std::invalid_argument);
 }
 
 TEST_F(OfflineTracking, NamesAnImageFolderThatIsMissing) {

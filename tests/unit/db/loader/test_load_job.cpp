@@ -63,10 +63,10 @@ TEST(LoadJob, ConvertsTheProgramsOptions) {
 TEST(LoadJob, RefusesMalformedOptionsNamingThem) {
   LoadJobConfig config;
   config.site_origin = {84900.0, 447600.0};
-  EXPECT_NE(errorOf(config).find("--site-origin"), std::string::npos) << errorOf(config);
+  EXPECT_NE(errorOf(config).find("site_origin"), std::string::npos) << errorOf(config);
   config = {};
   config.obj_offset = {1.0};
-  EXPECT_NE(errorOf(config).find("--obj-offset"), std::string::npos) << errorOf(config);
+  EXPECT_NE(errorOf(config).find("obj_offset"), std::string::npos) << errorOf(config);
   config = {};
   config.city_model_crs = "RD New";
   EXPECT_ANY_THROW(loadOptionsOf(config));

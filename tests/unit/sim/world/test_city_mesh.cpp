@@ -14,7 +14,7 @@ TEST(CityMesh, ASiteOriginIsTheOneGivenOrTheDefault) {
   const citymodel::CityModel model = readCityModelFile(path.string());
   EXPECT_EQ(siteOriginOf(model, {}), defaultSiteOrigin(model));
   EXPECT_EQ(siteOriginOf(model, {84900.0, 447600.0, 1.0}), Eigen::Vector3d(84900.0, 447600.0, 1.0));
-  EXPECT_THROW(siteOriginOf(model, {84900.0, 447600.0}), std::runtime_error);
+  EXPECT_THROW(siteOriginOf(model, {84900.0, 447600.0}), std::invalid_argument);
 }
 
 TEST(CityMesh, DelftModelBecomesASceneAroundTheSiteOrigin) {

@@ -12,6 +12,8 @@
 #include <thread>
 
 #include "backbone/map/database_tile_fetcher.h"
+#include "backbone/service/pose_fix_publisher.h"
+#include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/parallel/periodic_task.h"
 #include "common/parallel/realtime_thread.h"
@@ -23,6 +25,11 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
+
+std::string notInItsPartition(const lineloc_msg_LineSet& message) {
+  return fmt::format("robot_id '{}' written outside partition '{}'", std::string(message.robot_id),
+                     robotPartition(message.robot_id));
+}
 
 // The sun over the configured site by the clock, when asked for.
 std::optional<SiteSun> clockSun(const BackboneConfig& config) {
@@ -139,10 +146,11 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
-  dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(dds::kHistoryDepth));
-  dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(participant,
-                                                                 dds::Qos(dds::kHistoryDepth));
-  dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::poseFixQos(dds::kHistoryDepth));
+  dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(dds::kHistoryDepth),
+                                          kEveryRobotPartition);
+  dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(
+      participant, dds::Qos(dds::kHistoryDepth), kEveryRobotPartition);
+  PoseFixPublisher fixes(participant, static_cast<int64_t>(config.forget_robot_after_s * 1e9));
   LineSetHandler handler(map, limits, pipeline);
   spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
 
@@ -154,21 +162,35 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       runThreadRealtimeLogged(config.realtime_priority, "exposure notices' thread");
       while (!stop) {
         if (exposures.waitForData(kWaitNs)) {
-          exposures.takeEach(
-              [&](const lineloc_msg_LineSet& message) { handler.handleExposure(message); });
+          exposures.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
+            if (speaksFor(exposures.writerPartitions(info.publication_handle), message.robot_id)) {
+              handler.handleExposure(message);
+            } else {
+              handler.countDrop("exposure notice", message.sequence_number,
+                                notInItsPartition(message));
+            }
+          });
         }
       }
     });
     // After every background thread has started: they stay time-shared.
     runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
+    uint32_t robot_writers_seen = 0;
     while (!stop) {
-      if (!reader.waitForData(kWaitNs)) {
+      const bool data = reader.waitForData(kWaitNs);
+      if (!data || reader.matchedWriters() != robot_writers_seen) {
+        robot_writers_seen = reader.matchedWriters();
+        fixes.follow(reader.matchedWritersPartitions(), steadyClockNs());
+      }
+      if (!data) {
         handler.forgetSilentRobotsWhenDue(steadyClockNs());
         continue;
       }
-      reader.takeEach([&](const lineloc_msg_LineSet& message) {
-        if (const auto fix = handler.handle(message)) {
-          writer.write(toMessage(*fix));
+      reader.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
+        if (!speaksFor(reader.writerPartitions(info.publication_handle), message.robot_id)) {
+          handler.countDrop("LineSet", message.sequence_number, notInItsPartition(message));
+        } else if (const auto fix = handler.handle(message)) {
+          fixes.publish(*fix, steadyClockNs());
         }
       });
     }

@@ -141,6 +141,10 @@ class LineSetHandler {
 
   BackboneCounters counters() const;
 
+  // Counts a dropped message (malformed, or refused before handle()) and
+  // logs `kind`'s drop with `error`.
+  void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
+
  private:
   // Records that `robot_id`'s LineSet arrived at `arrival_ns` (steady
   // clock), first forgetting the silent robots when that is due: itself too
@@ -189,8 +193,6 @@ class LineSetHandler {
   std::optional<std::vector<VisibleSegment>> visibilityAhead(
       const LineSetData& line_set, std::optional<Notice> notice,
       const std::shared_ptr<const PreparedMap>& map, const PoseWithCovariance& prior);
-  // Counts a malformed message and logs `kind`'s drop.
-  void countDrop(const char* kind, uint32_t sequence_number, const std::string& error);
   // Logs a search's outcome.
   static void logSearch(const char* kind, const LineSetData& line_set, const Alignment& alignment,
                         const SearchSummary& summary, const std::string& outcome,

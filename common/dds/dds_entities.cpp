@@ -39,9 +39,8 @@ ParticipantGuid toParticipantGuid(const dds_guid_t& guid) {
   return result;
 }
 
-}  // namespace
-
-std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, EndpointKind kind) {
+// The instance handles of the endpoints matched with `endpoint`.
+std::vector<dds_instance_handle_t> matchedHandles(dds_entity_t endpoint, EndpointKind kind) {
   const bool is_writer = kind == EndpointKind::kWriter;
   const auto matched = [&](dds_instance_handle_t* handles, size_t capacity) {
     return check(is_writer ? dds_get_matched_subscriptions(endpoint, handles, capacity)
@@ -51,8 +50,15 @@ std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, Endpoint
   std::vector<dds_instance_handle_t> handles(static_cast<size_t>(matched(nullptr, 0)));
   handles.resize(
       std::min(handles.size(), static_cast<size_t>(matched(handles.data(), handles.size()))));
+  return handles;
+}
+
+}  // namespace
+
+std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, EndpointKind kind) {
+  const bool is_writer = kind == EndpointKind::kWriter;
   std::vector<ParticipantGuid> participants;
-  for (const dds_instance_handle_t handle : handles) {
+  for (const dds_instance_handle_t handle : matchedHandles(endpoint, kind)) {
     dds_builtintopic_endpoint_t* matched_endpoint =
         is_writer ? dds_get_matched_subscription_data(endpoint, handle)
                   : dds_get_matched_publication_data(endpoint, handle);
@@ -63,6 +69,37 @@ std::vector<ParticipantGuid> matchedParticipants(dds_entity_t endpoint, Endpoint
     dds_builtintopic_free_endpoint(matched_endpoint);
   }
   return participants;
+}
+
+std::vector<std::string> matchedWriterPartitions(dds_entity_t reader,
+                                                 dds_instance_handle_t publication) {
+  dds_builtintopic_endpoint_t* writer = dds_get_matched_publication_data(reader, publication);
+  if (writer == nullptr) {
+    return {};
+  }
+  uint32_t count = 0;
+  char** names = nullptr;
+  std::vector<std::string> partitions;
+  if (dds_qget_partition(writer->qos, &count, &names)) {
+    for (uint32_t i = 0; i < count; ++i) {
+      partitions.emplace_back(names[i]);
+      dds_free(names[i]);
+    }
+    dds_free(names);
+  }
+  dds_builtintopic_free_endpoint(writer);
+  return partitions;
+}
+
+std::vector<std::string> partitionsOfMatchedWriters(dds_entity_t reader) {
+  std::vector<std::string> partitions;
+  for (const dds_instance_handle_t handle : matchedHandles(reader, EndpointKind::kReader)) {
+    const std::vector<std::string> of_writer = matchedWriterPartitions(reader, handle);
+    partitions.insert(partitions.end(), of_writer.begin(), of_writer.end());
+  }
+  std::sort(partitions.begin(), partitions.end());
+  partitions.erase(std::unique(partitions.begin(), partitions.end()), partitions.end());
+  return partitions;
 }
 
 Entity::Entity(dds_entity_t handle, const char* what_created) : handle_(handle) {
@@ -122,6 +159,20 @@ Domain::Domain(uint32_t domain_id, const std::string& config_files)
 
 Participant::Participant(const Domain& domain)
     : participant_(dds_create_participant(domain.id(), nullptr, nullptr), "create participant") {}
+
+Entity createGroup(const Participant& participant, GroupKind kind, const std::string& partition) {
+  if (partition.empty()) {
+    return {};
+  }
+  dds_qos_t* qos = dds_create_qos();
+  const char* names[] = {partition.c_str()};
+  dds_qset_partition(qos, 1, names);
+  const dds_entity_t group = kind == GroupKind::kPublisher
+                                 ? dds_create_publisher(participant.handle(), qos, nullptr)
+                                 : dds_create_subscriber(participant.handle(), qos, nullptr);
+  dds_delete_qos(qos);
+  return Entity(group, kind == GroupKind::kPublisher ? "create publisher" : "create subscriber");
+}
 
 ParticipantGuid Participant::guid() const {
   dds_guid_t guid;

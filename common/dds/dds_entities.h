@@ -99,6 +99,27 @@ class Qos {
   dds_qos_t* qos_;
 };
 
+// The publisher or subscriber of the writers or readers of one partition
+// (DDS 1.4 §2.2.3.13): a writer and a reader match only where their
+// partitions do, '*' and '?' in a name matching as in fnmatch. For the
+// default partition (empty name) no entity is created and endpoints are
+// created under the participant itself.
+enum class GroupKind { kPublisher, kSubscriber };
+Entity createGroup(const Participant& participant, GroupKind kind, const std::string& partition);
+
+// Where the endpoints of `group` (from createGroup) are created.
+inline dds_entity_t parentOf(const Entity& group, const Participant& participant) {
+  return group.handle() > 0 ? group.handle() : participant.handle();
+}
+
+// The partitions of the writer `publication` matched with `reader`; empty
+// when it is no longer matched or writes in the default partition.
+std::vector<std::string> matchedWriterPartitions(dds_entity_t reader,
+                                                 dds_instance_handle_t publication);
+
+// Every partition some writer matched with `reader` writes in, sorted, once each.
+std::vector<std::string> partitionsOfMatchedWriters(dds_entity_t reader);
+
 // Message type traits, specialised next to each IDL type (common/messages/topics.h):
 // the type's own topic. A second topic of the same type has traits of its own,
 // given to Writer and Reader as `Topic`.
@@ -118,11 +139,13 @@ uint32_t serializedSizeBytes(const Message& sample) {
 template <typename Message, typename Topic = TopicTraits<Message>>
 class Writer {
  public:
-  Writer(const Participant& participant, const Qos& qos)
+  Writer(const Participant& participant, const Qos& qos, const std::string& partition = {})
       : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
                                 nullptr),
                "topic"),
-        writer_(dds_create_writer(participant.handle(), topic_.handle(), qos.get(), nullptr),
+        publisher_(createGroup(participant, GroupKind::kPublisher, partition)),
+        writer_(dds_create_writer(parentOf(publisher_, participant), topic_.handle(), qos.get(),
+                                  nullptr),
                 "writer") {}
 
   void write(const Message& sample) { check(dds_write(writer_.handle(), &sample), "dds_write"); }
@@ -140,6 +163,7 @@ class Writer {
 
  private:
   Entity topic_;
+  Entity publisher_;
   Entity writer_;
 };
 
@@ -149,16 +173,20 @@ struct SampleInfo {
   // comparable with the reader's clock only where the two hosts' clocks are
   // synchronised (one host, or PTP).
   int64_t source_stamp_ns = 0;
+  // The writer, for Reader::writerPartitions.
+  dds_instance_handle_t publication_handle = 0;
 };
 
 template <typename Message, typename Topic = TopicTraits<Message>>
 class Reader {
  public:
-  Reader(const Participant& participant, const Qos& qos)
+  Reader(const Participant& participant, const Qos& qos, const std::string& partition = {})
       : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
                                 nullptr),
                "topic"),
-        reader_(dds_create_reader(participant.handle(), topic_.handle(), qos.get(), nullptr),
+        subscriber_(createGroup(participant, GroupKind::kSubscriber, partition)),
+        reader_(dds_create_reader(parentOf(subscriber_, participant), topic_.handle(), qos.get(),
+                                  nullptr),
                 "reader"),
         waitset_(dds_create_waitset(participant.handle()), "waitset"),
         condition_(dds_create_readcondition(reader_.handle(), DDS_ANY_STATE), "read condition") {
@@ -194,7 +222,7 @@ class Reader {
         }
         const Message& message = *static_cast<const Message*>(samples[i]);
         if constexpr (std::is_invocable_v<Handler&, const Message&, const SampleInfo&>) {
-          handle(message, SampleInfo{infos[i].source_timestamp});
+          handle(message, SampleInfo{infos[i].source_timestamp, infos[i].publication_handle});
         } else {
           handle(message);
         }
@@ -220,8 +248,19 @@ class Reader {
     return matchedParticipants(reader_.handle(), EndpointKind::kReader);
   }
 
+  // The partitions of the writer of a sample (SampleInfo::publication_handle).
+  std::vector<std::string> writerPartitions(dds_instance_handle_t publication) const {
+    return matchedWriterPartitions(reader_.handle(), publication);
+  }
+
+  // The partitions the matched writers write in (partitionsOfMatchedWriters).
+  std::vector<std::string> matchedWritersPartitions() const {
+    return partitionsOfMatchedWriters(reader_.handle());
+  }
+
  private:
   Entity topic_;
+  Entity subscriber_;
   Entity reader_;
   Entity waitset_;
   Entity condition_;

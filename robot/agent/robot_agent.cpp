@@ -17,6 +17,7 @@
 #include "common/geometry/pose.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
+#include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/parallel/realtime_thread.h"
 #include "common/time/clock.h"
@@ -45,7 +46,7 @@ class FixReceiver {
 
   FixReceiver(const dds::Participant& participant, const RobotConfig& config,
               RobotRunSummary& summary, Handler handler)
-      : reader_(participant, dds::poseFixQos(dds::kHistoryDepth)),
+      : reader_(participant, dds::poseFixQos(dds::kHistoryDepth), robotPartition(config.robot_id)),
         robot_id_(config.robot_id),
         trajectory_(config.trajectory_out),
         fix_log_(config.fix_log_out.empty() ? std::nullopt
@@ -328,10 +329,12 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
            ? summary.fixes_applied
            : summary.fixes_rejected);
   });
-  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(dds::kHistoryDepth));
+  const std::string partition = robotPartition(config.robot_id);
+  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(dds::kHistoryDepth), partition);
   dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic> exposure_writer(
-      participant, dds::Qos(dds::kHistoryDepth));
-  dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(dds::kHistoryDepth));
+      participant, dds::Qos(dds::kHistoryDepth), partition);
+  dds::Writer<lineloc_msg_RobotState> state_writer(participant, dds::Qos(dds::kHistoryDepth),
+                                                   partition);
   TumWriter fused(config.fused_trajectory_out);
   std::optional<PoseCovarianceLogWriter> state_log;
   if (!config.state_log_out.empty()) {

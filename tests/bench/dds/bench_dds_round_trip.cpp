@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "common/messages/messages.h"
+#include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "common/time/percentile.h"
@@ -29,12 +30,13 @@ namespace {
 constexpr int kSegments = 300;
 constexpr const char* kPgPort = "55434";
 constexpr int kDdsperfSeconds = 5;
+constexpr char kRobotId[] = "bench";
 
 std::vector<double> g_round_trip_us;
 
 LineSetData lineSetOf(int segments) {
   LineSetData data;
-  data.robot_id = "bench";
+  data.robot_id = kRobotId;
   data.camera = {500, 500, 320, 240, 0, 640, 480};
   for (int i = 0; i < segments; ++i) {
     ImageSegment segment;
@@ -67,8 +69,9 @@ void BM_LineSetRoundTrip(benchmark::State& state) {
 
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());
   dds::Participant participant(domain);
-  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::poseFixQos(8));
-  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(8));
+  const std::string partition = robotPartition(kRobotId);
+  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::poseFixQos(8), partition);
+  dds::Writer<lineloc_msg_LineSet> writer(participant, dds::Qos(8), partition);
   while (writer.matchedReaders() == 0 || fixes.matchedWriters() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

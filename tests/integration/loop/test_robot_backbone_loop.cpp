@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/messages/messages.h"
+#include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
@@ -71,16 +72,20 @@ void writeCalibration(const fs::path& path) {
   storage << "distortion_coefficients" << cv::Mat::zeros(5, 1, CV_64F);
 }
 
-// The test's own DDS participant: sees every LineSet and PoseFix on the domain.
+// The robot whose messages the observer writes.
+constexpr char kProbeRobot[] = "probe";
+
+// The test's own DDS participant: sees every LineSet and PoseFix on the
+// domain, and writes LineSets in the partition of kProbeRobot.
 class Observer {
  public:
   Observer()
       : domain_(test::testDomainId(), test::testDdsConfig()),
         participant_(domain_),
-        line_sets_(participant_, dds::Qos(256)),
-        fixes_(participant_, dds::poseFixQos(256)),
-        writer_(participant_, dds::Qos(dds::kHistoryDepth)),
-        exposure_writer_(participant_, dds::Qos(dds::kHistoryDepth)) {}
+        line_sets_(participant_, dds::Qos(256), kEveryRobotPartition),
+        fixes_(participant_, dds::poseFixQos(256), kEveryRobotPartition),
+        writer_(participant_, dds::Qos(dds::kHistoryDepth), robotPartition(kProbeRobot)),
+        exposure_writer_(participant_, dds::Qos(dds::kHistoryDepth), robotPartition(kProbeRobot)) {}
 
   void poll() {
     fixes_.waitForData(5'000'000);
@@ -267,19 +272,24 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
       << log("backbone.log");
 
   // Malformed LineSets first: each is dropped and counted, none answered.
-  LineSetData nan_segment = probeLineSet("probe", 1, 5);
+  LineSetData nan_segment = probeLineSet(kProbeRobot, 1, 5);
   nan_segment.segments[3].start.x() = std::numeric_limits<float>::quiet_NaN();
-  LineSetData oversized = probeLineSet("probe", 2, kBackboneMaxSegments + 500);
-  LineSetData bad_robot_id = probeLineSet("bad id!", 3, 5);
-  for (LineSetData* bad : {&nan_segment, &oversized, &bad_robot_id}) {
+  LineSetData oversized = probeLineSet(kProbeRobot, 2, kBackboneMaxSegments + 500);
+  for (LineSetData* bad : {&nan_segment, &oversized}) {
     observer.writer().write(LineSetMessage(*bad).message());
   }
-  // So is a malformed exposure notice, on its own topic and thread.
-  observer.exposureWriter().write(LineSetMessage(bad_robot_id).message());
+  // A LineSet for another robot than the one of the partition it is written
+  // in, well-formed or not, is refused before it is handled; so is such an
+  // exposure notice, on its own topic and thread.
+  const LineSetData bad_robot_id = probeLineSet("bad id!", 3, 5);
+  const LineSetData another_robots = probeLineSet("another-robot", 3, 5);
+  observer.writer().write(LineSetMessage(bad_robot_id).message());
+  observer.writer().write(LineSetMessage(another_robots).message());
+  observer.exposureWriter().write(LineSetMessage(another_robots).message());
   // The next good one is answered at once, without a pose while the map
   // around it is prepared.
-  observer.writer().write(LineSetMessage(probeLineSet("probe", 4, 5)).message());
-  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") > 0; }))
+  observer.writer().write(LineSetMessage(probeLineSet(kProbeRobot, 4, 5)).message());
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor(kProbeRobot) > 0; }))
       << log("backbone.log");
   ASSERT_EQ(observer.fixes.size(), 1u);
   EXPECT_EQ(observer.fixes[0].sequence_number, 4u);
@@ -289,7 +299,7 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   uint32_t sequence = 4;
   do {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    observer.writer().write(LineSetMessage(probeLineSet("probe", ++sequence, 5)).message());
+    observer.writer().write(LineSetMessage(probeLineSet(kProbeRobot, ++sequence, 5)).message());
     ASSERT_TRUE(observer.pollUntil([&] {
       return observer.fixes.back().sequence_number == sequence;
     })) << log("backbone.log");
@@ -298,9 +308,14 @@ TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
   EXPECT_EQ(observer.fixes.back().status, lineloc_msg_FIX_TOO_FEW_MATCHES);
   const int probes_answered = static_cast<int>(sequence) - 3;
   ASSERT_TRUE(observer.pollUntil([&] { return stats().value("answered", 0) == probes_answered; }));
-  ASSERT_TRUE(observer.pollUntil([&] { return stats().value("dropped_invalid", 0) == 4; }))
+  ASSERT_TRUE(observer.pollUntil([&] { return stats().value("dropped_invalid", 0) == 5; }))
       << log("backbone.log");
-  EXPECT_EQ(stats()["received"], probes_answered + 3);
+  EXPECT_EQ(stats()["received"], probes_answered + 2) << "the refused ones are not received";
+  EXPECT_EQ(observer.fixesFor("another-robot"), 0u);
+  EXPECT_NE(log("backbone.log")
+                .find("robot_id 'another-robot' written outside partition "
+                      "'robot.another-robot'"),
+            std::string::npos);
 
   // Two robots at once, one extracting under SCHED_FIFO when the machine
   // allows it.
@@ -393,8 +408,8 @@ TEST_F(RobotBackboneLoop, TheLastRobotLeftIsForgottenInTheSilenceAfterIt) {
   auto backbone = startBackbone(work_ / "stats.json", {"--forget-robot-after-s", "0.5"});
   ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
       << log("backbone.log");
-  observer.writer().write(LineSetMessage(probeLineSet("probe", 1, 5)).message());
-  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") == 1; }))
+  observer.writer().write(LineSetMessage(probeLineSet(kProbeRobot, 1, 5)).message());
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor(kProbeRobot) == 1; }))
       << log("backbone.log");
   ASSERT_TRUE(observer.pollUntil([&] { return stats().value("robots_forgotten", 0) == 1; }))
       << log("backbone.log");

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <thread>
 
 #include "common/messages/messages.h"
@@ -52,6 +53,39 @@ TEST(DdsLoopback, MatchedEndpointsNameTheirParticipants) {
   EXPECT_EQ(readers, expected);
   EXPECT_EQ(fixes.matchedWriterParticipants(), std::vector<dds::ParticipantGuid>{backbone.guid()});
   EXPECT_NE(robot.guid(), backbone.guid());
+}
+
+TEST(DdsLoopback, PartitionsMatchByPatternAndTheReaderSeesTheWritersPartition) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant robot(domain);
+  dds::Participant other_robot(domain);
+  dds::Participant backbone(domain);
+  dds::Writer<lineloc_msg_LineSet> own(robot, dds::Qos(8), "robot.a");
+  dds::Writer<lineloc_msg_LineSet> other(other_robot, dds::Qos(8), "robot.b");
+  dds::Writer<lineloc_msg_LineSet> unpartitioned(other_robot, dds::Qos(8));
+  dds::Reader<lineloc_msg_LineSet> every_robot(backbone, dds::Qos(8), "robot.*");
+  dds::Reader<lineloc_msg_LineSet> robot_a_only(robot, dds::Qos(8), "robot.a");
+  ASSERT_TRUE(waitFor([&] { return every_robot.matchedWriters() == 2; }));
+  ASSERT_TRUE(waitFor([&] { return robot_a_only.matchedWriters() == 1; }));
+  EXPECT_EQ(unpartitioned.matchedReaders(), 0u);
+  EXPECT_EQ(other.matchedReaders(), 1u) << "robot.b is not robot.a";
+
+  LineSetData sent;
+  sent.robot_id = "a";
+  sent.camera = {400, 400, 320, 240, 0, 640, 480};
+  own.write(LineSetMessage(sent).message());
+  sent.robot_id = "b";
+  other.write(LineSetMessage(sent).message());
+  std::map<std::string, std::vector<std::string>> partitions_by_robot;
+  ASSERT_TRUE(waitFor([&] {
+    every_robot.waitForData(10'000'000);
+    every_robot.takeEach([&](const lineloc_msg_LineSet& m, const dds::SampleInfo& info) {
+      partitions_by_robot[m.robot_id] = every_robot.writerPartitions(info.publication_handle);
+    });
+    return partitions_by_robot.size() == 2;
+  }));
+  EXPECT_EQ(partitions_by_robot["a"], std::vector<std::string>{"robot.a"});
+  EXPECT_EQ(partitions_by_robot["b"], std::vector<std::string>{"robot.b"});
 }
 
 TEST(DdsLoopback, LineSetOf300SegmentsArrivesIntactBetweenParticipants) {

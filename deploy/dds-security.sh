@@ -15,7 +15,8 @@
 # every lineloc topic's payload are encrypted (AES-GCM). Permissions: robot ID
 # publishes LineSet, Exposure and RobotState, and subscribes PoseFix, only in
 # partition "robot.ID"; a backbone subscribes those three and publishes PoseFix
-# in every "robot.*" partition. Nothing else is granted.
+# in every "robot.*" partition. Nothing else is granted. Both documents cover
+# DDS domains 0-230, all that DDS Security's documents name.
 #
 # Environment: LINELOC_DDS_SECURITY_DIR (where it all lives, default
 # out/dds-security/; the CA's key is in ca/, mode 0700), LINELOC_DDS_SECURITY_DAYS
@@ -80,7 +81,7 @@ openssl_ca() {
 }
 
 domains_xml() {
-  echo "<domains><id_range><min>0</min><max>232</max></id_range></domains>"
+  echo "<domains><id_range><min>0</min><max>230</max></id_range></domains>"
 }
 
 governance_xml() {

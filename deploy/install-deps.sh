@@ -12,7 +12,7 @@ packages=(
   postgresql-15 postgresql-15-postgis-3 postgresql-15-postgis-3-scripts libpq-dev
   libgeographiclib-dev libproj-dev
   libhwy-dev libembree-dev
-  libsimdjson-dev nlohmann-json3-dev libssl-dev
+  libsimdjson-dev nlohmann-json3-dev libssl-dev openssl
   libcli11-dev libyaml-cpp-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

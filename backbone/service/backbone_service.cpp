@@ -145,6 +145,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.localizer.visibility.sunlight = config.sunlight;
   pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
+  dds::logSecurity(domain);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(dds::kHistoryDepth),
                                           kEveryRobotPartition);

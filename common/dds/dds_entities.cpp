@@ -3,9 +3,12 @@
 #include <dds/ddsi/ddsi_cdrstream.h>
 #include <dds/ddsi/q_protocol.h>
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <utility>
 
@@ -152,10 +155,37 @@ Entity createDomain(uint32_t domain_id, const std::string& config_files) {
   return Entity(domain, "create domain");
 }
 
+// True when one of `config_files` (as for Domain) has a Security element.
+bool namesSecurity(const std::string& config_files) {
+  std::stringstream files(config_files);
+  for (std::string file; std::getline(files, file, ',');) {
+    std::ifstream stream(file);
+    const std::string text{std::istreambuf_iterator<char>(stream),
+                           std::istreambuf_iterator<char>()};
+    if (text.find("<Security>") != std::string::npos) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 Domain::Domain(uint32_t domain_id, const std::string& config_files)
-    : id_(domain_id), domain_(createDomain(domain_id, config_files)) {}
+    : id_(domain_id),
+      secured_(namesSecurity(config_files)),
+      domain_(createDomain(domain_id, config_files)) {}
+
+void logSecurity(const Domain& domain) {
+  if (domain.secured()) {
+    spdlog::info("DDS Security on: authenticated participants only, encrypted, as permitted");
+  } else {
+    spdlog::warn(
+        "DDS Security is off: any participant on DDS domain {} can read this program's messages "
+        "and write its peers'; for development only (secure with deploy/dds-security.sh)",
+        domain.id());
+  }
+}
 
 Participant::Participant(const Domain& domain)
     : participant_(dds_create_participant(domain.id(), nullptr, nullptr), "create participant") {}

@@ -55,15 +55,25 @@ class Entity {
 // or several separated by commas, each adding to or overriding the ones
 // before it; empty: Cyclone's defaults and the CYCLONEDDS_URI environment
 // variable apply, as for any DDS program.
+//
+// Secured: a configuration file holds a Security element (DDS Security's
+// plugins, an identity and its permissions; deploy/dds-security.sh). Each
+// program logs which it is (logSecurity): unsecured, any participant on the
+// domain can read every robot's messages and answer for a backbone.
 class Domain {
  public:
   Domain(uint32_t domain_id, const std::string& config_files);
   uint32_t id() const { return id_; }
+  bool secured() const { return secured_; }
 
  private:
   uint32_t id_;
+  bool secured_;
   Entity domain_;
 };
+
+// Logs whether `domain` is secured: info when it is, a warning when not.
+void logSecurity(const Domain& domain);
 
 class Participant {
  public:

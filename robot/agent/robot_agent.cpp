@@ -317,6 +317,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   RobotRunSummary summary;
   summary.sensor_lines_dropped = streams.dropped_lines;
   dds::Domain domain(config.domain_id, config.dds_config);
+  dds::logSecurity(domain);
   dds::Participant participant(domain);
   FixReceiver receiver(participant, config, summary, [&](const PoseFixData& fix) {
     if (!navigator) {

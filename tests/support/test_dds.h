@@ -13,4 +13,15 @@ std::string testDdsConfig();
 // A domain id in [10, 210) derived from the process id.
 uint32_t testDomainId();
 
+// Issues a DDS Security identity with deploy/dds-security.sh into `folder`
+// (its CA made there first): `kind` "robot" or "backbone", `name` the robot's
+// id or the backbone's name. Returns the Cyclone DDS overlay that secures a
+// participant with it, to add to testDdsConfig() after a comma.
+std::string issueDdsIdentity(const std::string& folder, const std::string& kind,
+                             const std::string& name);
+
+// Revokes "<kind>-<name>" issued in `folder`: participants started after it
+// refuse that identity.
+void revokeDdsIdentity(const std::string& folder, const std::string& kind, const std::string& name);
+
 }  // namespace lineloc::test

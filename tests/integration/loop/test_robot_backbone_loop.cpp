@@ -79,8 +79,8 @@ constexpr char kProbeRobot[] = "probe";
 // domain, and writes LineSets in the partition of kProbeRobot.
 class Observer {
  public:
-  Observer()
-      : domain_(test::testDomainId(), test::testDdsConfig()),
+  explicit Observer(const std::string& dds_config = test::testDdsConfig())
+      : domain_(test::testDomainId(), dds_config),
         participant_(domain_),
         line_sets_(participant_, dds::Qos(256), kEveryRobotPartition),
         fixes_(participant_, dds::poseFixQos(256), kEveryRobotPartition),
@@ -107,6 +107,7 @@ class Observer {
     return true;
   }
 
+  const dds::Participant& participant() const { return participant_; }
   dds::Writer<lineloc_msg_LineSet>& writer() { return writer_; }
   dds::Writer<lineloc_msg_LineSet, dds::ExposureTopic>& exposureWriter() {
     return exposure_writer_;
@@ -201,7 +202,7 @@ class RobotBackboneLoop : public ::testing::Test {
 
   std::unique_ptr<test::ChildProcess> startBackbone(
       const fs::path& stats_file, const std::vector<std::string>& more_options = {}) {
-    return start("lineloc-backbone", "backbone.log",
+    return start("lineloc-backbone", "backbone-test", "backbone.log",
                  {"--db", database_.conninfo(), "--site", "test", "--max-segments",
                   std::to_string(kBackboneMaxSegments), "--stats-file", stats_file.string(),
                   "--stats-period-s", "0.1"},
@@ -211,7 +212,7 @@ class RobotBackboneLoop : public ::testing::Test {
   std::unique_ptr<test::ChildProcess> startRobot(
       const std::string& robot_id, double rate_hz,
       const std::vector<std::string>& more_options = {}) {
-    return start("lineloc-robot", robot_id + ".log",
+    return start("lineloc-robot", "robot-" + robot_id, robot_id + ".log",
                  {"--robot-id",
                   robot_id,
                   "--images",
@@ -237,12 +238,30 @@ class RobotBackboneLoop : public ::testing::Test {
                  more_options);
   }
 
-  // `program` on the test's DDS domain with `options`, then `more_options`.
-  std::unique_ptr<test::ChildProcess> start(const std::string& program, const std::string& log,
+  // Issues DDS Security identities for the backbone and `robot_ids`: from
+  // then on they start secured.
+  void secure(const std::vector<std::string>& robot_ids) {
+    security_overlays_["backbone-test"] = test::issueDdsIdentity(pki(), "backbone", "test");
+    for (const std::string& robot_id : robot_ids) {
+      security_overlays_["robot-" + robot_id] = test::issueDdsIdentity(pki(), "robot", robot_id);
+    }
+  }
+  std::string pki() const { return (work_ / "pki").string(); }
+  // The DDS configuration of `participant` ("backbone-test", "robot-<id>"):
+  // the test's, secured with its identity when it has one.
+  std::string ddsConfigOf(const std::string& participant) const {
+    const auto overlay = security_overlays_.find(participant);
+    return test::testDdsConfig() +
+           (overlay == security_overlays_.end() ? std::string() : "," + overlay->second);
+  }
+
+  // `program` as DDS `participant` on the test's domain with `options`, then `more_options`.
+  std::unique_ptr<test::ChildProcess> start(const std::string& program,
+                                            const std::string& participant, const std::string& log,
                                             std::vector<std::string> options,
                                             const std::vector<std::string>& more_options) {
     options.insert(options.begin(), {"--domain-id", std::to_string(test::testDomainId()),
-                                     "--dds-config", test::testDdsConfig()});
+                                     "--dds-config", ddsConfigOf(participant)});
     options.insert(options.end(), more_options.begin(), more_options.end());
     return std::make_unique<test::ChildProcess>(std::string(LINELOC_BIN_DIR) + "/" + program,
                                                 options, (work_ / log).string());
@@ -262,6 +281,7 @@ class RobotBackboneLoop : public ::testing::Test {
 
   test::TestDatabase database_{"loop"};
   fs::path work_;
+  std::map<std::string, std::string> security_overlays_;
 };
 
 TEST_F(RobotBackboneLoop, EveryFrameOfEveryRobotGetsExactlyOneMatchingFix) {
@@ -435,6 +455,125 @@ TEST_F(RobotBackboneLoop, AStatsFileThatCannotBeWrittenFailsTheStart) {
   EXPECT_EQ(backbone->wait(kTimeoutMs), 1) << log("backbone.log");
   EXPECT_NE(log("backbone.log").find("cannot write stats file"), std::string::npos)
       << log("backbone.log");
+}
+
+// A forged answer for each of the robot's frames: OK, 50 m off, sure to the millimetre.
+void forgeFixes(dds::Writer<lineloc_msg_PoseFix>& writer, const std::string& robot_id,
+                const std::map<uint32_t, int64_t>& sent_stamps) {
+  for (uint32_t sequence = 0; sequence < static_cast<uint32_t>(kFrames); ++sequence) {
+    PoseFixData fix;
+    fix.robot_id = robot_id;
+    fix.sequence_number = sequence;
+    const auto stamp = sent_stamps.find(sequence);
+    fix.stamp_ns = stamp == sent_stamps.end() ? 0 : stamp->second;
+    fix.status = lineloc_msg_FIX_OK;
+    fix.T_world_camera.pose = makePose({55, -20, 1.5}, Eigen::Quaterniond::Identity());
+    fix.T_world_camera.covariance = diagonalPoseCovariance(0.001, 0.0001);
+    writer.write(toMessage(fix));
+  }
+}
+
+// An outsider (no identity) on the domain of a secured robot and backbone
+// hears nothing and is heard by no one: the forged answers it writes for
+// every frame never reach the robot, which gets its backbone's answers only.
+TEST_F(RobotBackboneLoop, OnASecuredDomainAnOutsiderNeitherHearsNorSteersTheRobot) {
+  secure({"robot-s"});
+  Observer outsider;
+  dds::Writer<lineloc_msg_PoseFix> forged(outsider.participant(), dds::poseFixQos(kFrames),
+                                          robotPartition("robot-s"));
+  auto backbone = startBackbone();
+  auto robot = startRobot("robot-s", 8.0);
+  while (robot->running()) {
+    forgeFixes(forged, "robot-s", outsider.sent_stamps["robot-s"]);
+    outsider.poll();
+  }
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-s.log");
+  EXPECT_EQ(fixesReceived(log("robot-s.log")), kFrames) << log("robot-s.log");
+  EXPECT_EQ(log("robot-s.log").find("dropped a PoseFix"), std::string::npos) << log("robot-s.log");
+  for (const dds::ParticipantGuid& reader : forged.matchedReaderParticipants()) {
+    EXPECT_EQ(reader, outsider.participant().guid()) << "a forged answer reached another reader";
+  }
+  EXPECT_TRUE(outsider.sent_stamps["robot-s"].empty()) << "the outsider heard the robot";
+  for (const PoseFixData& fix : outsider.fixes) {
+    EXPECT_EQ(fix.T_world_camera.pose.translation().x(), 55.0) << "the outsider heard the backbone";
+  }
+  EXPECT_NE(log("backbone.log").find("DDS Security on"), std::string::npos) << log("backbone.log");
+}
+
+// The same outsider on an unsecured domain hears the robot's frames and
+// answers them: what the secured domain prevents.
+TEST_F(RobotBackboneLoop, OnAnUnsecuredDomainTheSameOutsiderHearsAndAnswersTheRobot) {
+  Observer outsider;
+  dds::Writer<lineloc_msg_PoseFix> forged(outsider.participant(), dds::poseFixQos(kFrames),
+                                          robotPartition("robot-u"));
+  auto robot = startRobot("robot-u", 8.0, {"--wait-for-backbone-s", "0"});
+  while (robot->running()) {
+    forgeFixes(forged, "robot-u", outsider.sent_stamps["robot-u"]);
+    outsider.poll();
+  }
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-u.log");
+  EXPECT_FALSE(outsider.sent_stamps["robot-u"].empty());
+  EXPECT_GT(fixesReceived(log("robot-u.log")), 0) << log("robot-u.log");
+  EXPECT_NE(log("robot-u.log").find("DDS Security is off"), std::string::npos)
+      << log("robot-u.log");
+}
+
+// A robot's identity grants its own partition and nothing else: it can
+// neither speak nor listen for another robot, nor answer as a backbone; in
+// its own partition the backbone answers it. Revoked, it is refused by
+// participants started after the revocation.
+TEST_F(RobotBackboneLoop, ASecuredRobotSpeaksAndListensOnlyForItself) {
+  secure({"robot-s", "robot-t"});
+  {
+    dds::Domain domain(test::testDomainId(), ddsConfigOf("robot-robot-t"));
+    dds::Participant robot_t(domain);
+    const dds::Qos qos(dds::kHistoryDepth);
+    const dds::Qos fix_qos = dds::poseFixQos(dds::kHistoryDepth);
+    using LineSets = dds::Writer<lineloc_msg_LineSet>;
+    using Fixes = dds::Reader<lineloc_msg_PoseFix>;
+    EXPECT_THROW(LineSets(robot_t, qos, robotPartition("robot-s")), dds::DdsError);
+    EXPECT_THROW(Fixes(robot_t, fix_qos, robotPartition("robot-s")), dds::DdsError);
+    EXPECT_THROW(Fixes(robot_t, fix_qos, kEveryRobotPartition), dds::DdsError);
+    EXPECT_THROW(dds::Reader<lineloc_msg_LineSet>(robot_t, qos, kEveryRobotPartition),
+                 dds::DdsError);
+    EXPECT_THROW(dds::Writer<lineloc_msg_PoseFix>(robot_t, fix_qos, robotPartition("robot-t")),
+                 dds::DdsError);
+
+    auto backbone = startBackbone();
+    LineSets own(robot_t, qos, robotPartition("robot-t"));
+    Fixes own_fixes(robot_t, fix_qos, robotPartition("robot-t"));
+    const int64_t deadline = steadyClockNs() + int64_t{kTimeoutMs} * 1'000'000;
+    uint32_t sequence = 0;
+    bool answered = false;
+    while (!answered && steadyClockNs() < deadline) {
+      own.write(LineSetMessage(probeLineSet("robot-t", ++sequence, 5)).message());
+      own_fixes.waitForData(100'000'000);
+      own_fixes.takeEach([&](const lineloc_msg_PoseFix& fix) {
+        answered |= std::string(fix.robot_id) == "robot-t";
+      });
+    }
+    EXPECT_TRUE(answered) << log("backbone.log");
+    backbone->signal(SIGTERM);
+    EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+  }
+  // Revoked, robot-t still holds the revocation list of before.
+  const fs::path crl_before = work_ / "crl-before.pem";
+  fs::copy_file(fs::path(pki()) / "ca" / "crl.pem", crl_before);
+  test::revokeDdsIdentity(pki(), "robot", "robot-t");
+  std::string overlay_text = log("pki/identities/robot-robot-t/cyclonedds-security.xml");
+  const std::string crl_now = "file:" + (fs::path(pki()) / "ca" / "crl.pem").string();
+  overlay_text.replace(overlay_text.find(crl_now), crl_now.size(), "file:" + crl_before.string());
+  std::ofstream(work_ / "revoked.xml") << overlay_text;
+  dds::Domain domain(test::testDomainId(),
+                     test::testDdsConfig() + "," + (work_ / "revoked.xml").string());
+  dds::Participant revoked(domain);
+  dds::Writer<lineloc_msg_LineSet> line_sets(revoked, dds::Qos(dds::kHistoryDepth),
+                                             robotPartition("robot-t"));
+  auto backbone = startBackbone();
+  auto robot_s = startRobot("robot-s", 8.0);
+  ASSERT_EQ(robot_s->wait(kTimeoutMs), 0) << log("robot-s.log");
+  EXPECT_EQ(fixesReceived(log("robot-s.log")), kFrames) << "the backbone is up and serving";
+  EXPECT_EQ(line_sets.matchedReaders(), 0u) << "the backbone authenticated a revoked robot";
 }
 
 }  // namespace

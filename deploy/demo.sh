@@ -20,7 +20,10 @@
 # robot whose software restarted while driving), LINELOC_DEMO_SIM_ARGS (words
 # appended to lineloc-sim's command line, split at blanks, e.g. the stress of
 # a poor start and a covered camera: "--compass-bias-deg 5
-# --gps-initial-error-m 10 --camera-covered-s 10 3"; default none).
+# --gps-initial-error-m 10 --camera-covered-s 10 3"; default none),
+# LINELOC_DEMO_DDS_SECURITY (1: the robot and the backbone talk through DDS
+# Security, deploy/dds-security.sh, with the CA in LINELOC_DDS_SECURITY_DIR,
+# default out/dds-security/; 0: unsecured, for development).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -39,6 +42,7 @@ REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
 # the replay's decoding.
 BACKBONE_REALTIME_PRIORITY="${LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY:-5}"
 CITY="${LINELOC_DEMO_CITY:-delft}"
+DDS_SECURITY="${LINELOC_DEMO_DDS_SECURITY:-1}"
 MODEL_CRS=()
 # Site frame: the site's CRS minus an origin near the model's centre; for the
 # named cities EPSG:7415 (RD New + NAP height).
@@ -77,7 +81,20 @@ DDS_CONFIG="$ROOT/deploy/cyclonedds.xml"
 if [ "$BACKBONE_REALTIME_PRIORITY" -gt 0 ] && chrt -f 6 true 2>/dev/null; then
   DDS_CONFIG+=",$ROOT/deploy/cyclonedds-realtime.xml"
 fi
-DDS=(--domain-id "$DOMAIN_ID" --dds-config "$DDS_CONFIG")
+# DDS Security (deploy/dds-security.sh): the backbone and the robot each with
+# an identity of the site's CA, kept in $LINELOC_DDS_SECURITY_DIR.
+ROBOT_ID=demo-robot
+BACKBONE_DDS_CONFIG="$DDS_CONFIG"
+ROBOT_DDS_CONFIG="$DDS_CONFIG"
+# The overlay of identity $1-$2, issued when there is none yet.
+identity() {
+  "$ROOT/deploy/dds-security.sh" config "$1-$2" 2>/dev/null ||
+    "$ROOT/deploy/dds-security.sh" issue "$1" "$2"
+}
+if [ "$DDS_SECURITY" = 1 ]; then
+  BACKBONE_DDS_CONFIG+=",$(identity backbone demo)"
+  ROBOT_DDS_CONFIG+=",$(identity robot "$ROBOT_ID")"
+fi
 # The simulated robot's camera rides this high above the road; the robot knows
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5
@@ -106,14 +123,16 @@ echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera
   --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
   --start-utc "$START_UTC" --sun-from-clock "${SIM_ARGS[@]}"
 
-"$BIN/lineloc-backbone" "${DDS[@]}" --db "$READER_CONNINFO" --site "$SITE" --sun-from-clock \
+"$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$BACKBONE_DDS_CONFIG" \
+  --db "$READER_CONNINFO" --site "$SITE" --sun-from-clock \
   --realtime-priority "$BACKBONE_REALTIME_PRIORITY" --stats-file "$OUT/backbone-stats.json" \
   >"$OUT/backbone.log" 2>&1 &
 BACKBONE_PID=$!
 trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
 
 echo "demo: robot and backbone running in real time over DDS"
-"$BIN/lineloc-robot" "${DDS[@]}" --robot-id demo-robot --images "$OUT/dataset" \
+"$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" --dds-config "$ROBOT_DDS_CONFIG" \
+  --robot-id "$ROBOT_ID" --images "$OUT/dataset" \
   --camera-calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
   --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
   --start-at-s "$ROBOT_START_S" --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \

@@ -182,12 +182,17 @@ class CityDrive : public ::testing::Test {
     runOrFail("lineloc-sim", simulate, work_ / (dataset.string() + "-sim.log"), 600'000);
   }
 
-  std::vector<std::string> dds() const {
-    return {"--domain-id", std::to_string(testDomainId()), "--dds-config", testDdsConfig()};
+  // The DDS options of a participant secured with an identity of its own
+  // (deploy/dds-security.sh), as a deployment runs it: `kind` "robot" or
+  // "backbone", `name` its id.
+  std::vector<std::string> dds(const std::string& kind, const std::string& name) const {
+    const std::string overlay = issueDdsIdentity((work_ / "pki").string(), kind, name);
+    return {"--domain-id", std::to_string(testDomainId()), "--dds-config",
+            testDdsConfig() + "," + overlay};
   }
 
   std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name) const {
-    std::vector<std::string> args = dds();
+    std::vector<std::string> args = dds("backbone", "test");
     const DriveSimulationConfig simulated;
     args.insert(args.end(), {"--db", database_.conninfo(), "--site", city_.site, "--sun-from-clock",
                              "--ambient", fmt::format("{}", simulated.ambient)});
@@ -199,7 +204,7 @@ class CityDrive : public ::testing::Test {
   // <robot_id>-fixes.tum and <robot_id>-fused.tum under work_.
   std::unique_ptr<ChildProcess> startRobot(const std::string& robot_id = "drive",
                                            const fs::path& dataset = "dataset") const {
-    std::vector<std::string> args = dds();
+    std::vector<std::string> args = dds("robot", robot_id);
     args.insert(
         args.end(),
         {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--camera-calibration",

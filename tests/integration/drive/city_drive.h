@@ -78,6 +78,15 @@ inline std::map<int64_t, Eigen::Isometry3d> byStamp(const std::vector<StampedPos
   return result;
 }
 
+// The longest time between consecutive poses (s).
+inline double longestGapS(const std::map<int64_t, Eigen::Isometry3d>& poses) {
+  int64_t longest_ns = 0;
+  for (auto pose = poses.begin(); pose != poses.end() && std::next(pose) != poses.end(); ++pose) {
+    longest_ns = std::max(longest_ns, std::next(pose)->first - pose->first);
+  }
+  return longest_ns * 1e-9;
+}
+
 inline std::string readFile(const fs::path& path) {
   std::ifstream stream(path);
   return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
@@ -188,7 +197,32 @@ class CityDrive : public ::testing::Test {
   std::vector<std::string> dds(const std::string& kind, const std::string& name) const {
     const std::string overlay = issueDdsIdentity((work_ / "pki").string(), kind, name);
     return {"--domain-id", std::to_string(testDomainId()), "--dds-config",
-            testDdsConfig() + "," + overlay};
+            testDdsConfig() + extra_dds_config_ + "," + overlay};
+  }
+
+  // From now on every participant's sends lose `per_mille` of their packets
+  // (Cyclone DDS's transmit lossiness, a test setting); reliable topics
+  // resend what was lost.
+  void loseSentPackets(int per_mille) {
+    const fs::path overlay = work_ / "lossy.xml";
+    std::ofstream(overlay) << "<CycloneDDS xmlns=\"https://cdds.io/config\"><Domain id=\"any\">"
+                              "<Internal><Test><XmitLossiness>"
+                           << per_mille
+                           << "</XmitLossiness></Test></Internal></Domain></CycloneDDS>\n";
+    extra_dds_config_ = ",";
+    extra_dds_config_ += overlay.string();
+  }
+
+  // Waits until robot `robot_id` has had an OK fix; false after `timeout`.
+  bool waitForAFix(std::chrono::seconds timeout, const std::string& robot_id = "drive") const {
+    const auto give_up = std::chrono::steady_clock::now() + timeout;
+    while (!holdsAPose(work_ / (robot_id + "-fixes.tum"))) {
+      if (std::chrono::steady_clock::now() > give_up) {
+        return false;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return true;
   }
 
   std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name) const {
@@ -312,6 +346,7 @@ class CityDrive : public ::testing::Test {
   DriveCity city_;
   fs::path work_;
   TestDatabase database_{"city_drive"};
+  std::string extra_dds_config_;
 };
 
 }  // namespace lineloc::test

@@ -84,10 +84,14 @@ endfunction()
 
 # lineloc_add_fuzz_target(NAME SOURCES... LIBS ... [CORPUS dir]): a fuzz target
 # defining LLVMFuzzerTestOneInput. With clang and LINELOC_FUZZ=ON it is a
-# libFuzzer binary; otherwise it links tests/fuzz/fuzz_replay_main.cpp, which
+# libFuzzer binary, registered as a CTest test (label "fuzz") that fuzzes for
+# LINELOC_FUZZ_SECONDS from the seed corpus, keeping what it finds under the
+# build's fuzz-corpus/ and any crashing input under fuzz-findings/
+# (deploy/fuzz.sh); otherwise it links tests/fuzz/fuzz_replay_main.cpp, which
 # replays the seed corpus plus a fixed number of deterministic mutations of it,
 # and is registered as a CTest test (label "fuzz") so every build exercises it.
 option(LINELOC_FUZZ "Build fuzz targets as libFuzzer binaries (needs clang)" OFF)
+set(LINELOC_FUZZ_SECONDS 600 CACHE STRING "How long each libFuzzer test fuzzes (LINELOC_FUZZ)")
 function(lineloc_add_fuzz_target name)
   cmake_parse_arguments(ARG "" "CORPUS" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
@@ -95,6 +99,13 @@ function(lineloc_add_fuzz_target name)
   if(LINELOC_FUZZ)
     target_compile_options(${name} PRIVATE -fsanitize=fuzzer)
     target_link_options(${name} PRIVATE -fsanitize=fuzzer)
+    set(found ${CMAKE_BINARY_DIR}/fuzz-corpus/${name})
+    file(MAKE_DIRECTORY ${found} ${CMAKE_BINARY_DIR}/fuzz-findings)
+    add_test(NAME ${name}
+             COMMAND ${name} -max_total_time=${LINELOC_FUZZ_SECONDS}
+                     -artifact_prefix=${CMAKE_BINARY_DIR}/fuzz-findings/${name}- ${found}
+                     ${ARG_CORPUS})
+    set_tests_properties(${name} PROPERTIES LABELS fuzz TIMEOUT 0)
   else()
     target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_replay_main.cpp)
     add_test(NAME ${name} COMMAND ${name} ${ARG_CORPUS})

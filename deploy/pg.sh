@@ -3,11 +3,20 @@
 # and port, run as an unprivileged OS user when invoked as root. Nothing here
 # touches a system-wide cluster.
 #
-#   deploy/pg.sh start    initialise (first time) and start; idempotent
-#   deploy/pg.sh stop     stop, keeping the data
-#   deploy/pg.sh status   exit 0 when running
-#   deploy/pg.sh conninfo print the libpq connection string of database 'lineloc'
-#   deploy/pg.sh destroy  stop and delete the data directory
+#   deploy/pg.sh start             initialise (first time) and start; idempotent
+#   deploy/pg.sh stop              stop, keeping the data
+#   deploy/pg.sh status            exit 0 when running
+#   deploy/pg.sh conninfo [ROLE]   print the libpq connection string of database
+#                                  'lineloc' for ROLE: lineloc_owner (default;
+#                                  lineloc-migrate, lineloc-load) or
+#                                  lineloc_reader (lineloc-backbone)
+#   deploy/pg.sh rotate-passwords  give every role a new password
+#   deploy/pg.sh destroy           stop and delete the data directory
+#
+# Every role logs in with a scram-sha-256 password; pg_hba.conf trusts no one.
+# The passwords are random, made here, and kept in the data directory's pgpass
+# file (mode 0600, the cluster's OS user's), which the printed connection
+# string names. The superuser, lineloc, serves this script's setup alone.
 #
 # The data directory is made private (mkdir -m 700); a directory at its path
 # that is a symbolic link, not the cluster's OS user's, or open to other users
@@ -21,7 +30,10 @@ PORT="${LINELOC_PG_PORT:-55432}"
 DATA_DIR="${LINELOC_PG_DIR:-${TMPDIR:-/tmp}/lineloc-pg-${PORT}}"
 OS_USER="${LINELOC_PG_USER:-lineloc}"
 PG_BIN="$(ls -d /usr/lib/postgresql/15/bin 2>/dev/null || true)"
-DB_ROLE="lineloc"
+PGPASS="$DATA_DIR/pgpass"
+SUPERUSER="lineloc"
+OWNER="lineloc_owner"
+READER="lineloc_reader"
 DB_NAME="lineloc"
 
 die() { echo "pg.sh: $*" >&2; exit 1; }
@@ -35,7 +47,13 @@ as_owner() {
   fi
 }
 
-# Appends stdin to a file in the data directory as the cluster's OS user.
+# As as_owner, with this script's stdin passed through a pipe of the OS user's
+# own, so the command may open /dev/stdin (a pipe root made is closed to it).
+as_owner_reading_stdin() { as_owner sh -c 'cat | "$@"' sh "$@"; }
+
+# Writes (or, with >>, appends) stdin to a file in the data directory as the
+# cluster's OS user, readable by it alone.
+write_as_owner() { as_owner sh -c 'umask 077 && cat >"$1"' sh "$1"; }
 append_as_owner() { as_owner sh -c 'umask 077 && cat >>"$1"' sh "$1"; }
 
 cluster_uid() {
@@ -88,8 +106,32 @@ create_data_dir() {
   fi
 }
 
-psql_as_owner() {
-  as_owner "$PG_BIN/psql" -X -q -v ON_ERROR_STOP=1 -h 127.0.0.1 -p "$PORT" -U "$DB_ROLE" "$@"
+new_password() { head -c 24 /dev/urandom | base64 | tr -d '+/='; }
+
+# A pgpass file's lines (host:port:database:user:password) with a new password
+# for every role.
+new_pgpass() {
+  local role
+  for role in "$SUPERUSER" "$OWNER" "$READER"; do
+    echo "*:$PORT:*:$role:$(new_password)"
+  done
+}
+
+# The password of role $2 in the pgpass lines $1.
+password_in() { awk -F: -v role="$2" '$4 == role { print $5 }' <<<"$1"; }
+
+write_hba() {
+  write_as_owner "$DATA_DIR/pg_hba.conf" <<'HBA'
+# Every role logs in with its password, on the socket and on loopback alike.
+# TYPE  DATABASE  USER  ADDRESS       METHOD
+local   all       all                 scram-sha-256
+host    all       all   127.0.0.1/32  scram-sha-256
+HBA
+}
+
+psql_superuser() {
+  as_owner env PGPASSFILE="$PGPASS" "$PG_BIN/psql" -X -q -v ON_ERROR_STOP=1 -h 127.0.0.1 \
+    -p "$PORT" -U "$SUPERUSER" "$@"
 }
 
 is_running() {
@@ -99,8 +141,10 @@ is_running() {
 initialise() {
   ensure_os_user
   [ -d "$DATA_DIR" ] || create_data_dir
-  local output
-  output="$(as_owner "$PG_BIN/initdb" -D "$DATA_DIR" -U "$DB_ROLE" --auth=trust -E UTF8 \
+  local pgpass output
+  pgpass="$(new_pgpass)"
+  output="$(password_in "$pgpass" "$SUPERUSER" | as_owner_reading_stdin "$PG_BIN/initdb" \
+    -D "$DATA_DIR" -U "$SUPERUSER" --auth=scram-sha-256 --pwfile=/dev/stdin -E UTF8 \
     --locale=C.UTF-8 2>&1)" || { echo "$output" >&2; die "initdb failed"; }
   append_as_owner "$DATA_DIR/postgresql.conf" <<CONF
 listen_addresses = '127.0.0.1'
@@ -109,23 +153,89 @@ unix_socket_directories = '$DATA_DIR'
 max_connections = 200
 shared_buffers = 256MB
 fsync = on
+password_encryption = 'scram-sha-256'
 CONF
+  write_hba
+  write_as_owner "$PGPASS" <<<"$pgpass"
+}
+
+# A cluster without a pgpass file trusted every local user: it is stopped, its
+# superuser given a password (in single-user mode, so nobody may log in
+# meanwhile) and its pg_hba.conf replaced; start then gives the other roles
+# passwords and hands its databases over.
+secure_trusting_cluster() {
+  echo "pg.sh: $DATA_DIR trusts every local user; giving its roles passwords"
+  if is_running; then
+    as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -m fast -w stop >/dev/null
+  fi
+  local pgpass output
+  pgpass="$(new_pgpass)"
+  output="$(as_owner "$PG_BIN/postgres" --single -D "$DATA_DIR" postgres 2>&1 \
+    <<<"ALTER ROLE $SUPERUSER PASSWORD '$(password_in "$pgpass" "$SUPERUSER")'")" \
+    || { echo "$output" >&2; die "could not give the superuser a password"; }
+  write_hba
+  write_as_owner "$PGPASS" <<<"$pgpass"
+}
+
+# The roles lineloc's programs log in as, with the passwords in $1: none a
+# superuser; the owner may create databases (the tests make their own).
+apply_roles() {
+  psql_superuser -d postgres <<SQL
+SELECT format('CREATE ROLE %I', role) FROM unnest(ARRAY['$OWNER', '$READER']) AS role
+  WHERE NOT EXISTS (SELECT FROM pg_roles WHERE rolname = role) \gexec
+ALTER ROLE $OWNER LOGIN NOSUPERUSER CREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$OWNER")';
+ALTER ROLE $READER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$READER")';
+ALTER ROLE $SUPERUSER PASSWORD '$(password_in "$1" "$SUPERUSER")';
+SQL
+}
+
+# Every database but the system's, and what the superuser made in its schema
+# public (outside extensions), belongs to the owner role: a database the
+# superuser owns (one from a cluster that trusted every local user) is handed
+# over whole, in one transaction.
+hand_over_databases() {
+  local database
+  for database in $(psql_superuser -d postgres -tA -c "SELECT datname FROM pg_database
+      WHERE datdba = '$SUPERUSER'::regrole AND datname NOT IN ('postgres', 'template0', 'template1')"); do
+    psql_superuser --single-transaction -d "$database" <<SQL
+ALTER DATABASE "$database" OWNER TO $OWNER;
+SELECT format('ALTER %s %s OWNER TO $OWNER', CASE WHEN c.relkind = 'v' THEN 'VIEW' ELSE 'TABLE' END,
+              c.oid::regclass)
+  FROM pg_class c
+  WHERE c.relnamespace = 'public'::regnamespace AND c.relkind IN ('r', 'v')
+    AND c.relowner = '$SUPERUSER'::regrole
+    AND NOT EXISTS (SELECT FROM pg_depend d WHERE d.classid = 'pg_class'::regclass
+                    AND d.objid = c.oid AND d.deptype = 'e') \gexec
+SELECT format('ALTER FUNCTION %s OWNER TO $OWNER', p.oid::regprocedure)
+  FROM pg_proc p
+  WHERE p.pronamespace = 'public'::regnamespace AND p.proowner = '$SUPERUSER'::regrole
+    AND NOT EXISTS (SELECT FROM pg_depend d WHERE d.classid = 'pg_proc'::regclass
+                    AND d.objid = p.oid AND d.deptype = 'e') \gexec
+SQL
+  done
 }
 
 start() {
   check_data_dir
-  if is_running; then
+  if [ ! -f "$DATA_DIR/PG_VERSION" ]; then
+    initialise
+  elif [ ! -f "$PGPASS" ]; then
+    secure_trusting_cluster
+  elif is_running; then
     echo "pg.sh: running on port $PORT ($DATA_DIR)"
     return 0
   fi
-  [ -f "$DATA_DIR/PG_VERSION" ] || initialise
   as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -l "$DATA_DIR/server.log" -w -t 60 start >/dev/null \
     || { as_owner tail -20 "$DATA_DIR/server.log" >&2; die "server did not start"; }
+  apply_roles "$(as_owner cat "$PGPASS")"
   # Extensions in template1 so every database created later (tests) has them.
-  psql_as_owner -d template1 -c "CREATE EXTENSION IF NOT EXISTS postgis; CREATE EXTENSION IF NOT EXISTS postgis_sfcgal;"
-  if ! psql_as_owner -d postgres -tAc "SELECT 1 FROM pg_database WHERE datname = '$DB_NAME'" | grep -q 1; then
-    psql_as_owner -d postgres -c "CREATE DATABASE $DB_NAME"
-  fi
+  psql_superuser -d template1 \
+    -c "CREATE EXTENSION IF NOT EXISTS postgis; CREATE EXTENSION IF NOT EXISTS postgis_sfcgal;"
+  psql_superuser -d postgres <<SQL
+SELECT 'CREATE DATABASE $DB_NAME OWNER $OWNER'
+  WHERE NOT EXISTS (SELECT FROM pg_database WHERE datname = '$DB_NAME') \gexec
+SQL
+  hand_over_databases
   echo "pg.sh: started on port $PORT ($DATA_DIR)"
 }
 
@@ -137,6 +247,26 @@ stop() {
   else
     echo "pg.sh: not running"
   fi
+}
+
+# New passwords are set first, then written to the pgpass file.
+rotate_passwords() {
+  check_data_dir
+  is_running || die "not running; start it first"
+  local pgpass
+  pgpass="$(new_pgpass)"
+  apply_roles "$pgpass"
+  write_as_owner "$PGPASS" <<<"$pgpass"
+  echo "pg.sh: new passwords in $PGPASS"
+}
+
+conninfo() {
+  local role="${1:-$OWNER}"
+  case "$role" in
+    "$OWNER" | "$READER") ;;
+    *) die "conninfo: no role $role (one of $OWNER, $READER)" ;;
+  esac
+  echo "host=127.0.0.1 port=$PORT user=$role dbname=$DB_NAME passfile='$PGPASS'"
 }
 
 destroy() {
@@ -152,8 +282,8 @@ case "${1:-}" in
     check_data_dir
     if is_running; then echo "pg.sh: running on port $PORT"; else echo "pg.sh: not running"; exit 1; fi
     ;;
-  # conninfo [ROLE]: the owner (writes: loader, migrations) or, e.g., lineloc_reader (backbone).
-  conninfo) echo "host=127.0.0.1 port=$PORT user=${2:-$DB_ROLE} dbname=$DB_NAME" ;;
+  conninfo) conninfo "${2:-}" ;;
+  rotate-passwords) rotate_passwords ;;
   destroy) destroy ;;
-  *) echo "usage: $0 start|stop|status|conninfo [ROLE]|destroy" >&2; exit 2 ;;
+  *) echo "usage: $0 start|stop|status|conninfo [ROLE]|rotate-passwords|destroy" >&2; exit 2 ;;
 esac

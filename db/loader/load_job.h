@@ -15,8 +15,8 @@ namespace lineloc::db {
 
 struct LoadJobConfig {
   std::vector<std::string> files;
-  // libpq connection string of a role that may write.
-  std::string db = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
+  // libpq connection string of the owner role (the job migrates the schema).
+  std::string db = "host=127.0.0.1 port=55432 user=lineloc_owner dbname=lineloc";
   std::string site = "default";
   // "EPSG:N" of files that name no CRS; empty: each file's own.
   std::string city_model_crs;

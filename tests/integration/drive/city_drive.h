@@ -189,8 +189,9 @@ class CityDrive : public ::testing::Test {
   std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name) const {
     std::vector<std::string> args = dds();
     const DriveSimulationConfig simulated;
-    args.insert(args.end(), {"--db", database_.conninfo(), "--site", city_.site, "--sun-from-clock",
-                             "--ambient", fmt::format("{}", simulated.ambient)});
+    args.insert(args.end(),
+                {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", city_.site,
+                 "--sun-from-clock", "--ambient", fmt::format("{}", simulated.ambient)});
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone", args,
                                           (work_ / log_name).string());
   }

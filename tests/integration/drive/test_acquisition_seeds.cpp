@@ -87,8 +87,11 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
                             (work / "load.log").string());
     ASSERT_EQ(load.wait(120'000), std::optional<int>(0));
   }
-  MapTileCache map([&] { return makeDatabaseTileFetcher(database.conninfo(), "delft"); }, 100.0,
-                   1024);
+  MapTileCache map(
+      [&] {
+        return makeDatabaseTileFetcher(database.conninfo(test::DatabaseRole::kReader), "delft");
+      },
+      100.0, 1024);
   // The backbone knows the sun, as the demo's does.
   PipelineOptions pipeline;
   pipeline.localizer.visibility.sunlight = drivingSunlight(DriveSimulationConfig{});

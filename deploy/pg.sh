@@ -8,15 +8,16 @@
 #   deploy/pg.sh status            exit 0 when running
 #   deploy/pg.sh conninfo [ROLE]   print the libpq connection string of database
 #                                  'lineloc' for ROLE: lineloc_owner (default;
-#                                  lineloc-migrate, lineloc-load) or
-#                                  lineloc_reader (lineloc-backbone)
+#                                  lineloc-migrate), lineloc_writer (lineloc-load)
+#                                  or lineloc_reader (lineloc-backbone)
 #   deploy/pg.sh rotate-passwords  give every role a new password
 #   deploy/pg.sh destroy           stop and delete the data directory
 #
 # Every role logs in with a scram-sha-256 password; pg_hba.conf trusts no one.
 # The passwords are random, made here, and kept in the data directory's pgpass
 # file (mode 0600, the cluster's OS user's), which the printed connection
-# string names. The superuser, lineloc, serves this script's setup alone.
+# string names. The superuser, lineloc, serves this script's setup alone; the
+# roles and what each may do are in docs/production.md.
 #
 # The data directory is made private (mkdir -m 700); a directory at its path
 # that is a symbolic link, not the cluster's OS user's, or open to other users
@@ -33,6 +34,7 @@ PG_BIN="$(ls -d /usr/lib/postgresql/15/bin 2>/dev/null || true)"
 PGPASS="$DATA_DIR/pgpass"
 SUPERUSER="lineloc"
 OWNER="lineloc_owner"
+WRITER="lineloc_writer"
 READER="lineloc_reader"
 DB_NAME="lineloc"
 
@@ -52,8 +54,8 @@ as_owner() {
 as_owner_reading_stdin() { as_owner sh -c 'cat | "$@"' sh "$@"; }
 
 # Writes (or, with >>, appends) stdin to a file in the data directory as the
-# cluster's OS user, readable by it alone.
-write_as_owner() { as_owner sh -c 'umask 077 && cat >"$1"' sh "$1"; }
+# cluster's OS user, readable by it alone (a file written is made anew).
+write_as_owner() { as_owner sh -c 'umask 077 && rm -f "$1" && cat >"$1"' sh "$1"; }
 append_as_owner() { as_owner sh -c 'umask 077 && cat >>"$1"' sh "$1"; }
 
 cluster_uid() {
@@ -112,13 +114,28 @@ new_password() { head -c 24 /dev/urandom | base64 | tr -d '+/='; }
 # for every role.
 new_pgpass() {
   local role
-  for role in "$SUPERUSER" "$OWNER" "$READER"; do
+  for role in "$SUPERUSER" "$OWNER" "$WRITER" "$READER"; do
     echo "*:$PORT:*:$role:$(new_password)"
   done
 }
 
 # The password of role $2 in the pgpass lines $1.
 password_in() { awk -F: -v role="$2" '$4 == role { print $5 }' <<<"$1"; }
+
+# The pgpass file's lines, with a new password for a program role it lacks
+# (written to it).
+completed_pgpass() {
+  local pgpass role complete=true
+  pgpass="$(as_owner cat "$PGPASS")"
+  for role in "$OWNER" "$WRITER" "$READER"; do
+    if [ -z "$(password_in "$pgpass" "$role")" ]; then
+      pgpass+=$'\n'"*:$PORT:*:$role:$(new_password)"
+      complete=false
+    fi
+  done
+  $complete || write_as_owner "$PGPASS" <<<"$pgpass"
+  echo "$pgpass"
+}
 
 write_hba() {
   write_as_owner "$DATA_DIR/pg_hba.conf" <<'HBA'
@@ -130,7 +147,7 @@ HBA
 }
 
 psql_superuser() {
-  as_owner env PGPASSFILE="$PGPASS" "$PG_BIN/psql" -X -q -v ON_ERROR_STOP=1 -h 127.0.0.1 \
+  as_owner env PGPASSFILE="$PGPASS" "$PG_BIN/psql" -X -q -w -v ON_ERROR_STOP=1 -h 127.0.0.1 \
     -p "$PORT" -U "$SUPERUSER" "$@"
 }
 
@@ -181,9 +198,10 @@ secure_trusting_cluster() {
 # superuser; the owner may create databases (the tests make their own).
 apply_roles() {
   psql_superuser -d postgres <<SQL
-SELECT format('CREATE ROLE %I', role) FROM unnest(ARRAY['$OWNER', '$READER']) AS role
+SELECT format('CREATE ROLE %I', role) FROM unnest(ARRAY['$OWNER', '$WRITER', '$READER']) AS role
   WHERE NOT EXISTS (SELECT FROM pg_roles WHERE rolname = role) \gexec
 ALTER ROLE $OWNER LOGIN NOSUPERUSER CREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$OWNER")';
+ALTER ROLE $WRITER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$WRITER")';
 ALTER ROLE $READER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$READER")';
 ALTER ROLE $SUPERUSER PASSWORD '$(password_in "$1" "$SUPERUSER")';
 SQL
@@ -227,7 +245,7 @@ start() {
   fi
   as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -l "$DATA_DIR/server.log" -w -t 60 start >/dev/null \
     || { as_owner tail -20 "$DATA_DIR/server.log" >&2; die "server did not start"; }
-  apply_roles "$(as_owner cat "$PGPASS")"
+  apply_roles "$(completed_pgpass)"
   # Extensions in template1 so every database created later (tests) has them.
   psql_superuser -d template1 \
     -c "CREATE EXTENSION IF NOT EXISTS postgis; CREATE EXTENSION IF NOT EXISTS postgis_sfcgal;"
@@ -263,8 +281,8 @@ rotate_passwords() {
 conninfo() {
   local role="${1:-$OWNER}"
   case "$role" in
-    "$OWNER" | "$READER") ;;
-    *) die "conninfo: no role $role (one of $OWNER, $READER)" ;;
+    "$OWNER" | "$WRITER" | "$READER") ;;
+    *) die "conninfo: no role $role (one of $OWNER, $WRITER, $READER)" ;;
   esac
   echo "host=127.0.0.1 port=$PORT user=$role dbname=$DB_NAME passfile='$PGPASS'"
 }

@@ -21,6 +21,8 @@ const char* roleName(DatabaseRole role) {
   switch (role) {
     case DatabaseRole::kOwner:
       return "lineloc_owner";
+    case DatabaseRole::kWriter:
+      return "lineloc_writer";
     case DatabaseRole::kReader:
       return "lineloc_reader";
   }

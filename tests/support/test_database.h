@@ -8,10 +8,10 @@
 
 namespace lineloc::test {
 
-// The roles deploy/pg.sh makes for lineloc's programs: the owner migrates and
-// loads (and, on the test cluster, creates databases), the reader reads
-// (lineloc-backbone).
-enum class DatabaseRole { kOwner, kReader };
+// The roles deploy/pg.sh makes for lineloc's programs (docs/production.md):
+// the owner runs migrations (and, on the test cluster, creates databases),
+// the writer loads rows (lineloc-load), the reader reads (lineloc-backbone).
+enum class DatabaseRole { kOwner, kWriter, kReader };
 
 // `deploy/pg.sh conninfo ROLE` for the cluster on `port`: the libpq
 // connection string of its database lineloc, password file included.

@@ -147,8 +147,8 @@ class CityDrive : public ::testing::Test {
     fs::remove_all(work_);
     fs::create_directories(work_);
     ASSERT_TRUE(fs::exists(city_.model)) << "city model missing: " << city_.model;
-    std::vector<std::string> load = {"--db", database_.conninfo(), "--site", city_.site,
-                                     "--site-origin"};
+    std::vector<std::string> load = {"--db", database_.conninfo(test::DatabaseRole::kWriter),
+                                     "--site", city_.site, "--site-origin"};
     load.insert(load.end(), city_.origin.begin(), city_.origin.end());
     load.push_back(city_.model.string());
     runOrFail("lineloc-load", load, work_ / "load.log", 120'000);

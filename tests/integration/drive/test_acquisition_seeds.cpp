@@ -78,8 +78,8 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
   fs::create_directories(work);
   test::TestDatabase database("acquisition_seeds");
   {
-    std::vector<std::string> args = {"--db", database.conninfo(), "--site", "delft",
-                                     "--site-origin"};
+    std::vector<std::string> args = {"--db", database.conninfo(test::DatabaseRole::kWriter),
+                                     "--site", "delft", "--site-origin"};
     const std::vector<std::string> origin = test::delftSiteOriginArgs();
     args.insert(args.end(), origin.begin(), origin.end());
     args.push_back(city.string());

@@ -19,7 +19,8 @@ namespace {
 
 using test::DatabaseRole;
 
-constexpr DatabaseRole kRoles[] = {DatabaseRole::kOwner, DatabaseRole::kReader};
+constexpr DatabaseRole kRoles[] = {DatabaseRole::kOwner, DatabaseRole::kWriter,
+                                   DatabaseRole::kReader};
 
 // The value of `keyword` in the libpq connection string `conninfo`.
 std::string conninfoValue(const std::string& conninfo, const std::string& keyword) {
@@ -73,7 +74,8 @@ TEST(PgCluster, HbaTrustsNoOneAndAsksEveryoneForAPassword) {
 
 TEST(PgCluster, RefusesEveryRoleWithoutItsPassword) {
   const std::string port = std::getenv("LINELOC_TEST_PG_PORT");
-  for (const std::string role : {"lineloc", "lineloc_owner", "lineloc_reader", "postgres"}) {
+  for (const std::string role :
+       {"lineloc", "lineloc_owner", "lineloc_writer", "lineloc_reader", "postgres"}) {
     for (const std::string& host : {std::string("127.0.0.1"), dataDirectory().string()}) {
       const std::string conninfo = fmt::format(
           "host='{}' port={} user={} dbname=postgres passfile=/dev/null "

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   options.add("dds_config", config.dds_config,
               "Cyclone DDS XML configuration file, or several separated by commas, each adding "
               "to the ones before (empty: CYCLONEDDS_URI / defaults)");
-  options.add("db", config.db, "libpq connection string of the building database");
+  options.add("db", config.db,
+              "libpq connection string of the building database, as its reader role");
   options.add("site", config.site, "name of the site in the database");
   options.add("query_radius_m", config.query_radius_m,
               "model lines within this distance of the predicted position are used (m)");

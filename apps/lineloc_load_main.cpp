@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   program.addPositional("files", config.files,
                         "City models: .json/.city.json (CityJSON 1.1/2.0), .jsonl (CityJSON "
                         "Lines), .obj (Wavefront, needs --city-model-crs), .geojson (footprints)");
-  program.add("db", config.db, "libpq connection string of the database (a writing role)");
+  program.add("db", config.db, "libpq connection string of the database, as its writer role");
   program.add("site", config.site, "site to load into; created when new");
   program.add("city_model_crs", config.city_model_crs,
               "CRS of files that name none (EPSG:N); refused when neither gives one");

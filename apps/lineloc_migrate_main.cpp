@@ -7,10 +7,10 @@
 #include "db/migrations.h"
 
 int main(int argc, char** argv) {
-  std::string conninfo = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
+  std::string conninfo = "host=127.0.0.1 port=55432 user=lineloc_owner dbname=lineloc";
   lineloc::ProgramOptions options("lineloc-migrate",
                                   "Apply lineloc's schema migrations to a PostGIS database");
-  options.add("db", conninfo, "libpq connection string of the database");
+  options.add("db", conninfo, "libpq connection string of the database, as its owner role");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

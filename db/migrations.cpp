@@ -25,9 +25,21 @@ bool isApplied(Connection& connection, int version) {
 }  // namespace
 
 int schemaVersion(Connection& connection) {
-  ensureMigrationsTable(connection);
+  if (connection.exec("SELECT to_regclass('schema_migrations') IS NULL").text(0, 0) == "t") {
+    return 0;
+  }
   return std::stoi(
       connection.exec("SELECT coalesce(max(version), 0) FROM schema_migrations").text(0, 0));
+}
+
+void requireMigrated(Connection& connection, const std::vector<Migration>& migrations) {
+  const int version = schemaVersion(connection);
+  const int newest = migrations.empty() ? 0 : migrations.back().version;
+  if (version < newest) {
+    throw DatabaseError(fmt::format(
+        "the database's schema is at version {}, not {}: run lineloc-migrate as its owner role",
+        version, newest));
+  }
 }
 
 int applyMigrations(Connection& connection, const std::vector<Migration>& migrations) {

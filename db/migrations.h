@@ -23,7 +23,12 @@ const std::vector<Migration>& embeddedMigrations();
 // Throws DatabaseError naming the migration that failed (its changes are rolled back).
 int applyMigrations(Connection& connection, const std::vector<Migration>& migrations);
 
-// The highest applied version, 0 for an empty database.
+// The highest applied version, 0 for an empty database. Reads only.
 int schemaVersion(Connection& connection);
+
+// Throws DatabaseError, telling to run lineloc-migrate as the owner role,
+// unless the schema is at the newest of `migrations`: for programs whose role
+// may not migrate (lineloc-load writes as the writer role).
+void requireMigrated(Connection& connection, const std::vector<Migration>& migrations);
 
 }  // namespace lineloc::db

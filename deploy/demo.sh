@@ -110,11 +110,13 @@ START_UTC=2026-04-14T09:30:00Z
 rm -rf "$OUT" && mkdir -p "$OUT"
 
 "$ROOT/deploy/pg.sh" start
-CONNINFO="$("$ROOT/deploy/pg.sh" conninfo)"
-# The backbone only reads: it connects with the read-only role the migrations create.
+# Each program logs in as the role it needs (docs/production.md): the owner
+# migrates the schema, the writer loads rows, the backbone only reads.
+OWNER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_owner)"
+WRITER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_writer)"
 READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
-"$BIN/lineloc-migrate" --db "$CONNINFO"
-"$BIN/lineloc-load" --db "$CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
+"$BIN/lineloc-migrate" --db "$OWNER_CONNINFO"
+"$BIN/lineloc-load" --db "$WRITER_CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
   --site-origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
 echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)${SIM_ARGS[*]:+, ${SIM_ARGS[*]}}"

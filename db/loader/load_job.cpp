@@ -77,7 +77,7 @@ std::vector<LoadReport> runLoadJob(
   std::unique_ptr<Connection> connection;
   if (!config.dry_run || !config.export_lines.empty()) {
     connection = std::make_unique<Connection>(config.db);
-    applyMigrations(*connection, embeddedMigrations());
+    requireMigrated(*connection, embeddedMigrations());
   }
   std::vector<LoadReport> reports;
   for (const std::string& file : config.files) {

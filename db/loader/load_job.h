@@ -15,8 +15,8 @@ namespace lineloc::db {
 
 struct LoadJobConfig {
   std::vector<std::string> files;
-  // libpq connection string of a role that may write.
-  std::string db = "host=127.0.0.1 port=55432 user=lineloc dbname=lineloc";
+  // libpq connection string of a role that may write rows (the writer role).
+  std::string db = "host=127.0.0.1 port=55432 user=lineloc_writer dbname=lineloc";
   std::string site = "default";
   // "EPSG:N" of files that name no CRS; empty: each file's own.
   std::string city_model_crs;
@@ -44,7 +44,8 @@ struct LoadJobConfig {
 LoadOptions loadOptionsOf(const LoadJobConfig& config);
 
 // Runs the job: connects (unless it is a dry run that exports nothing),
-// migrates the schema, loads each file, then the synthetic city, then exports.
+// checks the schema is migrated, loads each file, then the synthetic city,
+// then exports.
 // Writes one summary per source and one line per export to `out`;
 // `progressFor(source)` gives the progress of the buildings written for each
 // source. Returns the sources' reports. Throws std::invalid_argument when there

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "db/connection.h"
@@ -12,24 +15,71 @@
 
 namespace lineloc::test {
 
-std::string testClusterConninfo(const std::string& database) {
+namespace {
+
+const char* roleName(DatabaseRole role) {
+  switch (role) {
+    case DatabaseRole::kOwner:
+      return "lineloc_owner";
+    case DatabaseRole::kWriter:
+      return "lineloc_writer";
+    case DatabaseRole::kReader:
+      return "lineloc_reader";
+  }
+  throw std::invalid_argument("unknown database role");
+}
+
+}  // namespace
+
+std::string clusterConninfo(const std::string& port, DatabaseRole role) {
+  const std::string command = fmt::format("LINELOC_PG_PORT='{}' '{}/deploy/pg.sh' conninfo {}",
+                                          port, LINELOC_SOURCE_DIR, roleName(role));
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    throw std::runtime_error("could not run " + command);
+  }
+  std::string conninfo;
+  char buffer[256];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
+    conninfo += buffer;
+  }
+  if (pclose(pipe) != 0 || conninfo.empty()) {
+    throw std::runtime_error(command + " failed");
+  }
+  conninfo.erase(conninfo.find_last_not_of('\n') + 1);
+  return conninfo;
+}
+
+std::string testClusterConninfo(const std::string& database, DatabaseRole role) {
   const char* port = std::getenv("LINELOC_TEST_PG_PORT");
   if (port == nullptr) {
     throw std::runtime_error(
         "LINELOC_TEST_PG_PORT is not set: run this test through ctest (fixture 'postgis')");
   }
-  return fmt::format("host=127.0.0.1 port={} user=lineloc dbname={}", port, database);
+  // deploy/pg.sh runs once per role and process.
+  static std::mutex mutex;
+  static std::map<DatabaseRole, std::string> cluster_conninfo;
+  const std::lock_guard lock(mutex);
+  auto known = cluster_conninfo.find(role);
+  if (known == cluster_conninfo.end()) {
+    known = cluster_conninfo.emplace(role, clusterConninfo(port, role)).first;
+  }
+  // libpq takes the last value of a repeated keyword.
+  return fmt::format("{} dbname={}", known->second, database);
 }
 
 TestDatabase::TestDatabase(const std::string& name)
     : admin_conninfo_(testClusterConninfo("postgres")),
-      database_(fmt::format("test_{}_{}", name, getpid())),
-      conninfo_(testClusterConninfo(database_)) {
+      database_(fmt::format("test_{}_{}", name, getpid())) {
   db::Connection admin(admin_conninfo_);
   admin.exec(fmt::format("DROP DATABASE IF EXISTS {} WITH (FORCE)", database_));
   admin.exec(fmt::format("CREATE DATABASE {} TEMPLATE template1", database_));
-  db::Connection connection(conninfo_);
+  db::Connection connection(conninfo());
   db::applyMigrations(connection, db::embeddedMigrations());
+}
+
+std::string TestDatabase::conninfo(DatabaseRole role) const {
+  return testClusterConninfo(database_, role);
 }
 
 TestDatabase::~TestDatabase() {

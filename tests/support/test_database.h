@@ -1,11 +1,25 @@
 // A fresh, migrated PostGIS database for one test, on the private test cluster
 // that the CTest fixture "postgis" starts with deploy/pg.sh (port from
-// LINELOC_TEST_PG_PORT). Dropped again when the object goes away.
+// LINELOC_TEST_PG_PORT). Dropped again when the object goes away. Connection
+// strings are the ones deploy/pg.sh prints, with the passwords it keeps.
 #pragma once
 
 #include <string>
 
 namespace lineloc::test {
+
+// The roles deploy/pg.sh makes for lineloc's programs (docs/production.md):
+// the owner runs migrations (and, on the test cluster, creates databases),
+// the writer loads rows (lineloc-load), the reader reads (lineloc-backbone).
+enum class DatabaseRole { kOwner, kWriter, kReader };
+
+// `deploy/pg.sh conninfo ROLE` for the cluster on `port`: the libpq
+// connection string of its database lineloc, password file included.
+std::string clusterConninfo(const std::string& port, DatabaseRole role);
+
+// libpq connection string of the test cluster's database `database` as `role`.
+std::string testClusterConninfo(const std::string& database,
+                                DatabaseRole role = DatabaseRole::kOwner);
 
 class TestDatabase {
  public:
@@ -15,16 +29,13 @@ class TestDatabase {
   TestDatabase(const TestDatabase&) = delete;
   TestDatabase& operator=(const TestDatabase&) = delete;
 
-  const std::string& conninfo() const { return conninfo_; }
+  // The owner's by default: it migrated the database and may change anything.
+  std::string conninfo(DatabaseRole role = DatabaseRole::kOwner) const;
 
  private:
   std::string admin_conninfo_;
   std::string database_;
-  std::string conninfo_;
 };
-
-// libpq connection string of the test cluster's database `database`.
-std::string testClusterConninfo(const std::string& database);
 
 // Inserts site 'test' (EPSG:7415, origin `origin`) and a 10 m cube at the site
 // origin offset by `corner_world` (12 lines, 6 faces); returns the site id.

@@ -1,7 +1,8 @@
 // Benchmarks of the building database (paper §3.1: lines near the robot,
 // fast), on a PostGIS server named by LINELOC_BENCH_DB (a libpq connection
-// string; default the deploy/pg.sh cluster, database lineloc_bench, which is
-// created and filled with a 100,000-building synthetic city on first run):
+// string; default the deploy/pg.sh cluster as its owner role, database
+// lineloc_bench, which is created and filled with a 100,000-building synthetic
+// city on first run):
 //  - the 150 m query around random street positions: ModelLineQuery (line
 //    packs under a 2D GiST box, binary bytea, exact distance in C++) beside a
 //    plain ST_3DDWithin query decoded from text (with the n-D index it needs,
@@ -29,6 +30,7 @@
 #include "db/migrations.h"
 #include "db/model_line_query.h"
 #include "db/site.h"
+#include "tests/support/test_database.h"
 
 namespace {
 
@@ -52,9 +54,12 @@ std::string benchConninfo() {
     return conninfo;
   }
   static const std::string conninfo = [] {
-    const std::string cluster = "host=127.0.0.1 port=55432 user=lineloc";
-    Connection server(cluster + " dbname=lineloc");
+    // The owner role's: it migrates, and builds the baseline's index.
+    const std::string cluster =
+        lineloc::test::clusterConninfo("55432", lineloc::test::DatabaseRole::kOwner);
+    Connection server(cluster);
     createDatabaseIfMissing(server, "lineloc_bench");
+    // libpq takes the last value of a repeated keyword.
     return cluster + " dbname=lineloc_bench";
   }();
   return conninfo;

@@ -64,7 +64,7 @@ void BM_LineSetRoundTrip(benchmark::State& state) {
   test::ChildProcess backbone(
       std::string(LINELOC_BIN_DIR) + "/lineloc-backbone",
       {"--domain-id", std::to_string(test::testDomainId()), "--dds-config", test::testDdsConfig(),
-       "--db", database.conninfo(), "--site", "test"},
+       "--db", database.conninfo(test::DatabaseRole::kReader), "--site", "test"},
       log);
 
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());

@@ -156,8 +156,8 @@ class CityDrive : public ::testing::Test {
     fs::remove_all(work_);
     fs::create_directories(work_);
     ASSERT_TRUE(fs::exists(city_.model)) << "city model missing: " << city_.model;
-    std::vector<std::string> load = {"--db", database_.conninfo(), "--site", city_.site,
-                                     "--site-origin"};
+    std::vector<std::string> load = {"--db", database_.conninfo(test::DatabaseRole::kWriter),
+                                     "--site", city_.site, "--site-origin"};
     load.insert(load.end(), city_.origin.begin(), city_.origin.end());
     load.push_back(city_.model.string());
     runOrFail("lineloc-load", load, work_ / "load.log", 120'000);
@@ -228,8 +228,9 @@ class CityDrive : public ::testing::Test {
   std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name) const {
     std::vector<std::string> args = dds("backbone", "test");
     const DriveSimulationConfig simulated;
-    args.insert(args.end(), {"--db", database_.conninfo(), "--site", city_.site, "--sun-from-clock",
-                             "--ambient", fmt::format("{}", simulated.ambient)});
+    args.insert(args.end(),
+                {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", city_.site,
+                 "--sun-from-clock", "--ambient", fmt::format("{}", simulated.ambient)});
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone", args,
                                           (work_ / log_name).string());
   }

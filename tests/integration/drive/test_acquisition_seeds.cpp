@@ -78,8 +78,8 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
   fs::create_directories(work);
   test::TestDatabase database("acquisition_seeds");
   {
-    std::vector<std::string> args = {"--db", database.conninfo(), "--site", "delft",
-                                     "--site-origin"};
+    std::vector<std::string> args = {"--db", database.conninfo(test::DatabaseRole::kWriter),
+                                     "--site", "delft", "--site-origin"};
     const std::vector<std::string> origin = test::delftSiteOriginArgs();
     args.insert(args.end(), origin.begin(), origin.end());
     args.push_back(city.string());
@@ -87,8 +87,11 @@ TEST(AcquisitionSeeds, NoPrecisePoseIsWrongOverFiftyDgpsStarts) {
                             (work / "load.log").string());
     ASSERT_EQ(load.wait(120'000), std::optional<int>(0));
   }
-  MapTileCache map([&] { return makeDatabaseTileFetcher(database.conninfo(), "delft"); }, 100.0,
-                   1024);
+  MapTileCache map(
+      [&] {
+        return makeDatabaseTileFetcher(database.conninfo(test::DatabaseRole::kReader), "delft");
+      },
+      100.0, 1024);
   // The backbone knows the sun, as the demo's does.
   PipelineOptions pipeline;
   pipeline.localizer.visibility.sunlight = drivingSunlight(DriveSimulationConfig{});

@@ -203,9 +203,9 @@ class RobotBackboneLoop : public ::testing::Test {
   std::unique_ptr<test::ChildProcess> startBackbone(
       const fs::path& stats_file, const std::vector<std::string>& more_options = {}) {
     return start("lineloc-backbone", "backbone-test", "backbone.log",
-                 {"--db", database_.conninfo(), "--site", "test", "--max-segments",
-                  std::to_string(kBackboneMaxSegments), "--stats-file", stats_file.string(),
-                  "--stats-period-s", "0.1"},
+                 {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", "test",
+                  "--max-segments", std::to_string(kBackboneMaxSegments), "--stats-file",
+                  stats_file.string(), "--stats-period-s", "0.1"},
                  more_options);
   }
 

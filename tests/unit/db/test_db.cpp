@@ -22,6 +22,44 @@ TEST(Migrations, ApplyOnceThenNothing) {
   EXPECT_EQ(schemaVersion(connection), newest);
 }
 
+TEST(Migrations, LayTheTablesInSchemaLinelocOwnedByTheOwnerRole) {
+  test::TestDatabase database("migrations_schema");
+  Connection connection(database.conninfo());
+  EXPECT_EQ(connection
+                .exec("SELECT string_agg(tablename, ',') FROM pg_tables WHERE schemaname = "
+                      "'public' AND tablename <> 'spatial_ref_sys'")
+                .text(0, 0),
+            "");
+  EXPECT_EQ(connection
+                .exec("SELECT string_agg(DISTINCT tableowner, ',') || ' ' || count(*) FROM "
+                      "pg_tables WHERE schemaname = 'lineloc'")
+                .text(0, 0),
+            "lineloc_owner 11");
+  // Every role finds the tables by the database's search_path.
+  Connection reader(database.conninfo(test::DatabaseRole::kReader));
+  EXPECT_EQ(reader.exec("SELECT current_schemas(false)::text").text(0, 0), "{lineloc,public}");
+  EXPECT_EQ(reader
+                .exec("SELECT relnamespace::regnamespace::text FROM pg_class WHERE oid = "
+                      "to_regclass('line')")
+                .text(0, 0),
+            "lineloc");
+}
+
+TEST(Migrations, RequireMigratedTellsToRunLinelocMigrate) {
+  test::TestDatabase database("migrations_required");
+  Connection writer(database.conninfo(test::DatabaseRole::kWriter));
+  EXPECT_NO_THROW(requireMigrated(writer, embeddedMigrations()));
+  std::vector<Migration> newer = embeddedMigrations();
+  newer.push_back({newer.back().version + 1, "newer", "SELECT 1"});
+  try {
+    requireMigrated(writer, newer);
+    FAIL() << "a schema behind the newest migration must be refused";
+  } catch (const DatabaseError& error) {
+    EXPECT_NE(std::string(error.what()).find("lineloc-migrate"), std::string::npos);
+  }
+  EXPECT_THROW(applyMigrations(writer, newer), DatabaseError) << "the writer may not migrate";
+}
+
 TEST(Migrations, FailingMigrationRollsBackAndNamesItself) {
   test::TestDatabase database("migration_failure");
   Connection connection(database.conninfo());

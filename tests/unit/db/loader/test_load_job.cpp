@@ -94,7 +94,7 @@ TEST(LoadJob, LoadsExportsAndReloadsUnchanged) {
   const fs::path exported =
       fs::temp_directory_path() / fmt::format("load_job_{}.geojson", getpid());
   LoadJobConfig config;
-  config.db = database.conninfo();
+  config.db = database.conninfo(test::DatabaseRole::kWriter);
   config.site = "delft";
   config.site_origin = {84900.0, 447600.0, 0.0};
   config.files = {delftModel()};

@@ -27,7 +27,7 @@ int count(Connection& connection, const std::string& sql) {
 
 TEST(Loader, ReloadingTheSameFileChangesNothing) {
   test::TestDatabase database("loader_reload");
-  Connection connection(database.conninfo());
+  Connection connection(database.conninfo(test::DatabaseRole::kWriter));
   const std::string path =
       (std::filesystem::path(LINELOC_SOURCE_DIR) / "data" / "citymodels" / "delft.json").string();
   const std::string snapshot_sql =
@@ -78,7 +78,7 @@ std::string cubes(const std::vector<std::string>& ids, const std::string& broken
 
 TEST(Loader, AFailedLoadLeavesThePreviousVersionAndSkipInvalidCounts) {
   test::TestDatabase database("loader_failure");
-  Connection connection(database.conninfo());
+  Connection connection(database.conninfo(test::DatabaseRole::kWriter));
   const std::string path = writeTemporary("block.json", cubes({"a", "b"}));
   loadFile(path, {}, &connection, nullptr);
   EXPECT_EQ(count(connection, "SELECT count(*) FROM line"), 24);
@@ -110,7 +110,7 @@ TEST(Loader, AKilledLoaderLeavesThePreviousState) {
   options.site = "synthetic";
   const SourceRecord record{"city", "v1", ""};
   {
-    Connection connection(database.conninfo());
+    Connection connection(database.conninfo(test::DatabaseRole::kWriter));
     storeModel(connection, options, record, prepareSynthetic({.building_count = 50}, options),
                nullptr);
   }
@@ -119,7 +119,7 @@ TEST(Loader, AKilledLoaderLeavesThePreviousState) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     // The child replaces the city and dies by SIGKILL halfway through writing lines.
-    Connection connection(database.conninfo());
+    Connection connection(database.conninfo(test::DatabaseRole::kWriter));
     storeModel(connection, options, {"city", "v2", ""}, bigger, [](size_t done, size_t) {
       if (done == 1500)
         raise(SIGKILL);
@@ -129,31 +129,60 @@ TEST(Loader, AKilledLoaderLeavesThePreviousState) {
   int status = 0;
   waitpid(child, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
-  Connection connection(database.conninfo());
+  Connection connection(database.conninfo(test::DatabaseRole::kWriter));
   EXPECT_EQ(count(connection, "SELECT count(*) FROM building"), 50);
   EXPECT_EQ(connection.exec("SELECT hash FROM source_file").text(0, 0), "v1");
+}
+
+// Each statement a role may not run, refused with the server's message.
+void expectRefused(Connection& connection, const std::vector<std::string>& statements) {
+  for (const std::string& sql : statements) {
+    EXPECT_THROW(connection.exec(sql), DatabaseError) << sql;
+  }
 }
 
 TEST(Loader, ReaderRoleSelectsButCannotWrite) {
   test::TestDatabase database("loader_reader_role");
   test::insertCubeBuilding(database.conninfo(), 85000, 447000, 0, 0);
-  std::string reader_conninfo = database.conninfo();
-  reader_conninfo.replace(reader_conninfo.find("user=lineloc"), 12, "user=lineloc_reader");
-  Connection reader(reader_conninfo);
+  Connection reader(database.conninfo(test::DatabaseRole::kReader));
   EXPECT_EQ(count(reader, "SELECT count(*) FROM line"), 12);
   // The backbone's query reads the line packs.
   ModelLineQuery query(reader, *findSite(reader, "test"));
   EXPECT_EQ(query.linesWithin({5.0, 5.0, 5.0}, 10.0).size(), 12u);
-  EXPECT_THROW(reader.exec("DELETE FROM line"), DatabaseError);
-  EXPECT_THROW(reader.exec("DELETE FROM building_line_pack"), DatabaseError);
-  EXPECT_THROW(
-      reader.exec("INSERT INTO site (name, srid, origin_x, origin_y) VALUES ('x', 1, 0, 0)"),
-      DatabaseError);
+  expectRefused(reader,
+                {"DELETE FROM line", "DELETE FROM building_line_pack",
+                 "INSERT INTO site (name, srid, origin_x, origin_y) VALUES ('x', 1, 0, 0)",
+                 "UPDATE site SET name = 'x'", "UPDATE schema_migrations SET version = 0",
+                 "SELECT nextval('line_id_seq')", "COPY site FROM STDIN", "TRUNCATE line",
+                 "CREATE TABLE x (a int)", "CREATE TABLE public.x (a int)", "CREATE SCHEMA x",
+                 "ALTER TABLE line ADD COLUMN x int", "DROP TABLE line"});
+  EXPECT_EQ(count(reader, "SELECT count(*) FROM line"), 12);
+}
+
+TEST(Loader, WriterRoleLoadsRowsButCannotChangeTheSchema) {
+  test::TestDatabase database("loader_writer_role");
+  Connection writer(database.conninfo(test::DatabaseRole::kWriter));
+  const std::string path = writeTemporary("writer.json", cubes({"a", "b"}));
+  loadFile(path, {}, &writer, nullptr);
+  std::filesystem::remove(path);
+  EXPECT_EQ(count(writer, "SELECT count(*) FROM line"), 24);
+  writer.exec("UPDATE site SET origin_z = 1");
+  writer.exec("DELETE FROM source_file");
+  expectRefused(
+      writer,
+      {"CREATE TABLE x (a int)", "CREATE TABLE public.x (a int)", "CREATE SCHEMA x",
+       "CREATE INDEX x ON line (kind)", "ALTER TABLE line ADD COLUMN x int",
+       "ALTER TABLE line DISABLE TRIGGER line_packs_after_insert", "DROP TABLE terrain_triangle",
+       "TRUNCATE line", "CREATE FUNCTION x() RETURNS int LANGUAGE sql AS 'SELECT 1'",
+       "COPY site TO PROGRAM 'true'", "COPY site FROM PROGRAM 'true'",
+       "INSERT INTO schema_migrations (version, name) VALUES (9999, 'x')",
+       "DELETE FROM schema_migrations", "SET ROLE lineloc_owner"});
+  EXPECT_EQ(count(writer, "SELECT count(*) FROM line"), 24);
 }
 
 TEST(Loader, LinesQueryAndExportOfASyntheticCity) {
   test::TestDatabase database("loader_query");
-  Connection connection(database.conninfo());
+  Connection connection(database.conninfo(test::DatabaseRole::kWriter));
   LoadOptions options;
   options.site = "synthetic";
   const citymodel::SyntheticCityOptions city{.building_count = 400};

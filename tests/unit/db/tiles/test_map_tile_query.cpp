@@ -11,7 +11,7 @@ TEST(MapTileQuery, ReturnsTheLinesOfTheCubesMeetingTheSquareInWorldCoordinates) 
   test::TestDatabase database("tile_query");
   test::insertCubeBuilding(database.conninfo(), 85000, 447000, 0, 0);
   test::insertCubeBuilding(database.conninfo(), 85000, 447000, 300, 0);
-  Connection connection(database.conninfo());
+  Connection connection(database.conninfo(test::DatabaseRole::kReader));
   MapTileQuery query(connection, *findSite(connection, "test"));
 
   const TileContents first = query.within({Eigen::Vector2d(-50, -50), Eigen::Vector2d(50, 50)});

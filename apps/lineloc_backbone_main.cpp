@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
               "ulimit -r); 0: time-shared");
   options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
+  options.add("max_camera_side_px", config.max_camera_side_px,
+              "LineSets whose camera image is wider or taller are dropped (pixels)");
+  options.add("max_camera_megapixels", config.max_camera_megapixels,
+              "LineSets whose camera image has more pixels are dropped (megapixels)");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
   options.add("stats_period_s", config.stats_period_s, "how often the stats file is rewritten");
   std::vector<double> sun_deg;

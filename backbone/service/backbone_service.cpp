@@ -118,17 +118,20 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
 }
 
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
-  if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0 ||
+  if (config.max_segments <= 0 || config.max_corners < 0 || config.max_camera_side_px <= 0 ||
+      !(config.max_camera_megapixels > 0.0) || config.query_radius_m <= 0.0 ||
       config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0) ||
       !(config.forget_robot_after_s > 0.0)) {
     throw std::runtime_error(
-        "max_segments, query_radius_m, tile_size_m, max_cached_tiles, stats_period_s and "
-        "forget_robot_after_s must be positive");
+        "max_segments, max_camera_side_px, max_camera_megapixels, query_radius_m, tile_size_m, "
+        "max_cached_tiles, stats_period_s and forget_robot_after_s must be positive");
   }
   requireRealtimePriority(config.realtime_priority);
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
   limits.max_corners = static_cast<uint32_t>(config.max_corners);
+  limits.max_camera_side_px = static_cast<uint32_t>(config.max_camera_side_px);
+  limits.max_camera_megapixels = config.max_camera_megapixels;
   MapTileCache map([&config] { return makeDatabaseTileFetcher(config.db, config.site); },
                    config.tile_size_m, static_cast<size_t>(config.max_cached_tiles));
   PipelineOptions pipeline;

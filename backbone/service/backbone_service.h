@@ -31,8 +31,11 @@ struct BackboneConfig {
   // samples, may sit between the two (deploy/cyclonedds-realtime.xml). A
   // refusal is logged and they run time-shared.
   int realtime_priority = 0;
+  // LineSets beyond these limits are dropped (message_validator.h).
   int max_segments = 2048;
   int max_corners = 2048;
+  int max_camera_side_px = 8192;
+  double max_camera_megapixels = 32.0;
   // Written on exit (and every stats_period_s): counters as JSON; empty: none.
   std::string stats_file;
   double stats_period_s = 1.0;

@@ -102,6 +102,8 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"notices_after_line_set", counters.notices_after_line_set},
                                {"robots", counters.robots},
                                {"robots_forgotten", counters.robots_forgotten},
+                               {"refused_robot_frames", counters.refused_robot_frames},
+                               {"refused_searches", counters.refused_searches},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -121,10 +123,12 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   if (config.max_segments <= 0 || config.max_corners < 0 || config.max_camera_side_px <= 0 ||
       !(config.max_camera_megapixels > 0.0) || config.query_radius_m <= 0.0 ||
       config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0) ||
-      !(config.forget_robot_after_s > 0.0)) {
+      !(config.forget_robot_after_s > 0.0) || config.max_robots <= 0 ||
+      config.max_queued_searches <= 0) {
     throw std::runtime_error(
         "max_segments, max_camera_side_px, max_camera_megapixels, query_radius_m, tile_size_m, "
-        "max_cached_tiles, stats_period_s and forget_robot_after_s must be positive");
+        "max_cached_tiles, stats_period_s, forget_robot_after_s, max_robots and "
+        "max_queued_searches must be positive");
   }
   requireRealtimePriority(config.realtime_priority);
   MessageLimits limits;
@@ -138,6 +142,8 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
   pipeline.forget_robot_after_s = config.forget_robot_after_s;
+  pipeline.max_robots = config.max_robots;
+  pipeline.max_queued_searches = config.max_queued_searches;
   pipeline.localizer.visibility.sunlight = config.sunlight;
   pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
@@ -167,6 +173,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     while (!stop) {
       if (!reader.waitForData(kWaitNs)) {
         handler.forgetSilentRobotsWhenDue(steadyClockNs());
+        handler.flushLogs(steadyClockNs());
         continue;
       }
       reader.takeEach([&](const lineloc_msg_LineSet& message) {

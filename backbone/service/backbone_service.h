@@ -22,8 +22,12 @@ struct BackboneConfig {
   double tile_size_m = 100.0;
   int max_cached_tiles = 4096;
   double prefetch_lookahead_s = 3.0;
-  // A robot not heard from for this long is forgotten (line_set_handler.h).
+  // A robot not heard from for this long is forgotten; at most max_robots are
+  // served at once and max_queued_searches searches wait in all; frames
+  // beyond are answered FIX_BUSY (line_set_handler.h).
   double forget_robot_after_s = 30.0;
+  int max_robots = 64;
+  int max_queued_searches = 8;
   // SCHED_FIFO priority (1-99) of the threads a frame's answer waits on, the
   // LineSets' and the exposure notices' (thread_priority.h); 0: time-shared.
   // Below a robot's front end sharing the machine, above the searches and the
@@ -47,7 +51,8 @@ struct BackboneConfig {
   double ambient_fraction = 0.35;
 };
 
-// Serves until `stop` is true; returns the final counters.
+// Serves until `stop` is true; returns the final counters. Stopping drops
+// the searches queued (search_worker.h).
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
 // Median, 99th percentile and maximum (ms) of each stage over the counters'

@@ -229,7 +229,7 @@ std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message) 
   if (Error e = checkRobotId(message.robot_id))
     return e;
   const int32_t status = rawEnumValue(message.status);
-  if (status < lineloc_msg_FIX_OK || status > lineloc_msg_FIX_INTERNAL_ERROR) {
+  if (status < lineloc_msg_FIX_OK || status > lineloc_msg_FIX_BUSY) {
     return fmt::format("status {} is unknown", status);
   }
   if (!std::isfinite(message.residual_rms_px) || message.residual_rms_px < 0.0f) {

@@ -6,12 +6,15 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "backbone/map/database_tile_fetcher.h"
+#include "backbone/service/site_lookup.h"
+#include "common/logging/rate_limited_log.h"
 #include "common/messages/topics.h"
 #include "common/parallel/periodic_task.h"
 #include "common/parallel/realtime_thread.h"
@@ -23,25 +26,83 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
+constexpr std::chrono::seconds kSiteRetryPeriod(2);
 
-// The sun over the configured site by the clock, when asked for.
-std::optional<SiteSun> clockSun(const BackboneConfig& config) {
-  if (!config.sun_from_clock) {
-    return std::nullopt;
+// Looks the configured site up (site_lookup.h) at once and, while the
+// database cannot be reached, again every kSiteRetryPeriod: the backbone
+// starts and serves without its database. Found, the site gives the handler
+// the sun over it when asked for (--sun-from-clock); missing, it is the
+// refusal the backbone stops serving with.
+class SiteWatch {
+ public:
+  SiteWatch(const BackboneConfig& config, LineSetHandler& handler)
+      : config_(config), handler_(handler), unreachable_log_("site lookups failed", 1, 60.0) {
+    if (!attempt()) {
+      retries_.emplace(kSiteRetryPeriod, [this] { attempt(); });
+    }
   }
-  if (config.sunlight) {
-    throw std::runtime_error(
-        "give the sun's azimuth and elevation or take it from the clock, not both");
+
+  bool refused() const { return refused_; }
+  std::optional<std::string> refusal() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return refusal_;
   }
-  db::Connection connection(config.db);
-  const db::Site site = db::requireSite(connection, config.site);
-  const SiteSun sun(SiteProjection(fmt::format("EPSG:{}", site.srid), site.origin),
-                    config.ambient_fraction);
-  const GeodeticPosition& place = sun.place();
-  spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
-               config.site, place.latitude_deg, place.longitude_deg);
-  return sun;
-}
+
+ private:
+  // Looks the site up unless the database has answered; true once it has.
+  bool attempt() {
+    if (answered_) {
+      return true;
+    }
+    const SiteLookup lookup = lookUpSite(config_.db, config_.site);
+    if (lookup.outcome == SiteLookup::Outcome::kUnreachable) {
+      unreachable_log_.warn(
+          fmt::format("{}; looking again every {} s", lookup.error, kSiteRetryPeriod.count()));
+      return false;
+    }
+    answered_ = true;
+    if (lookup.outcome == SiteLookup::Outcome::kMissing) {
+      refuse(lookup.error);
+      return true;
+    }
+    spdlog::info("site '{}' found in the database", config_.site);
+    if (config_.sun_from_clock) {
+      try {
+        takeSunOver(*lookup.site);
+      } catch (const std::exception& error) {
+        refuse(fmt::format("the sun over site '{}': {}", config_.site, error.what()));
+      }
+    }
+    return true;
+  }
+
+  void takeSunOver(const db::Site& site) {
+    const SiteSun sun(SiteProjection(fmt::format("EPSG:{}", site.srid), site.origin),
+                      config_.ambient_fraction);
+    handler_.takeSunFromClock(sun);
+    const GeodeticPosition& place = sun.place();
+    spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
+                 config_.site, place.latitude_deg, place.longitude_deg);
+  }
+
+  void refuse(const std::string& why) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      refusal_ = why;
+    }
+    refused_ = true;
+  }
+
+  const BackboneConfig& config_;
+  LineSetHandler& handler_;
+  RateLimitedLog unreachable_log_;
+  std::atomic<bool> answered_{false};
+  std::atomic<bool> refused_{false};
+  mutable std::mutex mutex_;
+  std::optional<std::string> refusal_;
+  // Last, so that it is destroyed first: its task uses the members above.
+  std::optional<PeriodicTask> retries_;
+};
 
 // Writes config.stats_file now, which fails the start when it cannot be
 // written, then every stats_period_s beside the serving loop
@@ -131,6 +192,10 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
         "max_queued_searches must be positive");
   }
   requireRealtimePriority(config.realtime_priority);
+  if (config.sun_from_clock && config.sunlight) {
+    throw std::runtime_error(
+        "give the sun's azimuth and elevation or take it from the clock, not both");
+  }
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
   limits.max_corners = static_cast<uint32_t>(config.max_corners);
@@ -145,7 +210,6 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.max_robots = config.max_robots;
   pipeline.max_queued_searches = config.max_queued_searches;
   pipeline.localizer.visibility.sunlight = config.sunlight;
-  pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::Participant participant(domain);
   dds::Reader<lineloc_msg_LineSet> reader(participant, dds::Qos(dds::kHistoryDepth));
@@ -153,15 +217,18 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
                                                                  dds::Qos(dds::kHistoryDepth));
   dds::Writer<lineloc_msg_PoseFix> writer(participant, dds::poseFixQos(dds::kHistoryDepth));
   LineSetHandler handler(map, limits, pipeline);
-  spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
-
+  const SiteWatch site(config, handler);
+  const auto serving = [&] { return !stop && !site.refused(); };
+  if (serving()) {
+    spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
+  }
   {
     const std::optional<PeriodicTask> stats_writer = periodicStatsFile(config, handler);
     // Exposure notices on a thread of their own: a robot's frame is exposed
     // while the backbone may still answer another robot's LineSet.
     const std::jthread exposure_thread([&] {
       runThreadRealtimeLogged(config.realtime_priority, "exposure notices' thread");
-      while (!stop) {
+      while (serving()) {
         if (exposures.waitForData(kWaitNs)) {
           exposures.takeEach(
               [&](const lineloc_msg_LineSet& message) { handler.handleExposure(message); });
@@ -170,7 +237,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     });
     // After every background thread has started: they stay time-shared.
     runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
-    while (!stop) {
+    while (serving()) {
       if (!reader.waitForData(kWaitNs)) {
         handler.forgetSilentRobotsWhenDue(steadyClockNs());
         handler.flushLogs(steadyClockNs());
@@ -185,6 +252,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   }
   if (!config.stats_file.empty()) {
     writeCountersJson(handler.counters(), config.stats_file);
+  }
+  if (const std::optional<std::string> refusal = site.refusal()) {
+    throw std::runtime_error(*refusal + ": not serving it");
   }
   return handler.counters();
 }

@@ -51,8 +51,11 @@ struct BackboneConfig {
   double ambient_fraction = 0.35;
 };
 
-// Serves until `stop` is true; returns the final counters. Stopping drops
-// the searches queued (search_worker.h).
+// Serves until `stop` is true; returns the final counters. Starts without
+// its database, looking the site up every few seconds until the database
+// answers (and taking the sun over it then, with sun_from_clock); throws
+// std::runtime_error, naming the site, once the database says it holds no
+// such site. Stopping drops the searches queued (search_worker.h).
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
 // Median, 99th percentile and maximum (ms) of each stage over the counters'

@@ -109,8 +109,14 @@ std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp
 
 LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) const {
   LocalizerOptions options = options_.localizer;
+  const std::lock_guard<std::mutex> lock(sun_mutex_);
   options.visibility.sunlight = sunlightAt(options_, line_set.stamp_ns);
   return options;
+}
+
+void LineSetHandler::takeSunFromClock(const SiteSun& sun) {
+  const std::lock_guard<std::mutex> lock(sun_mutex_);
+  options_.sun_from_clock = sun;
 }
 
 void LineSetHandler::track(const std::shared_ptr<RobotSession>& session,

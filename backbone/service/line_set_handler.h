@@ -161,6 +161,11 @@ class LineSetHandler {
   // Blocks until the searches under way have finished.
   void waitForSearches();
 
+  // From now on each LineSet is localized under the sun of its stamp over
+  // the site (PipelineOptions::sun_from_clock): for a site looked up once
+  // serving has started. Safe to call beside handle().
+  void takeSunFromClock(const SiteSun& sun);
+
   // Logs the summaries of the drops and refusals not logged (see above),
   // once their interval has ended; call now and then.
   void flushLogs(int64_t now_ns);
@@ -240,7 +245,9 @@ class LineSetHandler {
 
   MapTileCache& map_;
   MessageLimits limits_;
+  // Its sun_from_clock under sun_mutex_ (takeSunFromClock).
   PipelineOptions options_;
+  mutable std::mutex sun_mutex_;
   const int64_t silence_ns_;  // forget_robot_after_s
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;

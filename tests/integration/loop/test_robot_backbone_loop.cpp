@@ -379,6 +379,47 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
 }
 
+// A frame that cannot be decoded is skipped, counted and named in the log;
+// the robot goes on with the next one and every other frame is answered.
+TEST_F(RobotBackboneLoop, ARobotSkipsACorruptFrameAndGoesOn) {
+  std::ofstream(work_ / "images" / "frame003.png", std::ios::trunc) << "not a PNG";
+  Observer observer;
+  auto backbone = startBackbone();
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+  auto robot = startRobot("robot-e", 20.0);
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-e.log");
+  const std::string robot_log = log("robot-e.log");
+  EXPECT_NE(robot_log.find("skipped frame 3: "), std::string::npos) << robot_log;
+  EXPECT_NE(robot_log.find("frame003.png"), std::string::npos) << robot_log;
+  EXPECT_NE(robot_log.find("1 skipped as their image was missing or corrupt"), std::string::npos)
+      << robot_log;
+  EXPECT_EQ(fixesReceived(robot_log), kFrames - 1) << robot_log;
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+}
+
+// A dataset without the IMU that would carry its pose is refused at the
+// start, saying so, instead of a run that never localises.
+TEST_F(RobotBackboneLoop, ADatasetWithoutItsIMUFailsTheRobotsStart) {
+  const fs::path camera = work_ / "dataset" / "cam0";
+  fs::create_directories(camera / "data");
+  std::ofstream csv(camera / "data.csv");
+  csv << "#timestamp [ns],filename\n";
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = cv::format("frame%03d.png", i);
+    fs::copy_file(work_ / "images" / name, camera / "data" / name);
+    csv << 1'700'000'000'000'000'000 + i * 50'000'000LL << ',' << name << '\n';
+  }
+  csv.close();
+  auto robot = start("lineloc-robot", "robot-f.log",
+                     {"--robot-id", "robot-f", "--images", (work_ / "dataset").string(),
+                      "--camera-calibration", (work_ / "camera.yml").string()},
+                     {});
+  EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-f.log");
+  EXPECT_NE(log("robot-f.log").find("has no IMU stream"), std::string::npos) << log("robot-f.log");
+}
+
 TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsStart) {
   auto robot = startRobot("robot-d", 20.0, {"--realtime-priority", "100"});
   EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-d.log");

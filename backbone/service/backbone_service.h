@@ -55,7 +55,8 @@ struct BackboneConfig {
 // its database, looking the site up every few seconds until the database
 // answers (and taking the sun over it then, with sun_from_clock); throws
 // std::runtime_error, naming the site, once the database says it holds no
-// such site. Stopping drops the searches queued (search_worker.h).
+// such site. Stopping drops the queued searches and cancels the one running
+// (line_set_handler.h).
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
 // Median, 99th percentile and maximum (ms) of each stage over the counters'

@@ -26,6 +26,10 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       maps_(map, options.query_radius_m, options.map_reuse_distance_m, &foreground_),
       search_worker_(&foreground_, static_cast<size_t>(std::max(options.max_queued_searches, 0))) {}
 
+LineSetHandler::~LineSetHandler() {
+  foreground_.cancelBackground();
+}
+
 void LineSetHandler::waitForSearches() {
   maps_.waitUntilIdle();
   search_worker_.waitUntilIdle();
@@ -225,6 +229,8 @@ SearchWorker::Submitted LineSetHandler::submitSearch(const char* kind, const Lin
                           run = std::move(run)] {
         try {
           run();
+        } catch (const BackgroundWorkCancelled&) {
+          // The handler is being destroyed.
         } catch (const std::exception& error) {
           spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
         }

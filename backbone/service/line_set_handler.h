@@ -24,7 +24,7 @@
 // instead (and a proof search is asked for again at the robot's next frame),
 // and counted: a robot's search waits behind a bounded number of other
 // robots' however many there are. Stopping drops the queued searches
-// (search_worker.h).
+// (search_worker.h), and destroying the handler cancels the one running.
 //
 // Exposure notices. A robot may send each frame's LineSet without its
 // features at the frame's exposure (ExposureTopic, common/messages/topics.h).
@@ -143,6 +143,11 @@ std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp
 class LineSetHandler {
  public:
   LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
+  // Cancels the searches and map preparation under way (foreground_gate.h)
+  // and drops the queued ones, so that it ends promptly.
+  ~LineSetHandler();
+  LineSetHandler(const LineSetHandler&) = delete;
+  LineSetHandler& operator=(const LineSetHandler&) = delete;
 
   // The fix to publish, or nullopt when the message was dropped.
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);

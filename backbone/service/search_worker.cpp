@@ -76,7 +76,11 @@ void SearchWorker::work() {
     if (gate_) {
       gate_->yieldToForeground();
     }
-    job.search();
+    try {
+      job.search();
+    } catch (const BackgroundWorkCancelled&) {
+      // The service stops: the search ends here.
+    }
     lock.lock();
     busy_robots_.erase(job.robot_id);
     if (busy_robots_.empty()) {

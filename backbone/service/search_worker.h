@@ -12,7 +12,8 @@
 //
 // Stopping (stop(), or destruction) drops the searches still queued and waits
 // only for the one running, so that a service stops promptly whatever is
-// queued.
+// queued; cancelling the gate's background work first ends that one too at
+// its next piece (a search that throws BackgroundWorkCancelled ends there).
 #pragma once
 
 #include <condition_variable>

@@ -1,6 +1,7 @@
 // The search worker: one search per robot at a time and at most max_queued
 // waiting in all, every accepted search run, the queued ones dropped when it
-// stops, and none started while a frame is being answered.
+// stops and the running one ended when its background work is cancelled, and
+// none started while a frame is being answered.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "backbone/service/search_worker.h"
+#include "common/parallel/parallel_for.h"
 
 namespace lineloc {
 namespace {
@@ -125,6 +127,31 @@ TEST(SearchWorker, StopsPromptlyWhateverIsQueued) {
   stopper.join();
   EXPECT_EQ(started.load(), 1);
   worker.waitUntilIdle();
+}
+
+// A search running when its gate's background work is cancelled ends at its
+// next piece: were it left to run, its billion pieces would not end before
+// the test's timeout.
+TEST(SearchWorker, StopsARunningSearchOnceItsBackgroundWorkIsCancelled) {
+  ForegroundGate gate(1'000'000);
+  std::promise<void> running;
+  std::atomic<int> pieces{0};
+  SearchWorker worker(&gate);
+  ASSERT_EQ(worker.submit("rover1",
+                          [&] {
+                            parallelFor(1'000'000'000, 1, [&](int piece) {
+                              if (piece == 0) {
+                                running.set_value();
+                              }
+                              ++pieces;
+                              std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                            });
+                          }),
+            Submitted::kQueued);
+  running.get_future().wait();
+  gate.cancelBackground();
+  worker.stop();
+  EXPECT_LT(pieces.load(), 1'000'000'000);
 }
 
 TEST(SearchWorker, StartsASearchOnlyOnceTheFrameBeingAnsweredIs) {

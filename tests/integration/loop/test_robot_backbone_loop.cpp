@@ -427,6 +427,42 @@ TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsS
       << log("robot-d.log");
 }
 
+// Hundreds of robots' searches queued (the queue's bound raised to hold them
+// all), each around a prior of 5 m sigma, the backbone stops on SIGTERM
+// within the test's timeout: the queued searches are dropped and the running
+// one cancelled, where running each of them to its end would outlast it.
+TEST_F(RobotBackboneLoop, TheBackboneStopsWithHundredsOfSearchesQueued) {
+  Observer observer;
+  auto backbone = startBackbone(work_ / "stats.json",
+                                {"--max-robots", "1000", "--max-queued-searches", "1000"});
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+  // The map prepared first, so that the frames below are searched.
+  uint32_t sequence = 1;
+  do {
+    observer.writer().write(LineSetMessage(probeLineSet("probe", sequence, 5)).message());
+    ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") == sequence; }))
+        << log("backbone.log");
+    ++sequence;
+  } while (observer.fixes.back().status == lineloc_msg_FIX_NO_MATCH_COMPUTED && sequence < 100);
+  constexpr int kSearchedRobots = 300;
+  for (int robot = 0; robot < kSearchedRobots; ++robot) {
+    LineSetData poor = probeLineSet("searched-" + std::to_string(robot), 1, 5);
+    poor.predicted_T_world_camera.pose.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+    poor.predicted_T_world_camera.covariance = diagonalPoseCovariance(5.0, 0.1);
+    for (ImageSegment& segment : poor.segments) {
+      segment.contrast = 40.0f;
+    }
+    observer.writer().write(LineSetMessage(poor).message());
+  }
+  ASSERT_TRUE(observer.pollUntil([&] {
+    return observer.fixes.size() == sequence - 1 + kSearchedRobots;
+  })) << log("backbone.log");
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+  EXPECT_LT(stats().value("searches", kSearchedRobots), kSearchedRobots);
+}
+
 // A robot that falls silent is forgotten although no other robot sends
 // anything that would make the backbone look for silent ones.
 TEST_F(RobotBackboneLoop, TheLastRobotLeftIsForgottenInTheSilenceAfterIt) {

@@ -56,7 +56,7 @@ class SiteWatch {
     }
     const SiteLookup lookup = lookUpSite(config_.db, config_.site);
     if (lookup.outcome == SiteLookup::Outcome::kUnreachable) {
-      unreachable_log_.warn(
+      unreachable_log_.log(
           fmt::format("{}; looking again every {} s", lookup.error, kSiteRetryPeriod.count()));
       return false;
     }

@@ -19,6 +19,7 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
       drop_log_("dropped messages", kLoggedPerSecond, 1.0),
       busy_log_("frames answered busy", kLoggedPerSecond, 1.0),
+      map_failure_log_("map failures", kLoggedPerSecond, 1.0, spdlog::level::err),
       roster_(static_cast<size_t>(std::max(options.max_robots, 0)), silence_ns_),
       foreground_(fromMilliseconds(options.max_background_yield_ms)),
       cadence_(fromMilliseconds(options.quiet_before_frame_ms),
@@ -38,6 +39,7 @@ void LineSetHandler::waitForSearches() {
 void LineSetHandler::flushLogs(int64_t now_ns) {
   drop_log_.flush(now_ns);
   busy_log_.flush(now_ns);
+  map_failure_log_.flush(now_ns);
 }
 
 BackboneCounters LineSetHandler::counters() const {
@@ -236,9 +238,9 @@ SearchWorker::Submitted LineSetHandler::submitSearch(const char* kind, const Lin
         }
       });
   if (submitted == SearchWorker::Submitted::kQueueFull) {
-    busy_log_.warn(fmt::format("{} for {} #{} not queued: {} searches wait already", kind,
-                               line_set.robot_id, line_set.sequence_number,
-                               options_.max_queued_searches));
+    busy_log_.log(fmt::format("{} for {} #{} not queued: {} searches wait already", kind,
+                              line_set.robot_id, line_set.sequence_number,
+                              options_.max_queued_searches));
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.refused_searches;
   }
@@ -305,9 +307,9 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
   if (!hearFrom(line_set.robot_id, start_ns)) {
-    busy_log_.warn(start_ns,
-                   fmt::format("LineSet of {} #{} answered busy: {} robots are served",
-                               line_set.robot_id, line_set.sequence_number, options_.max_robots));
+    busy_log_.log(start_ns,
+                  fmt::format("LineSet of {} #{} answered busy: {} robots are served",
+                              line_set.robot_id, line_set.sequence_number, options_.max_robots));
     {
       const std::lock_guard<std::mutex> lock(counters_mutex_);
       ++counters_.refused_robot_frames;
@@ -349,7 +351,8 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
                      ? lineloc_msg_FIX_BUSY
                      : lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
-    spdlog::error("map for {} #{} failed: {}", fix.robot_id, fix.sequence_number, error.what());
+    map_failure_log_.log(start_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
+                                               fix.sequence_number, error.what()));
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.map_errors;
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
@@ -359,7 +362,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
 
 void LineSetHandler::countDrop(const char* kind, uint32_t sequence_number,
                                const std::string& error) {
-  drop_log_.warn(fmt::format("dropped {} #{}: {}", kind, sequence_number, error));
+  drop_log_.log(fmt::format("dropped {} #{}: {}", kind, sequence_number, error));
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.dropped_invalid;
   counters_.last_drop_reason = error;

@@ -45,8 +45,9 @@
 // after a backbone restart. The sweep runs on the LineSets' thread, at most
 // every forget_robot_after_s / 2.
 //
-// Logs. What outside input causes at any rate (drops, refusals) is logged at
-// most kLoggedPerSecond times a second each, the rest summarised
+// Logs. What outside input causes at any rate (drops, refusals) and what
+// each frame may meet (a map that fails while the database is down) is
+// logged at most kLoggedPerSecond times a second each, the rest summarised
 // (rate_limited_log.h); the counters count every one.
 //
 // Background work. Searches and map preparation pause between pieces while
@@ -258,6 +259,7 @@ class LineSetHandler {
   BackboneCounters counters_;
   RateLimitedLog drop_log_;
   RateLimitedLog busy_log_;
+  RateLimitedLog map_failure_log_;
   // The robots served, and when silent ones are next looked for (see above).
   RobotRoster roster_;
   int64_t next_forgetting_ns_ = 0;

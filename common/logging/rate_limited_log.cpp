@@ -8,10 +8,12 @@
 namespace lineloc {
 
 RateLimitedLog::RateLimitedLog(std::string what, int max_lines_per_interval, double interval_s,
+                               spdlog::level::level_enum level,
                                std::shared_ptr<spdlog::logger> logger)
     : what_(std::move(what)),
       max_lines_per_interval_(max_lines_per_interval),
       interval_ns_(static_cast<int64_t>(interval_s * 1e9)),
+      level_(level),
       logger_(logger ? std::move(logger) : spdlog::default_logger()) {
   if (max_lines_per_interval_ < 1 || !(interval_s > 0.0)) {
     throw std::invalid_argument(
@@ -29,29 +31,29 @@ void RateLimitedLog::advance(int64_t now_ns) {
     return;
   }
   if (unreported_ > 0) {
-    logger_->warn("{}: {} more not logged in the last {:.1f} s", what_, unreported_,
-                  (now_ns - interval_start_ns_) * 1e-9);
+    logger_->log(level_, "{}: {} more not logged in the last {:.1f} s", what_, unreported_,
+                 (now_ns - interval_start_ns_) * 1e-9);
     unreported_ = 0;
   }
   interval_start_ns_ = now_ns;
   lines_this_interval_ = 0;
 }
 
-void RateLimitedLog::warn(int64_t now_ns, const std::string& line) {
+void RateLimitedLog::log(int64_t now_ns, const std::string& line) {
   const std::lock_guard<std::mutex> lock(mutex_);
   advance(now_ns);
   if (lines_this_interval_ < max_lines_per_interval_) {
     ++lines_this_interval_;
     ++logged_;
-    logger_->warn("{}", line);
+    logger_->log(level_, "{}", line);
     return;
   }
   ++unreported_;
   ++suppressed_;
 }
 
-void RateLimitedLog::warn(const std::string& line) {
-  warn(steadyClockNs(), line);
+void RateLimitedLog::log(const std::string& line) {
+  log(steadyClockNs(), line);
 }
 
 void RateLimitedLog::flush(int64_t now_ns) {

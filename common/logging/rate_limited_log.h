@@ -1,6 +1,7 @@
 // A log of events that outside input can cause at any rate (a dropped
-// message, a skipped frame): at most max_lines_per_interval of them are
-// logged per interval; the rest are counted and summarised as one line,
+// message, a skipped frame, a failure each frame meets): at most
+// max_lines_per_interval of them are logged per interval, at one level; the rest are counted and
+// summarised as one line,
 // "<what>: N more not logged in the last S s", when the interval they fell in
 // has ended and the next event comes or flush() is called. Every event is
 // either logged or counted in exactly one summary. Thread-safe.
@@ -20,13 +21,14 @@ class RateLimitedLog {
   // `what` names the events in summaries; `logger` defaults to spdlog's
   // default logger.
   RateLimitedLog(std::string what, int max_lines_per_interval, double interval_s,
+                 spdlog::level::level_enum level = spdlog::level::warn,
                  std::shared_ptr<spdlog::logger> logger = nullptr);
 
-  // Logs `line` at warning level at `now_ns` (steady clock), unless this
-  // interval's lines are spent.
-  void warn(int64_t now_ns, const std::string& line);
+  // Logs `line` at `now_ns` (steady clock), unless this interval's lines are
+  // spent.
+  void log(int64_t now_ns, const std::string& line);
   // The same at the steady clock's time.
-  void warn(const std::string& line);
+  void log(const std::string& line);
 
   // Logs the summary of the events not logged, once their interval has ended.
   void flush(int64_t now_ns);
@@ -43,6 +45,7 @@ class RateLimitedLog {
   const std::string what_;
   const int max_lines_per_interval_;
   const int64_t interval_ns_;
+  const spdlog::level::level_enum level_;
   const std::shared_ptr<spdlog::logger> logger_;
   mutable std::mutex mutex_;
   bool started_ = false;

@@ -80,13 +80,13 @@ class FixReceiver {
     }
     if (const auto error = findPoseFixError(message)) {
       ++summary_.fixes_dropped;
-      drop_log_.warn("dropped a malformed PoseFix: " + *error);
+      drop_log_.log("dropped a malformed PoseFix: " + *error);
       return;
     }
     const auto frame = outstanding_.take(message.sequence_number, message.stamp_ns);
     if (!frame) {
       ++summary_.fixes_dropped;
-      drop_log_.warn(fmt::format(
+      drop_log_.log(fmt::format(
           "dropped a PoseFix for frame {} stamped {} ns: no such frame awaits an answer",
           message.sequence_number, message.stamp_ns));
       return;
@@ -425,7 +425,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           image = images.take(event.index);
         } catch (const std::exception& error) {
           ++summary.frames_skipped;
-          skipped_frames_log.warn(fmt::format("skipped frame {}: {}", event.index, error.what()));
+          skipped_frames_log.log(fmt::format("skipped frame {}: {}", event.index, error.what()));
           images.resume();
           break;
         }

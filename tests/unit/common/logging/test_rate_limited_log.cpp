@@ -53,15 +53,15 @@ class RateLimitedLogTest : public ::testing::Test {
 };
 
 TEST_F(RateLimitedLogTest, LogsTheFirstLinesOfAnIntervalAndSummarisesTheRestAfterIt) {
-  RateLimitedLog log("dropped LineSets", 3, 1.0, logger_);
+  RateLimitedLog log("dropped LineSets", 3, 1.0, spdlog::level::warn, logger_);
   for (int i = 0; i < 10; ++i) {
-    log.warn(i * 1000, "dropped LineSet #" + std::to_string(i));
+    log.log(i * 1000, "dropped LineSet #" + std::to_string(i));
   }
   EXPECT_EQ(lines(), (std::vector<std::string>{"dropped LineSet #0", "dropped LineSet #1",
                                                "dropped LineSet #2"}));
   log.flush(kSecondNs / 2);
   EXPECT_EQ(lines().size(), 3u) << "no summary before the interval ends";
-  log.warn(kSecondNs + 5, "dropped LineSet #10");
+  log.log(kSecondNs + 5, "dropped LineSet #10");
   const std::vector<std::string> after = lines();
   ASSERT_EQ(after.size(), 5u);
   EXPECT_EQ(after[3], "dropped LineSets: 7 more not logged in the last 1.0 s");
@@ -71,10 +71,10 @@ TEST_F(RateLimitedLogTest, LogsTheFirstLinesOfAnIntervalAndSummarisesTheRestAfte
 }
 
 TEST_F(RateLimitedLogTest, FlushSummarisesAnEndedIntervalOnceWithoutANewEvent) {
-  RateLimitedLog log("dropped LineSets", 1, 0.5, logger_);
-  log.warn(0, "first");
-  log.warn(1, "second");
-  log.warn(2, "third");
+  RateLimitedLog log("dropped LineSets", 1, 0.5, spdlog::level::warn, logger_);
+  log.log(0, "first");
+  log.log(1, "second");
+  log.log(2, "third");
   log.flush(kSecondNs);
   log.flush(2 * kSecondNs);
   EXPECT_EQ(lines(), (std::vector<std::string>{
@@ -82,11 +82,11 @@ TEST_F(RateLimitedLogTest, FlushSummarisesAnEndedIntervalOnceWithoutANewEvent) {
 }
 
 TEST_F(RateLimitedLogTest, EveryEventIsLoggedOrSummarisedExactlyOnce) {
-  RateLimitedLog log("dropped LineSets", 5, 0.1, logger_);
+  RateLimitedLog log("dropped LineSets", 5, 0.1, spdlog::level::warn, logger_);
   constexpr int kEvents = 5000;
   // 5,000 drops in 2.5 s.
   for (int i = 0; i < kEvents; ++i) {
-    log.warn(i * 500'000LL, "dropped LineSet");
+    log.log(i * 500'000LL, "dropped LineSet");
   }
   log.flush(10 * kSecondNs);
   const std::vector<std::string> logged = lines();
@@ -96,6 +96,17 @@ TEST_F(RateLimitedLogTest, EveryEventIsLoggedOrSummarisedExactlyOnce) {
   EXPECT_EQ(log.logged() + log.suppressed(), static_cast<uint64_t>(kEvents));
   // 25 intervals: at most 5 lines and one summary each.
   EXPECT_LE(logged.size(), 26u * 6u);
+}
+
+TEST_F(RateLimitedLogTest, LogsItsLinesAndSummariesAtItsLevel) {
+  logger_->set_pattern("%l %v");
+  RateLimitedLog log("map failures", 1, 1.0, spdlog::level::err, logger_);
+  log.log(0, "map failed");
+  log.log(1, "map failed again");
+  log.flush(kSecondNs);
+  EXPECT_EQ(lines(),
+            (std::vector<std::string>{"error map failed",
+                                      "error map failures: 1 more not logged in the last 1.0 s"}));
 }
 
 TEST(RateLimitedLog, RefusesAnEmptyBudget) {

@@ -1,10 +1,10 @@
 // A log of events that outside input can cause at any rate (a dropped
 // message, a skipped frame, a failure each frame meets): at most
-// max_lines_per_interval of them are logged per interval, at one level; the rest are counted and
-// summarised as one line,
-// "<what>: N more not logged in the last S s", when the interval they fell in
-// has ended and the next event comes or flush() is called. Every event is
-// either logged or counted in exactly one summary. Thread-safe.
+// max_lines_per_interval of them are logged per interval, at one level; the
+// rest are counted and summarised as one line, "<what>: N more not logged in
+// the last S s", when the interval they fell in has ended and the next event
+// comes or flush() is called. Every event is either logged or counted in
+// exactly one summary. Thread-safe.
 #pragma once
 
 #include <spdlog/spdlog.h>

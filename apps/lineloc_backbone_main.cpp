@@ -37,12 +37,22 @@ int main(int argc, char** argv) {
               "map tiles are loaded where each robot will be this much later (s)");
   options.add("forget_robot_after_s", config.forget_robot_after_s,
               "a robot not heard from for this long is forgotten and served as new (s)");
+  options.add("max_robots", config.max_robots,
+              "robots served at once; the frames of others are answered busy until one is "
+              "forgotten");
+  options.add("max_queued_searches", config.max_queued_searches,
+              "searches from a poor prediction waiting in all; a frame whose search finds them "
+              "waiting is answered busy");
   options.add("realtime_priority", config.realtime_priority,
               "SCHED_FIFO priority (1-99) of the threads that answer LineSets and exposure "
               "notices, so that background work does not delay an answer (needs CAP_SYS_NICE or "
               "ulimit -r); 0: time-shared");
   options.add("max_segments", config.max_segments, "LineSets with more segments are dropped");
   options.add("max_corners", config.max_corners, "LineSets with more corners are dropped");
+  options.add("max_camera_side_px", config.max_camera_side_px,
+              "LineSets whose camera image is wider or taller are dropped (pixels)");
+  options.add("max_camera_megapixels", config.max_camera_megapixels,
+              "LineSets whose camera image has more pixels are dropped (megapixels)");
   options.add("stats_file", config.stats_file, "JSON file the service counters are written to");
   options.add("stats_period_s", config.stats_period_s, "how often the stats file is rewritten");
   std::vector<double> sun_deg;
@@ -66,10 +76,11 @@ int main(int argc, char** argv) {
     std::cout << fmt::format(
         "lineloc-backbone: {} received, {} answered ({} with a pose, {} searched from a poor "
         "prediction, {} tracked with the hidden lines removed at exposure, {} exposure notices "
-        "skipped as they came after their LineSet), {} dropped as invalid, {} map errors\n",
+        "skipped as they came after their LineSet), {} dropped as invalid, {} map errors; {} "
+        "frames answered busy as max_robots others were served, {} searches not queued\n",
         counters.received, counters.answered, counters.fixes_ok, counters.searches,
         counters.visibility_ahead, counters.notices_after_line_set, counters.dropped_invalid,
-        counters.map_errors);
+        counters.map_errors, counters.refused_robot_frames, counters.refused_searches);
     std::string stages;
     for (const lineloc::StagePercentiles& stage : lineloc::stagePercentiles(counters)) {
       stages += fmt::format(" {} {:.2f}/{:.2f}/{:.1f}", stage.stage, stage.median_ms, stage.p99_ms,

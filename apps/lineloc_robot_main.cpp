@@ -101,14 +101,15 @@ int main(int argc, char** argv) {
   try {
     const lineloc::RobotRunSummary summary = lineloc::runRobot(config, g_stop);
     std::cout << fmt::format(
-        "lineloc-robot: {} frames sent ({} held before the navigator had a pose), {} fixes "
-        "received, {} dropped, {} applied, {} rejected; exposure -> fix median {:.2f} ms, p99 "
-        "{:.2f} ms; "
+        "lineloc-robot: {} frames sent ({} held before the navigator had a pose, {} skipped as "
+        "their image was missing or corrupt), {} fixes received, {} dropped, {} applied, {} "
+        "rejected; exposure -> fix median {:.2f} ms, p99 {:.2f} ms; "
         "with a pose median {:.2f} ms, p99 {:.2f} ms\n"
         "lineloc-robot: LineSet on the wire median {} bytes, p99 {} bytes\n"
         "lineloc-robot: {} states published; {} sensor lines dropped; {}\n",
-        summary.frames_sent, summary.frames_before_pose, summary.fixes_received,
-        summary.fixes_dropped, summary.fixes_applied, summary.fixes_rejected,
+        summary.frames_sent, summary.frames_before_pose, summary.frames_skipped,
+        summary.fixes_received, summary.fixes_dropped, summary.fixes_applied,
+        summary.fixes_rejected,
         lineloc::toMilliseconds(lineloc::percentile(summary.latency_ns, 50)),
         lineloc::toMilliseconds(lineloc::percentile(summary.latency_ns, 99)),
         lineloc::toMilliseconds(lineloc::percentile(summary.pose_latency_ns, 50)),

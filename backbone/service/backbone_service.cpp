@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +14,8 @@
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "backbone/service/pose_fix_publisher.h"
+#include "backbone/service/site_lookup.h"
+#include "common/logging/rate_limited_log.h"
 #include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/parallel/periodic_task.h"
@@ -25,30 +28,88 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
+constexpr std::chrono::seconds kSiteRetryPeriod(2);
 
 std::string notInItsPartition(const lineloc_msg_LineSet& message) {
   return fmt::format("robot_id '{}' written outside partition '{}'", std::string(message.robot_id),
                      robotPartition(message.robot_id));
 }
 
-// The sun over the configured site by the clock, when asked for.
-std::optional<SiteSun> clockSun(const BackboneConfig& config) {
-  if (!config.sun_from_clock) {
-    return std::nullopt;
+// Looks the configured site up (site_lookup.h) at once and, while the
+// database cannot be reached, again every kSiteRetryPeriod: the backbone
+// starts and serves without its database. Found, the site gives the handler
+// the sun over it when asked for (--sun-from-clock); missing, it is the
+// refusal the backbone stops serving with.
+class SiteWatch {
+ public:
+  SiteWatch(const BackboneConfig& config, LineSetHandler& handler)
+      : config_(config), handler_(handler), unreachable_log_("site lookups failed", 1, 60.0) {
+    if (!attempt()) {
+      retries_.emplace(kSiteRetryPeriod, [this] { attempt(); });
+    }
   }
-  if (config.sunlight) {
-    throw std::runtime_error(
-        "give the sun's azimuth and elevation or take it from the clock, not both");
+
+  bool refused() const { return refused_; }
+  std::optional<std::string> refusal() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return refusal_;
   }
-  db::Connection connection(config.db);
-  const db::Site site = db::requireSite(connection, config.site);
-  const SiteSun sun(SiteProjection(fmt::format("EPSG:{}", site.srid), site.origin),
-                    config.ambient_fraction);
-  const GeodeticPosition& place = sun.place();
-  spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
-               config.site, place.latitude_deg, place.longitude_deg);
-  return sun;
-}
+
+ private:
+  // Looks the site up unless the database has answered; true once it has.
+  bool attempt() {
+    if (answered_) {
+      return true;
+    }
+    const SiteLookup lookup = lookUpSite(config_.db, config_.site);
+    if (lookup.outcome == SiteLookup::Outcome::kUnreachable) {
+      unreachable_log_.log(
+          fmt::format("{}; looking again every {} s", lookup.error, kSiteRetryPeriod.count()));
+      return false;
+    }
+    answered_ = true;
+    if (lookup.outcome == SiteLookup::Outcome::kMissing) {
+      refuse(lookup.error);
+      return true;
+    }
+    spdlog::info("site '{}' found in the database", config_.site);
+    if (config_.sun_from_clock) {
+      try {
+        takeSunOver(*lookup.site);
+      } catch (const std::exception& error) {
+        refuse(fmt::format("the sun over site '{}': {}", config_.site, error.what()));
+      }
+    }
+    return true;
+  }
+
+  void takeSunOver(const db::Site& site) {
+    const SiteSun sun(SiteProjection(fmt::format("EPSG:{}", site.srid), site.origin),
+                      config_.ambient_fraction);
+    handler_.takeSunFromClock(sun);
+    const GeodeticPosition& place = sun.place();
+    spdlog::info("the sun by the clock over site '{}' at latitude {:.4f}, longitude {:.4f}",
+                 config_.site, place.latitude_deg, place.longitude_deg);
+  }
+
+  void refuse(const std::string& why) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      refusal_ = why;
+    }
+    refused_ = true;
+  }
+
+  const BackboneConfig& config_;
+  LineSetHandler& handler_;
+  RateLimitedLog unreachable_log_;
+  std::atomic<bool> answered_{false};
+  std::atomic<bool> refused_{false};
+  mutable std::mutex mutex_;
+  std::optional<std::string> refusal_;
+  // Last, so that it is destroyed first: its task uses the members above.
+  std::optional<PeriodicTask> retries_;
+};
 
 // Writes config.stats_file now, which fails the start when it cannot be
 // written, then every stats_period_s beside the serving loop
@@ -109,6 +170,8 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"notices_after_line_set", counters.notices_after_line_set},
                                {"robots", counters.robots},
                                {"robots_forgotten", counters.robots_forgotten},
+                               {"refused_robot_frames", counters.refused_robot_frames},
+                               {"refused_searches", counters.refused_searches},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -125,25 +188,35 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
 }
 
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop) {
-  if (config.max_segments <= 0 || config.max_corners < 0 || config.query_radius_m <= 0.0 ||
+  if (config.max_segments <= 0 || config.max_corners < 0 || config.max_camera_side_px <= 0 ||
+      !(config.max_camera_megapixels > 0.0) || config.query_radius_m <= 0.0 ||
       config.tile_size_m <= 0.0 || config.max_cached_tiles <= 0 || !(config.stats_period_s > 0.0) ||
-      !(config.forget_robot_after_s > 0.0)) {
+      !(config.forget_robot_after_s > 0.0) || config.max_robots <= 0 ||
+      config.max_queued_searches <= 0) {
     throw std::runtime_error(
-        "max_segments, query_radius_m, tile_size_m, max_cached_tiles, stats_period_s and "
-        "forget_robot_after_s must be positive");
+        "max_segments, max_camera_side_px, max_camera_megapixels, query_radius_m, tile_size_m, "
+        "max_cached_tiles, stats_period_s, forget_robot_after_s, max_robots and "
+        "max_queued_searches must be positive");
   }
   requireRealtimePriority(config.realtime_priority);
+  if (config.sun_from_clock && config.sunlight) {
+    throw std::runtime_error(
+        "give the sun's azimuth and elevation or take it from the clock, not both");
+  }
   MessageLimits limits;
   limits.max_segments = static_cast<uint32_t>(config.max_segments);
   limits.max_corners = static_cast<uint32_t>(config.max_corners);
+  limits.max_camera_side_px = static_cast<uint32_t>(config.max_camera_side_px);
+  limits.max_camera_megapixels = config.max_camera_megapixels;
   MapTileCache map([&config] { return makeDatabaseTileFetcher(config.db, config.site); },
                    config.tile_size_m, static_cast<size_t>(config.max_cached_tiles));
   PipelineOptions pipeline;
   pipeline.query_radius_m = config.query_radius_m;
   pipeline.prefetch_lookahead_s = config.prefetch_lookahead_s;
   pipeline.forget_robot_after_s = config.forget_robot_after_s;
+  pipeline.max_robots = config.max_robots;
+  pipeline.max_queued_searches = config.max_queued_searches;
   pipeline.localizer.visibility.sunlight = config.sunlight;
-  pipeline.sun_from_clock = clockSun(config);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::logSecurity(domain);
   dds::Participant participant(domain);
@@ -153,15 +226,18 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       participant, dds::Qos(dds::kHistoryDepth), kEveryRobotPartition);
   PoseFixPublisher fixes(participant, static_cast<int64_t>(config.forget_robot_after_s * 1e9));
   LineSetHandler handler(map, limits, pipeline);
-  spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
-
+  const SiteWatch site(config, handler);
+  const auto serving = [&] { return !stop && !site.refused(); };
+  if (serving()) {
+    spdlog::info("serving LineSets on DDS domain {} for site '{}'", config.domain_id, config.site);
+  }
   {
     const std::optional<PeriodicTask> stats_writer = periodicStatsFile(config, handler);
     // Exposure notices on a thread of their own: a robot's frame is exposed
     // while the backbone may still answer another robot's LineSet.
     const std::jthread exposure_thread([&] {
       runThreadRealtimeLogged(config.realtime_priority, "exposure notices' thread");
-      while (!stop) {
+      while (serving()) {
         if (exposures.waitForData(kWaitNs)) {
           exposures.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
             if (speaksFor(exposures.writerPartitions(info.publication_handle), message.robot_id)) {
@@ -177,7 +253,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     // After every background thread has started: they stay time-shared.
     runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
     uint32_t robot_writers_seen = 0;
-    while (!stop) {
+    while (serving()) {
       const bool data = reader.waitForData(kWaitNs);
       if (!data || reader.matchedWriters() != robot_writers_seen) {
         robot_writers_seen = reader.matchedWriters();
@@ -185,6 +261,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       }
       if (!data) {
         handler.forgetSilentRobotsWhenDue(steadyClockNs());
+        handler.flushLogs(steadyClockNs());
         continue;
       }
       reader.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
@@ -198,6 +275,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   }
   if (!config.stats_file.empty()) {
     writeCountersJson(handler.counters(), config.stats_file);
+  }
+  if (const std::optional<std::string> refusal = site.refusal()) {
+    throw std::runtime_error(*refusal + ": not serving it");
   }
   return handler.counters();
 }

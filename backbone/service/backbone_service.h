@@ -22,8 +22,12 @@ struct BackboneConfig {
   double tile_size_m = 100.0;
   int max_cached_tiles = 4096;
   double prefetch_lookahead_s = 3.0;
-  // A robot not heard from for this long is forgotten (line_set_handler.h).
+  // A robot not heard from for this long is forgotten; at most max_robots are
+  // served at once and max_queued_searches searches wait in all; frames
+  // beyond are answered FIX_BUSY (line_set_handler.h).
   double forget_robot_after_s = 30.0;
+  int max_robots = 64;
+  int max_queued_searches = 8;
   // SCHED_FIFO priority (1-99) of the threads a frame's answer waits on, the
   // LineSets' and the exposure notices' (thread_priority.h); 0: time-shared.
   // Below a robot's front end sharing the machine, above the searches and the
@@ -31,8 +35,11 @@ struct BackboneConfig {
   // samples, may sit between the two (deploy/cyclonedds-realtime.xml). A
   // refusal is logged and they run time-shared.
   int realtime_priority = 0;
+  // LineSets beyond these limits are dropped (message_validator.h).
   int max_segments = 2048;
   int max_corners = 2048;
+  int max_camera_side_px = 8192;
+  double max_camera_megapixels = 32.0;
   // Written on exit (and every stats_period_s): counters as JSON; empty: none.
   std::string stats_file;
   double stats_period_s = 1.0;
@@ -44,7 +51,12 @@ struct BackboneConfig {
   double ambient_fraction = 0.35;
 };
 
-// Serves until `stop` is true; returns the final counters.
+// Serves until `stop` is true; returns the final counters. Starts without
+// its database, looking the site up every few seconds until the database
+// answers (and taking the sun over it then, with sun_from_clock); throws
+// std::runtime_error, naming the site, once the database says it holds no
+// such site. Stopping drops the queued searches and cancels the one running
+// (line_set_handler.h).
 BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<bool>& stop);
 
 // Median, 99th percentile and maximum (ms) of each stage over the counters'

@@ -17,15 +17,29 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       limits_(limits),
       options_(options),
       silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
+      drop_log_("dropped messages", kLoggedPerSecond, 1.0),
+      busy_log_("frames answered busy", kLoggedPerSecond, 1.0),
+      map_failure_log_("map failures", kLoggedPerSecond, 1.0, spdlog::level::err),
+      roster_(static_cast<size_t>(std::max(options.max_robots, 0)), silence_ns_),
       foreground_(fromMilliseconds(options.max_background_yield_ms)),
       cadence_(fromMilliseconds(options.quiet_before_frame_ms),
                fromMilliseconds(options.max_background_yield_ms)),
       maps_(map, options.query_radius_m, options.map_reuse_distance_m, &foreground_),
-      search_worker_(&foreground_) {}
+      search_worker_(&foreground_, static_cast<size_t>(std::max(options.max_queued_searches, 0))) {}
+
+LineSetHandler::~LineSetHandler() {
+  foreground_.cancelBackground();
+}
 
 void LineSetHandler::waitForSearches() {
   maps_.waitUntilIdle();
   search_worker_.waitUntilIdle();
+}
+
+void LineSetHandler::flushLogs(int64_t now_ns) {
+  drop_log_.flush(now_ns);
+  busy_log_.flush(now_ns);
+  map_failure_log_.flush(now_ns);
 }
 
 BackboneCounters LineSetHandler::counters() const {
@@ -33,13 +47,18 @@ BackboneCounters LineSetHandler::counters() const {
   return counters_;
 }
 
-void LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
+bool LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
   forgetSilentRobotsWhenDue(arrival_ns);
-  if (!last_heard_ns_.insert_or_assign(robot_id, arrival_ns).second) {
-    return;
+  return served(roster_.hear(robot_id, arrival_ns));
+}
+
+bool LineSetHandler::served(RobotRoster::Heard heard) {
+  if (heard == RobotRoster::Heard::kServed) {
+    return true;
   }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
-  counters_.robots = last_heard_ns_.size();
+  counters_.robots = roster_.size();
+  return heard == RobotRoster::Heard::kNew;
 }
 
 void LineSetHandler::forgetSilentRobotsWhenDue(int64_t now_ns) {
@@ -51,17 +70,12 @@ void LineSetHandler::forgetSilentRobotsWhenDue(int64_t now_ns) {
 }
 
 void LineSetHandler::forgetSilentRobots(int64_t now_ns) {
-  const uint64_t forgotten = std::erase_if(last_heard_ns_, [&](const auto& robot) {
-    const int64_t silent_ns = now_ns - robot.second;
-    if (silent_ns <= silence_ns_) {
-      return false;
-    }
-    spdlog::info("forgetting robot {}: not heard from for {:.1f} s", robot.first, silent_ns * 1e-9);
-    return true;
-  });
-  const auto unheard = [this](const std::string& robot_id) {
-    return !last_heard_ns_.contains(robot_id);
-  };
+  const std::vector<RobotRoster::Forgotten> forgotten = roster_.forgetSilent(now_ns);
+  for (const RobotRoster::Forgotten& robot : forgotten) {
+    spdlog::info("forgetting robot {}: not heard from for {:.1f} s", robot.robot_id,
+                 robot.silent_ns * 1e-9);
+  }
+  const auto unheard = [this](const std::string& robot_id) { return !roster_.serves(robot_id); };
   cadence_.forget(unheard);
   {
     const std::lock_guard<std::mutex> lock(sessions_mutex_);
@@ -72,8 +86,8 @@ void LineSetHandler::forgetSilentRobots(int64_t now_ns) {
     std::erase_if(notices_, [&](const auto& robot) { return unheard(robot.first); });
   }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
-  counters_.robots = last_heard_ns_.size();
-  counters_.robots_forgotten += forgotten;
+  counters_.robots = roster_.size();
+  counters_.robots_forgotten += forgotten.size();
 }
 
 std::shared_ptr<RobotSession> LineSetHandler::sessionOf(const std::string& robot_id) {
@@ -101,8 +115,14 @@ std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp
 
 LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) const {
   LocalizerOptions options = options_.localizer;
+  const std::lock_guard<std::mutex> lock(sun_mutex_);
   options.visibility.sunlight = sunlightAt(options_, line_set.stamp_ns);
   return options;
+}
+
+void LineSetHandler::takeSunFromClock(const SiteSun& sun) {
+  const std::lock_guard<std::mutex> lock(sun_mutex_);
+  options_.sun_from_clock = sun;
 }
 
 void LineSetHandler::track(const std::shared_ptr<RobotSession>& session,
@@ -204,17 +224,27 @@ void LineSetHandler::logSearch(const char* kind, const LineSetData& line_set,
       toMilliseconds(summary.search_ns));
 }
 
-void LineSetHandler::submitSearch(const char* kind, const LineSetData& line_set,
-                                  std::function<void()> run) {
-  search_worker_.submit(
+SearchWorker::Submitted LineSetHandler::submitSearch(const char* kind, const LineSetData& line_set,
+                                                     std::function<void()> run) {
+  const SearchWorker::Submitted submitted = search_worker_.submit(
       line_set.robot_id, [kind, robot_id = line_set.robot_id, sequence = line_set.sequence_number,
                           run = std::move(run)] {
         try {
           run();
+        } catch (const BackgroundWorkCancelled&) {
+          // The handler is being destroyed.
         } catch (const std::exception& error) {
           spdlog::error("{} for {} #{} failed: {}", kind, robot_id, sequence, error.what());
         }
       });
+  if (submitted == SearchWorker::Submitted::kQueueFull) {
+    busy_log_.log(fmt::format("{} for {} #{} not queued: {} searches wait already", kind,
+                              line_set.robot_id, line_set.sequence_number,
+                              options_.max_queued_searches));
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.refused_searches;
+  }
+  return submitted;
 }
 
 void LineSetHandler::countSearch() {
@@ -225,13 +255,18 @@ void LineSetHandler::countSearch() {
 void LineSetHandler::announceNextFrame(const PoseFixData& fix, int64_t arrival_ns) {
   const bool tracked = fix.status != lineloc_msg_FIX_NO_MATCH_COMPUTED &&
                        fix.status != lineloc_msg_FIX_NO_MAP_LINES &&
-                       fix.status != lineloc_msg_FIX_INTERNAL_ERROR;
+                       fix.status != lineloc_msg_FIX_INTERNAL_ERROR &&
+                       fix.status != lineloc_msg_FIX_BUSY;
   cadence_.add(fix.robot_id, fix.stamp_ns, arrival_ns, tracked);
   foreground_.expectForegroundFrom(cadence_.quietFrom_ns(steadyClockNs()));
 }
 
 PoseFixData LineSetHandler::finish(PoseFixData fix, int64_t start_ns) {
   announceNextFrame(fix, start_ns);
+  return countAnswer(std::move(fix), start_ns);
+}
+
+PoseFixData LineSetHandler::countAnswer(PoseFixData fix, int64_t start_ns) {
   fix.timings.total = steadyClockNs() - start_ns;
   const StageTimingsNs& timings = fix.timings;
   if (timings.total > fromMilliseconds(options_.slow_answer_ms)) {
@@ -266,15 +301,25 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     return std::nullopt;
   }
   const LineSetData line_set = fromMessage(message);
-  hearFrom(line_set.robot_id, start_ns);
-  std::optional<Notice> notice = takeNotice(line_set);
-  const std::shared_ptr<RobotSession> session = sessionOf(line_set.robot_id);
-  const OdometryPose odometry = session->hear(line_set);
   PoseFixData fix;
   fix.robot_id = line_set.robot_id;
   fix.sequence_number = line_set.sequence_number;
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
+  if (!hearFrom(line_set.robot_id, start_ns)) {
+    busy_log_.log(start_ns,
+                  fmt::format("LineSet of {} #{} answered busy: {} robots are served",
+                              line_set.robot_id, line_set.sequence_number, options_.max_robots));
+    {
+      const std::lock_guard<std::mutex> lock(counters_mutex_);
+      ++counters_.refused_robot_frames;
+    }
+    fix.status = lineloc_msg_FIX_BUSY;
+    return countAnswer(fix, start_ns);
+  }
+  std::optional<Notice> notice = takeNotice(line_set);
+  const std::shared_ptr<RobotSession> session = sessionOf(line_set.robot_id);
+  const OdometryPose odometry = session->hear(line_set);
   try {
     const std::shared_ptr<const PreparedMap> map =
         maps_.around(line_set.predicted_T_world_camera.pose.translation());
@@ -298,12 +343,16 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       track(session, line_set, odometry, map, plan, fix, ahead ? &*ahead : nullptr);
       return finish(fix, start_ns);
     }
-    submitSearch("search", line_set, [this, session, line_set, odometry, map, prior = plan.prior] {
-      search(*session, line_set, odometry, map, prior);
-    });
-    fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
+    const SearchWorker::Submitted submitted = submitSearch(
+        "search", line_set, [this, session, line_set, odometry, map, prior = plan.prior] {
+          search(*session, line_set, odometry, map, prior);
+        });
+    fix.status = submitted == SearchWorker::Submitted::kQueueFull
+                     ? lineloc_msg_FIX_BUSY
+                     : lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
-    spdlog::error("map for {} #{} failed: {}", fix.robot_id, fix.sequence_number, error.what());
+    map_failure_log_.log(start_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
+                                               fix.sequence_number, error.what()));
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.map_errors;
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
@@ -313,7 +362,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
 
 void LineSetHandler::countDrop(const char* kind, uint32_t sequence_number,
                                const std::string& error) {
-  spdlog::warn("dropped {} #{}: {}", kind, sequence_number, error);
+  drop_log_.log(fmt::format("dropped {} #{}: {}", kind, sequence_number, error));
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.dropped_invalid;
   counters_.last_drop_reason = error;
@@ -323,6 +372,9 @@ void LineSetHandler::handleExposure(const lineloc_msg_LineSet& message) {
   const ForegroundGate::Scope foreground(foreground_);
   if (const std::optional<std::string> error = findLineSetError(message, limits_)) {
     countDrop("exposure notice", message.sequence_number, *error);
+    return;
+  }
+  if (!served(roster_.hear(message.robot_id, steadyClockNs()))) {
     return;
   }
   const LineSetData exposure = fromMessage(message);

@@ -20,6 +20,11 @@
 // Searches. A frame the session searches is answered at once with
 // FIX_NO_MATCH_COMPUTED: no LineSet waits for a search. Its search runs on the
 // worker unless the robot's last one still runs; a proof search likewise.
+// When max_queued_searches wait already, the frame is answered FIX_BUSY
+// instead (and a proof search is asked for again at the robot's next frame),
+// and counted: a robot's search waits behind a bounded number of other
+// robots' however many there are. Stopping drops the queued searches
+// (search_worker.h), and destroying the handler cancels the one running.
 //
 // Exposure notices. A robot may send each frame's LineSet without its
 // features at the frame's exposure (ExposureTopic, common/messages/topics.h).
@@ -31,11 +36,19 @@
 // later one, is skipped and counted. Notices wait for their LineSets in
 // order, up to kMaxWaitingNotices per robot.
 //
-// Forgetting. A robot not heard from for forget_robot_after_s is forgotten
-// (its session, notices and cadence), so that a
-// backbone serving robots that come and go holds only the ones it serves; one
-// that comes back is served as after a backbone restart. The sweep runs on the
-// LineSets' thread, at most every forget_robot_after_s / 2.
+// Robots. At most max_robots are served at once (robot_roster.h): the
+// frames of a robot beyond them, heard from while that many are served, are
+// answered FIX_BUSY at once, counted, and given no session. A robot not heard
+// from (by LineSet or exposure notice) for forget_robot_after_s is forgotten
+// (its session, notices and cadence), so that a backbone serving robots that
+// come and go holds only the ones it serves; one that comes back is served as
+// after a backbone restart. The sweep runs on the LineSets' thread, at most
+// every forget_robot_after_s / 2.
+//
+// Logs. What outside input causes at any rate (drops, refusals) and what
+// each frame may meet (a map that fails while the database is down) is
+// logged at most kLoggedPerSecond times a second each, the rest summarised
+// (rate_limited_log.h); the counters count every one.
 //
 // Background work. Searches and map preparation pause between pieces while
 // a LineSet is being handled and from quiet_before_frame_ms before a tracked
@@ -57,9 +70,11 @@
 #include "backbone/matching/localizer.h"
 #include "backbone/service/frame_cadence.h"
 #include "backbone/service/prepared_maps.h"
+#include "backbone/service/robot_roster.h"
 #include "backbone/service/robot_session.h"
 #include "backbone/service/search_worker.h"
 #include "common/geodesy/site_sun.h"
+#include "common/logging/rate_limited_log.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/parallel/foreground_gate.h"
@@ -80,6 +95,11 @@ struct BackboneCounters {
   // Robots heard from within forget_robot_after_s, and those forgotten since start.
   uint64_t robots = 0;
   uint64_t robots_forgotten = 0;
+  // Frames answered FIX_BUSY as max_robots others were served.
+  uint64_t refused_robot_frames = 0;
+  // Searches and proof searches not queued as max_queued_searches waited
+  // (each search's frame answered FIX_BUSY).
+  uint64_t refused_searches = 0;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -107,6 +127,9 @@ struct PipelineOptions {
   // A robot not heard from for this long is forgotten (see above); one whose
   // radio drops out for seconds keeps its state.
   double forget_robot_after_s = 30.0;
+  // Robots served at once, and searches waiting in all (see above).
+  int max_robots = 64;
+  int max_queued_searches = 8;
   RobotSessionOptions robot;
   LocalizerOptions localizer;
   // When set, each LineSet is localized under the sun of its stamp instead
@@ -121,6 +144,11 @@ std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp
 class LineSetHandler {
  public:
   LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
+  // Cancels the searches and map preparation under way (foreground_gate.h)
+  // and drops the queued ones, so that it ends promptly.
+  ~LineSetHandler();
+  LineSetHandler(const LineSetHandler&) = delete;
+  LineSetHandler& operator=(const LineSetHandler&) = delete;
 
   // The fix to publish, or nullopt when the message was dropped.
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);
@@ -139,6 +167,15 @@ class LineSetHandler {
   // Blocks until the searches under way have finished.
   void waitForSearches();
 
+  // From now on each LineSet is localized under the sun of its stamp over
+  // the site (PipelineOptions::sun_from_clock): for a site looked up once
+  // serving has started. Safe to call beside handle().
+  void takeSunFromClock(const SiteSun& sun);
+
+  // Logs the summaries of the drops and refusals not logged (see above),
+  // once their interval has ended; call now and then.
+  void flushLogs(int64_t now_ns);
+
   BackboneCounters counters() const;
 
   // Counts a dropped message (malformed, or refused before handle()) and
@@ -148,8 +185,10 @@ class LineSetHandler {
  private:
   // Records that `robot_id`'s LineSet arrived at `arrival_ns` (steady
   // clock), first forgetting the silent robots when that is due: itself too
-  // when it was one.
-  void hearFrom(const std::string& robot_id, int64_t arrival_ns);
+  // when it was one. False when the robot is refused (see above).
+  bool hearFrom(const std::string& robot_id, int64_t arrival_ns);
+  // Records the roster's answer for a robot heard from; false when refused.
+  bool served(RobotRoster::Heard heard);
   // The robot's session, made when it has none.
   std::shared_ptr<RobotSession> sessionOf(const std::string& robot_id);
   void prefetchAlongMotion(RobotSession& session, const LineSetData& line_set);
@@ -198,23 +237,33 @@ class LineSetHandler {
                         const SearchSummary& summary, const std::string& outcome,
                         int64_t search_ns);
   // Queues `run` on the search worker unless the robot's last search still
-  // runs; an exception it throws is logged as `kind`'s failure.
-  void submitSearch(const char* kind, const LineSetData& line_set, std::function<void()> run);
+  // runs or the queue is full (counted); an exception it throws is logged as
+  // `kind`'s failure.
+  SearchWorker::Submitted submitSearch(const char* kind, const LineSetData& line_set,
+                                       std::function<void()> run);
   void countSearch();
-  // Stamps the total time and counts the answer; logs a slow one.
+  // Announces the robot's next frame and counts the answer (countAnswer).
   PoseFixData finish(PoseFixData fix, int64_t start_ns);
+  // Stamps the total time and counts the answer; logs a slow one.
+  PoseFixData countAnswer(PoseFixData fix, int64_t start_ns);
   // Announces the robots' next tracked frames to the gate (frame_cadence.h).
   void announceNextFrame(const PoseFixData& fix, int64_t arrival_ns);
 
+  static constexpr int kLoggedPerSecond = 5;
+
   MapTileCache& map_;
   MessageLimits limits_;
+  // Its sun_from_clock under sun_mutex_ (takeSunFromClock).
   PipelineOptions options_;
+  mutable std::mutex sun_mutex_;
   const int64_t silence_ns_;  // forget_robot_after_s
   mutable std::mutex counters_mutex_;
   BackboneCounters counters_;
-  // The arrival of each robot's last LineSet, and when silent robots are next
-  // looked for (see above).
-  std::map<std::string, int64_t> last_heard_ns_;
+  RateLimitedLog drop_log_;
+  RateLimitedLog busy_log_;
+  RateLimitedLog map_failure_log_;
+  // The robots served, and when silent ones are next looked for (see above).
+  RobotRoster roster_;
   int64_t next_forgetting_ns_ = 0;
   // Each robot's session; a search that outlives its robot's keeps its own.
   std::mutex sessions_mutex_;

@@ -15,27 +15,45 @@ constexpr int kSearchNice = 10;
 
 }  // namespace
 
-SearchWorker::SearchWorker(ForegroundGate* gate) : gate_(gate), worker_([this] { work(); }) {}
+SearchWorker::SearchWorker(ForegroundGate* gate, size_t max_queued)
+    : gate_(gate), max_queued_(max_queued), worker_([this] { work(); }) {}
 
 SearchWorker::~SearchWorker() {
+  stop();
+}
+
+void SearchWorker::stop() {
+  std::deque<Job> dropped;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
+    dropped.swap(jobs_);
+    for (const Job& job : dropped) {
+      busy_robots_.erase(job.robot_id);
+    }
+    if (busy_robots_.empty()) {
+      idle_.notify_all();
+    }
   }
   job_ready_.notify_all();
-  worker_.join();
+  if (worker_.joinable()) {
+    worker_.join();
+  }
 }
 
-bool SearchWorker::submit(const std::string& robot_id, Search search) {
+SearchWorker::Submitted SearchWorker::submit(const std::string& robot_id, Search search) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_ || jobs_.size() >= max_queued_) {
+      return busy_robots_.contains(robot_id) ? Submitted::kRobotBusy : Submitted::kQueueFull;
+    }
     if (!busy_robots_.insert(robot_id).second) {
-      return false;
+      return Submitted::kRobotBusy;
     }
     jobs_.push_back({robot_id, std::move(search)});
   }
   job_ready_.notify_one();
-  return true;
+  return Submitted::kQueued;
 }
 
 void SearchWorker::waitUntilIdle() {
@@ -49,7 +67,7 @@ void SearchWorker::work() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     job_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
-    if (jobs_.empty()) {
+    if (stopping_) {
       return;
     }
     Job job = std::move(jobs_.front());
@@ -58,7 +76,11 @@ void SearchWorker::work() {
     if (gate_) {
       gate_->yieldToForeground();
     }
-    job.search();
+    try {
+      job.search();
+    } catch (const BackgroundWorkCancelled&) {
+      // The service stops: the search ends here.
+    }
     lock.lock();
     busy_robots_.erase(job.robot_id);
     if (busy_robots_.empty()) {

@@ -138,13 +138,28 @@ Error checkCorner(const lineloc_msg_Corner& c, const PixelBounds& bounds, uint32
   return std::nullopt;
 }
 
-Error checkCamera(const lineloc_msg_CameraIntrinsics& camera) {
+Error checkCamera(const lineloc_msg_CameraIntrinsics& camera, const MessageLimits& limits) {
   const double values[] = {camera.fx, camera.fy, camera.cx, camera.cy};
   if (!allFinite(values) || camera.fx <= 0.0 || camera.fy <= 0.0) {
     return std::string("camera: intrinsics must be finite with positive focal lengths");
   }
   if (camera.width == 0 || camera.height == 0) {
     return std::string("camera: image size is zero");
+  }
+  if (camera.width > limits.max_camera_side_px) {
+    return fmt::format("camera.width {} px exceeds the limit of {} px", camera.width,
+                       limits.max_camera_side_px);
+  }
+  if (camera.height > limits.max_camera_side_px) {
+    return fmt::format("camera.height {} px exceeds the limit of {} px", camera.height,
+                       limits.max_camera_side_px);
+  }
+  const double megapixels = 1e-6 * camera.width * camera.height;
+  if (megapixels > limits.max_camera_megapixels) {
+    return fmt::format(
+        "camera.width x camera.height {} x {} px ({:.1f} megapixels) exceed the "
+        "limit of {} megapixels",
+        camera.width, camera.height, megapixels, limits.max_camera_megapixels);
   }
   return std::nullopt;
 }
@@ -181,7 +196,7 @@ std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
   if (message.stamp_ns <= 0) {
     return fmt::format("stamp_ns {} is not positive", message.stamp_ns);
   }
-  if (Error e = checkCamera(message.camera))
+  if (Error e = checkCamera(message.camera, limits))
     return e;
   if (message.segments._length > limits.max_segments) {
     return fmt::format("{} segments exceed the limit of {}", message.segments._length,
@@ -214,7 +229,7 @@ std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message) 
   if (Error e = checkRobotId(message.robot_id))
     return e;
   const int32_t status = rawEnumValue(message.status);
-  if (status < lineloc_msg_FIX_OK || status > lineloc_msg_FIX_INTERNAL_ERROR) {
+  if (status < lineloc_msg_FIX_OK || status > lineloc_msg_FIX_BUSY) {
     return fmt::format("status {} is unknown", status);
   }
   if (!std::isfinite(message.residual_rms_px) || message.residual_rms_px < 0.0f) {

@@ -19,6 +19,10 @@ namespace lineloc {
 struct MessageLimits {
   uint32_t max_segments = 2048;
   uint32_t max_corners = 2048;
+  // The LineSet's camera image: at most this many pixels a side, and in all
+  // (the backbone's work per frame grows with the image's area).
+  uint32_t max_camera_side_px = 8192;
+  double max_camera_megapixels = 32.0;
   // Undistorted coordinates may leave the image by this fraction of its size.
   double image_margin_fraction = 0.5;
 };

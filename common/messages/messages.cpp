@@ -113,6 +113,8 @@ const char* toString(lineloc_msg_FixStatus status) {
       return "diverged";
     case lineloc_msg_FIX_INTERNAL_ERROR:
       return "internal_error";
+    case lineloc_msg_FIX_BUSY:
+      return "busy";
   }
   return "unknown";
 }

@@ -23,6 +23,11 @@
 // starts anew for each call among them), so it keeps half of its time however
 // busy the foreground is (a backbone serving many robots), and no single wait
 // exceeds max_yield_ns.
+//
+// Cancelling ends the background work for good, for a process that stops
+// whatever work is under way: background work no longer waits, and a
+// parallelFor it calls skips the indices it has not started and throws
+// BackgroundWorkCancelled.
 #pragma once
 
 #include <atomic>
@@ -31,6 +36,7 @@
 #include <cstdint>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 
 #include "common/time/clock.h"
 
@@ -60,8 +66,12 @@ class ForegroundGate {
 
   // Blocks while a Scope is open or announced foreground work is due, at most
   // max_yield_ns, unless the background has not yet run as long as it last
-  // waited.
+  // waited or has been cancelled.
   void yieldToForeground();
+
+  // Cancels the background work (see above); it cannot be resumed.
+  void cancelBackground();
+  bool backgroundCancelled() const { return cancelled_; }
 
  private:
   void enter();
@@ -73,8 +83,15 @@ class ForegroundGate {
   std::atomic<int64_t> expected_from_ns_{std::numeric_limits<int64_t>::max()};
   // Steady-clock time before which background work does not wait again.
   std::atomic<int64_t> runs_until_ns_{0};
+  std::atomic<bool> cancelled_{false};
   std::mutex mutex_;
   std::condition_variable closed_;
+};
+
+// What a parallelFor of cancelled background work throws.
+class BackgroundWorkCancelled : public std::runtime_error {
+ public:
+  BackgroundWorkCancelled() : std::runtime_error("background work cancelled") {}
 };
 
 // The gate whose background work the calling thread runs (nullptr: none).
@@ -125,7 +142,18 @@ inline void ForegroundGate::expectForegroundFrom(int64_t steady_ns) {
   }
 }
 
+inline void ForegroundGate::cancelBackground() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    cancelled_ = true;
+  }
+  closed_.notify_all();
+}
+
 inline bool ForegroundGate::foregroundAt(int64_t steady_ns) const {
+  if (cancelled_) {
+    return false;
+  }
   const int64_t expected_ns = expected_from_ns_;
   return open_scopes_ > 0 || (steady_ns >= expected_ns && steady_ns - expected_ns < max_yield_ns_);
 }

@@ -6,7 +6,9 @@
 // rethrown on the caller once every thread has stopped; indices not yet
 // started when it was thrown are skipped. Called from background work
 // (foreground_gate.h), every thread yields to the foreground before each index,
-// and the threads it starts are background work of the same gate.
+// and the threads it starts are background work of the same gate; once that
+// work is cancelled, the indices not yet started are skipped and it throws
+// BackgroundWorkCancelled.
 #pragma once
 
 #include <algorithm>
@@ -36,10 +38,13 @@ void parallelFor(int count, int threads, const Function& fn) {
   auto work = [&] {
     const BackgroundOf background(gate);
     for (int i = next++; i < count; i = next++) {
-      if (gate) {
-        gate->yieldToForeground();
-      }
       try {
+        if (gate) {
+          gate->yieldToForeground();
+          if (gate->backgroundCancelled()) {
+            throw BackgroundWorkCancelled();
+          }
+        }
         fn(i);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);

@@ -15,6 +15,7 @@
 #include "common/config/option_values.h"
 #include "common/geodesy/site_projection.h"
 #include "common/geometry/pose.h"
+#include "common/logging/rate_limited_log.h"
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
 #include "common/messages/robot_partition.h"
@@ -37,6 +38,8 @@ constexpr int64_t kPollNs = 2'000'000;
 // this long after its exposure when no answer comes (ImagePrefetcher): by
 // then the answer is late beyond the latency it is measured against.
 constexpr int64_t kDecodeUnansweredAfterNs = 15'000'000;
+// Lines a second each log of dropped input writes (rate_limited_log.h).
+constexpr int kLoggedPerSecond = 5;
 
 // Receives the PoseFix answers for this robot, checks them and hands the good
 // ones on; records latency from each frame's exposure.
@@ -52,7 +55,8 @@ class FixReceiver {
         fix_log_(config.fix_log_out.empty() ? std::nullopt
                                             : std::make_optional<FixLogWriter>(config.fix_log_out)),
         summary_(summary),
-        handler_(std::move(handler)) {}
+        handler_(std::move(handler)),
+        drop_log_("dropped PoseFixes", kLoggedPerSecond, 1.0) {}
 
   void expect(uint32_t sequence_number, const OutstandingFrames::Frame& frame) {
     outstanding_.expect(sequence_number, frame);
@@ -77,14 +81,15 @@ class FixReceiver {
     }
     if (const auto error = findPoseFixError(message)) {
       ++summary_.fixes_dropped;
-      spdlog::warn("dropped a malformed PoseFix: {}", *error);
+      drop_log_.log("dropped a malformed PoseFix: " + *error);
       return;
     }
     const auto frame = outstanding_.take(message.sequence_number, message.stamp_ns);
     if (!frame) {
       ++summary_.fixes_dropped;
-      spdlog::warn("dropped a PoseFix for frame {} stamped {} ns: no such frame awaits an answer",
-                   message.sequence_number, message.stamp_ns);
+      drop_log_.log(fmt::format(
+          "dropped a PoseFix for frame {} stamped {} ns: no such frame awaits an answer",
+          message.sequence_number, message.stamp_ns));
       return;
     }
     const PoseFixData fix = fromMessage(message);
@@ -117,6 +122,7 @@ class FixReceiver {
   RobotRunSummary& summary_;
   Handler handler_;
   OutstandingFrames outstanding_;
+  RateLimitedLog drop_log_;
 };
 
 lineloc_msg_Health toHealth(NavigatorMode mode) {
@@ -305,6 +311,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
   SensorStreams streams =
       loadSensorStreams(config.images, gps.get(), static_cast<int64_t>(config.start_at_s * 1e9));
+  requireNavigationSensors(config.images, streams, gps != nullptr);
   for (const std::string& reason : streams.drop_reasons) {
     spdlog::warn("input dropped: {}", reason);
   }
@@ -316,6 +323,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
 
   RobotRunSummary summary;
   summary.sensor_lines_dropped = streams.dropped_lines;
+  RateLimitedLog skipped_frames_log("skipped frames", kLoggedPerSecond, 1.0);
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::logSecurity(domain);
   dds::Participant participant(domain);
@@ -416,7 +424,16 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         if (config.exposure_notices) {
           exposure_writer.write(LineSetMessage(line_set).message());
         }
-        const FrameFeatures& features = extractor.extract(images.take(event.index));
+        cv::Mat image;
+        try {
+          image = images.take(event.index);
+        } catch (const std::exception& error) {
+          ++summary.frames_skipped;
+          skipped_frames_log.log(fmt::format("skipped frame {}: {}", event.index, error.what()));
+          images.resume();
+          break;
+        }
+        const FrameFeatures& features = extractor.extract(image);
         line_set.segments = features.segments;
         line_set.corners = features.corners;
         const LineSetMessage message(line_set);

@@ -88,6 +88,8 @@ struct RobotRunSummary {
   // Frames held, not sent, before the navigator had a pose: standing still
   // for its alignment, then DGPS or a vision fix for its position.
   int frames_before_pose = 0;
+  // Frames skipped as their image was missing or could not be decoded.
+  int frames_skipped = 0;
   int fixes_received = 0;
   int fixes_dropped = 0;
   int fixes_applied = 0;
@@ -123,8 +125,11 @@ struct RobotRunSummary {
 FeatureExtractorOptions frontEndOptions(const RobotConfig& config);
 
 // Runs the input through the loop. Stops early when `stop` becomes true.
-// Throws std::runtime_error on bad configuration or unreadable input; a
-// missing or vanished backbone is not an error (the robot dead-reckons).
+// Throws std::runtime_error on bad configuration, unreadable input or a
+// dataset without the sensors the robot needs (requireNavigationSensors,
+// sensor_streams.h); a frame whose image is missing or corrupt is skipped,
+// counted and logged (at most a few lines a second), and a missing or
+// vanished backbone is not an error (the robot dead-reckons).
 RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& stop);
 
 }  // namespace lineloc

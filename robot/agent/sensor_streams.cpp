@@ -142,6 +142,40 @@ void addEvents(const std::vector<T>& records, SensorKind kind, SensorStreams& st
 
 }  // namespace
 
+void requireNavigationSensors(const std::string& root, const SensorStreams& streams,
+                              bool gps_decoded) {
+  const fs::path dataset(root);
+  if (!fs::is_directory(dataset / "cam0")) {
+    return;
+  }
+  const fs::path imu = dataset / "imu0" / "data.csv";
+  if (!fs::is_regular_file(imu)) {
+    throw std::runtime_error(fmt::format(
+        "dataset '{}' has no IMU stream: '{}' is missing, and without it the robot cannot keep "
+        "its pose between fixes",
+        root, imu.string()));
+  }
+  if (streams.imu.empty()) {
+    throw std::runtime_error(fmt::format("'{}' holds no valid IMU sample", imu.string()));
+  }
+  const fs::path gps = dataset / "gps0" / "data.csv";
+  if (!fs::is_regular_file(gps)) {
+    throw std::runtime_error(fmt::format(
+        "dataset '{}' has no DGPS stream: '{}' is missing, and without a first position the "
+        "robot never localises",
+        root, gps.string()));
+  }
+  if (!gps_decoded) {
+    throw std::runtime_error(fmt::format(
+        "'{}' needs the site's CRS and origin (site_crs, site_origin) to be read: without a "
+        "first position the robot never localises",
+        gps.string()));
+  }
+  if (streams.gps.empty()) {
+    throw std::runtime_error(fmt::format("'{}' holds no valid DGPS position", gps.string()));
+  }
+}
+
 SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
                                 int64_t start_offset_ns) {
   SensorStreams streams;

@@ -53,4 +53,14 @@ struct SensorStreams {
 SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
                                 int64_t start_offset_ns = 0);
 
+// Throws std::runtime_error, naming the file and what is missing, unless
+// `streams`, read from `root`, hold what the robot needs to localise: in a
+// dataset (a folder with cam0/), IMU samples (imu0/data.csv), which carry the
+// pose between fixes, and DGPS positions (gps0/data.csv, read with a site
+// CRS: `gps_decoded`), which give the navigator its first position, without
+// which it never sends a frame. A camera folder or a plain folder of images
+// needs neither: its frames carry a configured prediction.
+void requireNavigationSensors(const std::string& root, const SensorStreams& streams,
+                              bool gps_decoded);
+
 }  // namespace lineloc

@@ -414,11 +414,88 @@ TEST_F(RobotBackboneLoop, RobotSurvivesTheBackboneBeingKilledMidRun) {
   EXPECT_EQ(stamps.size(), static_cast<size_t>(kFrames) - stamps.begin()->first);
 }
 
+// A frame that cannot be decoded is skipped, counted and named in the log;
+// the robot goes on with the next one and every other frame is answered.
+TEST_F(RobotBackboneLoop, ARobotSkipsACorruptFrameAndGoesOn) {
+  std::ofstream(work_ / "images" / "frame003.png", std::ios::trunc) << "not a PNG";
+  Observer observer;
+  auto backbone = startBackbone();
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+  auto robot = startRobot("robot-e", 20.0);
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-e.log");
+  const std::string robot_log = log("robot-e.log");
+  EXPECT_NE(robot_log.find("skipped frame 3: "), std::string::npos) << robot_log;
+  EXPECT_NE(robot_log.find("frame003.png"), std::string::npos) << robot_log;
+  EXPECT_NE(robot_log.find("1 skipped as their image was missing or corrupt"), std::string::npos)
+      << robot_log;
+  EXPECT_EQ(fixesReceived(robot_log), kFrames - 1) << robot_log;
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+}
+
+// A dataset without the IMU that would carry its pose is refused at the
+// start, saying so, instead of a run that never localises.
+TEST_F(RobotBackboneLoop, ADatasetWithoutItsIMUFailsTheRobotsStart) {
+  const fs::path camera = work_ / "dataset" / "cam0";
+  fs::create_directories(camera / "data");
+  std::ofstream csv(camera / "data.csv");
+  csv << "#timestamp [ns],filename\n";
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = cv::format("frame%03d.png", i);
+    fs::copy_file(work_ / "images" / name, camera / "data" / name);
+    csv << 1'700'000'000'000'000'000 + i * 50'000'000LL << ',' << name << '\n';
+  }
+  csv.close();
+  auto robot = start("lineloc-robot", "robot-f.log",
+                     {"--robot-id", "robot-f", "--images", (work_ / "dataset").string(),
+                      "--camera-calibration", (work_ / "camera.yml").string()},
+                     {});
+  EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-f.log");
+  EXPECT_NE(log("robot-f.log").find("has no IMU stream"), std::string::npos) << log("robot-f.log");
+}
+
 TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsStart) {
   auto robot = startRobot("robot-d", 20.0, {"--realtime-priority", "100"});
   EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-d.log");
   EXPECT_NE(log("robot-d.log").find("realtime_priority 100 must be 0"), std::string::npos)
       << log("robot-d.log");
+}
+
+// Hundreds of robots' searches queued (the queue's bound raised to hold them
+// all), each around a prior of 5 m sigma, the backbone stops on SIGTERM
+// within the test's timeout: the queued searches are dropped and the running
+// one cancelled, where running each of them to its end would outlast it.
+TEST_F(RobotBackboneLoop, TheBackboneStopsWithHundredsOfSearchesQueued) {
+  Observer observer;
+  auto backbone = startBackbone(work_ / "stats.json",
+                                {"--max-robots", "1000", "--max-queued-searches", "1000"});
+  ASSERT_TRUE(observer.pollUntil([&] { return observer.backboneListening(); }))
+      << log("backbone.log");
+  // The map prepared first, so that the frames below are searched.
+  uint32_t sequence = 1;
+  do {
+    observer.writer().write(LineSetMessage(probeLineSet("probe", sequence, 5)).message());
+    ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") == sequence; }))
+        << log("backbone.log");
+    ++sequence;
+  } while (observer.fixes.back().status == lineloc_msg_FIX_NO_MATCH_COMPUTED && sequence < 100);
+  constexpr int kSearchedRobots = 300;
+  for (int robot = 0; robot < kSearchedRobots; ++robot) {
+    LineSetData poor = probeLineSet("searched-" + std::to_string(robot), 1, 5);
+    poor.predicted_T_world_camera.pose.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+    poor.predicted_T_world_camera.covariance = diagonalPoseCovariance(5.0, 0.1);
+    for (ImageSegment& segment : poor.segments) {
+      segment.contrast = 40.0f;
+    }
+    observer.writer().write(LineSetMessage(poor).message());
+  }
+  ASSERT_TRUE(observer.pollUntil([&] {
+    return observer.fixes.size() == sequence - 1 + kSearchedRobots;
+  })) << log("backbone.log");
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+  EXPECT_LT(stats().value("searches", kSearchedRobots), kSearchedRobots);
 }
 
 // A robot that falls silent is forgotten although no other robot sends

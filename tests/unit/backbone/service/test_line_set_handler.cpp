@@ -739,6 +739,58 @@ TEST_F(LineSetHandlerTest, ServingForgetsTheRobotsSilentForForgetRobotAfter) {
   EXPECT_EQ(handler.counters().robots_forgotten, 2u) << "itself, silent since its last frame";
 }
 
+// Hundreds of made-up robot ids, each asking for a search: at most
+// max_robots are served, the frames of the rest answered FIX_BUSY at once and
+// counted, at most max_queued_searches searches wait, and the robot tracked
+// before the flood is answered with a pose at each of its frames throughout.
+TEST_F(LineSetHandlerTest, ARobotKeepsBeingTrackedAmongHundredsOfMadeUpRobots) {
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.max_robots = 8;
+  options.max_queued_searches = 2;
+  LineSetHandler handler(cache, MessageLimits{}, options);
+  const auto [seen, predicted] = trackableView(handler, database_.conninfo());
+  const PoorStart start;
+  uint32_t sequence = 3;
+  ASSERT_EQ(handler.handle(lineSetMessage(seen, predicted, sequence++)->message())->status,
+            lineloc_msg_FIX_OK);
+  constexpr int kMadeUpRobots = 300;
+  int searched = 0;
+  int busy = 0;
+  for (int robot = 0; robot < kMadeUpRobots; ++robot) {
+    const auto answer = handler.handle(
+        lineSetMessage(seen, start.predicted, 1, "made-up-" + std::to_string(robot))->message());
+    ASSERT_TRUE(answer.has_value());
+    ASSERT_TRUE(answer->status == lineloc_msg_FIX_NO_MATCH_COMPUTED ||
+                answer->status == lineloc_msg_FIX_BUSY)
+        << toString(answer->status);
+    (answer->status == lineloc_msg_FIX_BUSY ? busy : searched) += 1;
+    if (robot % 10 == 0) {
+      EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, sequence++)->message())->status,
+                lineloc_msg_FIX_OK)
+          << "after made-up robot " << robot;
+    }
+  }
+  const BackboneCounters counters = handler.counters();
+  EXPECT_EQ(counters.robots, 8u) << "the warm-up robot, the tracked one and six made up";
+  EXPECT_EQ(counters.refused_robot_frames, static_cast<uint64_t>(kMadeUpRobots - 6));
+  // The tracked robot's proof searches queue beside the made-up robots'.
+  EXPECT_GE(static_cast<uint64_t>(busy), counters.refused_robot_frames);
+  EXPECT_LE(static_cast<uint64_t>(busy), counters.refused_robot_frames + counters.refused_searches);
+  EXPECT_EQ(searched + busy, kMadeUpRobots);
+  EXPECT_GE(searched, 1);
+  EXPECT_LE(searched, 6);
+  handler.waitForSearches();
+  EXPECT_GE(handler.counters().searches, static_cast<uint64_t>(searched));
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, predicted, sequence++)->message())->status,
+            lineloc_msg_FIX_OK);
+  // Once the made-up robots are forgotten, a new robot is served.
+  handler.forgetSilentRobots(onceSilentFor(options));
+  EXPECT_EQ(handler.handle(lineSetMessage(seen, start.predicted, 1, "newcomer")->message())->status,
+            lineloc_msg_FIX_NO_MATCH_COMPUTED);
+  EXPECT_EQ(handler.counters().robots, 1u);
+}
+
 TEST_F(LineSetHandlerTest, ASearchThatDisagreesWithTheRobotsMotionIsNotConfirmed) {
   MapTileCache cache = makeCache(database_.conninfo());
   LineSetHandler handler(cache, MessageLimits{}, PipelineOptions{});

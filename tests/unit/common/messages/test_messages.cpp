@@ -160,6 +160,37 @@ TEST(Validator, EnforcesTheReceiversLimits) {
   EXPECT_NE(error->find("300 segments exceed the limit of 299"), std::string::npos);
 }
 
+// One LineSet claiming a huge camera would have the backbone allocate maps of
+// that size: a side or an area beyond the receiver's limits is refused.
+TEST(Validator, RefusesACameraBeyondTheReceiversLimits) {
+  const auto errorFor = [](uint16_t width, uint16_t height, const MessageLimits& limits) {
+    LineSetData data = makeLineSet(3);
+    data.camera.width = width;
+    data.camera.height = height;
+    const LineSetMessage message(data);
+    return findLineSetError(message.message(), limits);
+  };
+  const MessageLimits defaults;
+  EXPECT_EQ(errorFor(5472, 3648, defaults), std::nullopt) << "a 20-megapixel camera";
+  const auto huge = errorFor(65535, 65535, defaults);
+  ASSERT_TRUE(huge.has_value());
+  EXPECT_EQ(*huge, "camera.width 65535 px exceeds the limit of 8192 px");
+  const auto tall = errorFor(640, 9000, defaults);
+  ASSERT_TRUE(tall.has_value());
+  EXPECT_EQ(*tall, "camera.height 9000 px exceeds the limit of 8192 px");
+  const auto area = errorFor(8192, 8192, defaults);
+  ASSERT_TRUE(area.has_value());
+  EXPECT_EQ(*area,
+            "camera.width x camera.height 8192 x 8192 px (67.1 megapixels) exceed the limit of 32 "
+            "megapixels");
+  MessageLimits small;
+  small.max_camera_side_px = 640;
+  small.max_camera_megapixels = 0.3;
+  EXPECT_EQ(errorFor(640, 468, small), std::nullopt);
+  EXPECT_TRUE(errorFor(641, 400, small).has_value());
+  EXPECT_TRUE(errorFor(640, 480, small).has_value()) << "0.307 megapixels";
+}
+
 TEST(Validator, PoseFixAndRobotState) {
   PoseFixData fix;
   fix.robot_id = "r1";

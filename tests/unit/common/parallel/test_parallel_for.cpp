@@ -44,6 +44,23 @@ TEST(ParallelFor, RunsOnAsManyThreadsAsAsked) {
   EXPECT_EQ(seen.size(), 3u);
 }
 
+// Background work cancelled while its parallelFor runs: the indices not yet
+// started are skipped (two threads: one may be inside its call already).
+TEST(ParallelFor, SkipsTheIndicesLeftOnceItsBackgroundWorkIsCancelled) {
+  ForegroundGate gate(1'000'000);
+  const BackgroundOf background(&gate);
+  std::atomic<int> calls{0};
+  EXPECT_THROW(parallelFor(1000, 2,
+                           [&](int) {
+                             if (++calls == 10) {
+                               gate.cancelBackground();
+                             }
+                           }),
+               BackgroundWorkCancelled);
+  EXPECT_GE(calls.load(), 10);
+  EXPECT_LE(calls.load(), 11);
+}
+
 TEST(ParallelFor, RethrowsTheFirstExceptionOnTheCaller) {
   std::atomic<int> calls{0};
   EXPECT_THROW(parallelFor(100, 2,

@@ -104,6 +104,43 @@ TEST_F(SensorStreamsTest, StartingLaterNeedsTimeStampedFrames) {
   EXPECT_EQ(loadSensorStreams(images.string(), nullptr).frames.size(), 1u);
 }
 
+// A dataset without the IMU or DGPS the robot needs is refused with a
+// message naming the file; a camera folder on its own needs neither.
+TEST_F(SensorStreamsTest, RequiresTheIMUAndDGPSOfADataset) {
+  NmeaGpsDecoder gps(SiteProjection("EPSG:7415", Eigen::Vector3d(84900.0, 447600.0, 0.0)));
+  const auto errorOf = [&](NmeaGpsDecoder* decoder) -> std::string {
+    try {
+      requireNavigationSensors(root_.string(), loadSensorStreams(root_.string(), decoder),
+                               decoder != nullptr);
+    } catch (const std::runtime_error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(errorOf(&gps), "");
+  EXPECT_NE(errorOf(nullptr).find((root_ / "gps0" / "data.csv").string() +
+                                  "' needs the site's CRS and origin"),
+            std::string::npos)
+      << errorOf(nullptr);
+  writeFile(root_ / "gps0" / "data.csv", "#timestamp [ns],sentence\ngarbage\n");
+  EXPECT_NE(errorOf(&gps).find("holds no valid DGPS position"), std::string::npos);
+  fs::remove(root_ / "gps0" / "data.csv");
+  EXPECT_NE(errorOf(&gps).find("has no DGPS stream: '" + (root_ / "gps0" / "data.csv").string() +
+                               "' is missing"),
+            std::string::npos)
+      << errorOf(&gps);
+  writeFile(root_ / "imu0" / "data.csv", "#timestamp [ns],wx,wy,wz,ax,ay,az\n1,2\n");
+  EXPECT_NE(errorOf(&gps).find("holds no valid IMU sample"), std::string::npos) << errorOf(&gps);
+  fs::remove(root_ / "imu0" / "data.csv");
+  EXPECT_NE(errorOf(&gps).find("has no IMU stream: '" + (root_ / "imu0" / "data.csv").string() +
+                               "' is missing"),
+            std::string::npos)
+      << errorOf(&gps);
+  const std::string camera_folder = (root_ / "cam0").string();
+  EXPECT_NO_THROW(
+      requireNavigationSensors(camera_folder, loadSensorStreams(camera_folder, nullptr), false));
+}
+
 TEST_F(SensorStreamsTest, MalformedMountingIsAnErrorNamingTheFile) {
   writeFile(root_ / "imu0" / "sensor.yaml", "T_BS: {rows: 4}\n");
   try {

@@ -447,7 +447,7 @@ TEST_F(RobotBackboneLoop, ADatasetWithoutItsIMUFailsTheRobotsStart) {
     csv << 1'700'000'000'000'000'000 + i * 50'000'000LL << ',' << name << '\n';
   }
   csv.close();
-  auto robot = start("lineloc-robot", "robot-f.log",
+  auto robot = start("lineloc-robot", "robot-robot-f", "robot-f.log",
                      {"--robot-id", "robot-f", "--images", (work_ / "dataset").string(),
                       "--camera-calibration", (work_ / "camera.yml").string()},
                      {});

@@ -11,6 +11,7 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kMaxSide = std::numeric_limits<int32_t>::max();
+constexpr const char* kUnknownFormat = "not a PNG, JPEG, BMP or Netpbm (PBM, PGM, PPM) image";
 
 class HeaderBytes {
  public:
@@ -63,7 +64,7 @@ ImageHeader checkedSize(const HeaderBytes& bytes, const char* format, int64_t wi
 ImageHeader readPng(HeaderBytes& bytes) {
   for (const uint8_t expected : {'G', '\r', '\n', '\x1a', '\n'}) {
     if (bytes.byte("PNG signature") != expected) {
-      bytes.fail("not a PNG, JPEG, BMP or Netpbm (PBM, PGM, PPM) image");
+      bytes.fail(kUnknownFormat);
     }
   }
   const uint32_t length = bytes.number(4, false, "PNG IHDR chunk");
@@ -191,7 +192,7 @@ ImageHeader readImageHeader(std::istream& in, const std::string& source) {
   if (start[0] == 'P' && start[1] >= '1' && start[1] <= '6' && std::isspace(start[2])) {
     return readNetpbm(bytes);
   }
-  bytes.fail("not a PNG, JPEG, BMP or Netpbm (PBM, PGM, PPM) image");
+  bytes.fail(kUnknownFormat);
 }
 
 }  // namespace lineloc

@@ -12,6 +12,7 @@
 #include "backbone/tracker/tracking_overlay.h"
 #include "common/camera/camera_calibration.h"
 #include "common/config/option_values.h"
+#include "common/image/image_file.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "db/citymodel/city_model.h"
 #include "robot/input/image_sequence.h"
@@ -52,10 +53,7 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
   OfflineTrackingSummary summary;
   const std::vector<FrameRef> frames = listImageSequence(config.images);
   for (const FrameRef& frame_ref : frames) {
-    const cv::Mat image = cv::imread(frame_ref.path, cv::IMREAD_COLOR);
-    if (image.empty()) {
-      throw std::runtime_error(fmt::format("cannot read image '{}'", frame_ref.path));
-    }
+    const cv::Mat image = readImageFile(frame_ref.path, cv::IMREAD_COLOR);
     const FrameFeatures& features = extractor.extract(image);
     const TrackedFrame frame = tracker.track(features.segments, features.corners);
     summary.aligned += frame.alignment.status == AlignmentStatus::kOk ? 1 : 0;

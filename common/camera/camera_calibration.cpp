@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <stdexcept>
@@ -22,6 +23,30 @@ Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& p_camera) const {
 }
 
 namespace {
+
+// OpenCV's YAML, JSON and XML parsers recurse once per level of nesting with
+// no limit of their own, so a file nested tens of thousands of levels deep
+// overflows the stack. Nesting is at most the number of opening brackets and
+// tags, whatever the format; a calibration file has a few dozen.
+constexpr size_t kMaxCalibrationOpenings = 4096;
+
+// Throws std::runtime_error naming `path` when it holds more openings ('[',
+// '{', or '<' not followed by '/') than kMaxCalibrationOpenings.
+void checkOpeningsBound(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  size_t openings = 0;
+  bool after_angle = false;
+  for (char c; file.get(c);) {
+    openings += (c == '[' || c == '{' || (after_angle && c != '/')) ? 1 : 0;
+    after_angle = c == '<';
+    if (openings > kMaxCalibrationOpenings) {
+      throw std::runtime_error(fmt::format(
+          "{}: nested too deeply for a camera calibration (more than {} opening brackets and "
+          "tags)",
+          path, kMaxCalibrationOpenings));
+    }
+  }
+}
 
 cv::Mat readMatrix(const cv::FileStorage& storage, const std::string& key,
                    const std::string& path) {
@@ -49,6 +74,7 @@ int readPositiveInt(const cv::FileStorage& storage, const std::string& key,
 }  // namespace
 
 CameraCalibration readCameraCalibration(const std::string& path) {
+  checkOpeningsBound(path);
   cv::FileStorage storage;
   try {
     storage.open(path, cv::FileStorage::READ);

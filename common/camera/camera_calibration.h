@@ -37,7 +37,9 @@ struct CameraCalibration {
   std::vector<double> distortion;
 };
 
-// Throws std::runtime_error naming the file and the missing or invalid key.
+// Reads any format cv::FileStorage reads (YAML, JSON, XML). Throws
+// std::runtime_error naming the file and the missing or invalid key, or
+// saying it nests too deeply to be parsed safely.
 CameraCalibration readCameraCalibration(const std::string& path);
 
 // Opens an OpenCV YAML file for writing; throws std::runtime_error naming it

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/config/yaml_document.h"
+
 namespace lineloc {
 namespace {
 
@@ -140,13 +142,8 @@ void ProgramOptions::addPositional(const std::string& name, std::string& value,
 }
 
 void ProgramOptions::applyConfig(const std::string& yaml, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& error) {
-    throw std::runtime_error(fmt::format("{}: not valid YAML: {}", source, error.what()));
-  }
-  parsers_->apply(root, source);
+  std::istringstream text(yaml);
+  parsers_->apply(loadYamlDocument(text, source), source);
 }
 
 std::optional<int> ProgramOptions::parse(int argc, const char* const* argv) {

@@ -78,6 +78,10 @@ struct ReadOptions {
   // Level of detail to read ("2.2", "1"); empty: the highest present in the file.
   std::string lod;
   InvalidObjectPolicy invalid_objects = InvalidObjectPolicy::kAbort;
+  // Deepest nesting of JSON arrays and objects a JSON reader accepts (a real
+  // CityJSON or GeoJSON document nests about 10 levels); deeper input is
+  // refused before it is parsed.
+  int max_json_nesting = 256;
 };
 
 // Records `error` in `skipped` under kSkip, rethrows it under kAbort.

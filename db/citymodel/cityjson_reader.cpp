@@ -8,6 +8,7 @@
 #include <set>
 
 #include "common/geometry/polygon_triangulation.h"
+#include "db/citymodel/json_document.h"
 #include "db/citymodel/polygon_geometry.h"
 
 namespace lineloc::citymodel {
@@ -32,14 +33,6 @@ struct ObjectDefect {
   std::string reason;
   std::string detail;
 };
-
-Json parseJson(std::string_view text, const std::string& source, const std::string& where) {
-  try {
-    return Json::parse(text);
-  } catch (const Json::exception& error) {
-    throw ModelError(source, "", "malformed JSON", where + error.what());
-  }
-}
 
 Eigen::Vector3d readTriple(const Json& value, const std::string& source, const std::string& key) {
   if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
@@ -442,7 +435,7 @@ CityModel translatingJsonErrors(const std::string& source, Read&& read) {
 
 CityModel readDocument(std::string_view text, const std::string& source,
                        const ReadOptions& options) {
-  const Json document = parseJson(text, source, "");
+  const Json document = parseJsonDocument(text, source, "", options.max_json_nesting);
   if (!document.is_object() || document.value("type", "") != "CityJSON") {
     throw ModelError(source, "", "malformed CityJSON", "top level must be a CityJSON object");
   }
@@ -476,7 +469,7 @@ CityModel readLines(std::string_view text, const std::string& source, const Read
     }
     const std::string where = fmt::format("line {}", line_number);
     if (!transform) {
-      const Json header = parseJson(line, source, where + ": ");
+      const Json header = parseJsonDocument(line, source, where + ": ", options.max_json_nesting);
       if (!header.is_object() || header.value("type", "") != "CityJSON") {
         throw ModelError(source, "", "malformed CityJSON Lines",
                          "the first line must be a CityJSON object");
@@ -487,7 +480,7 @@ CityModel readLines(std::string_view text, const std::string& source, const Read
     }
     const std::string feature_source = fmt::format("{}:{}", source, line_number);
     try {
-      const Json feature = parseJson(line, source, where + ": ");
+      const Json feature = parseJsonDocument(line, source, where + ": ", options.max_json_nesting);
       if (!feature.is_object() || !feature.contains("CityObjects") ||
           !feature.contains("vertices")) {
         throw ModelError(feature_source, "", "malformed CityJSONFeature",

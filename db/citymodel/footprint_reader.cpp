@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "db/citymodel/json_document.h"
+
 namespace lineloc::citymodel {
 namespace {
 
@@ -164,12 +166,7 @@ constexpr int kGeoJsonDefaultEpsg = 4326;
 
 CityModel readDocument(std::string_view text, const std::string& source,
                        const FootprintOptions& footprint_options, const ReadOptions& options) {
-  Json document;
-  try {
-    document = Json::parse(text);
-  } catch (const Json::exception& error) {
-    throw ModelError(source, "", "malformed JSON", error.what());
-  }
+  const Json document = parseJsonDocument(text, source, "", options.max_json_nesting);
   if (!document.is_object() || document.value("type", "") != "FeatureCollection" ||
       !document.contains("features") || !document["features"].is_array()) {
     throw ModelError(source, "", "malformed GeoJSON", "expected a FeatureCollection");

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "common/config/size_pair.h"
+#include "common/image/image_file.h"
 
 namespace lineloc {
 
@@ -71,10 +72,7 @@ ChessboardViews detectChessboards(const std::vector<std::string>& image_paths, C
   std::map<std::pair<int, int>, int> views_per_size;
   const cv::Size pattern(board.columns, board.rows);
   for (const std::string& path : image_paths) {
-    const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    if (grey.empty()) {
-      throw std::runtime_error(fmt::format("cannot read image '{}'", path));
-    }
+    const cv::Mat grey = readImageFile(path, cv::IMREAD_GRAYSCALE);
     std::vector<cv::Point2f> corners;
     const bool found = cv::findChessboardCorners(
         grey, pattern, corners,

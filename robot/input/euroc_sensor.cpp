@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/config/yaml_document.h"
+
 namespace lineloc {
 namespace {
 
@@ -41,7 +43,7 @@ std::vector<double> poseEntries(const YAML::Node& root, const std::string& sourc
 Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source) {
   std::vector<double> entries;
   try {
-    entries = poseEntries(YAML::Load(yaml), source);
+    entries = poseEntries(loadYamlDocument(yaml, source), source);
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: {}", source, error.what()));
   }

@@ -10,6 +10,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "common/image/image_file.h"
+
 namespace fs = std::filesystem;
 
 namespace lineloc {
@@ -120,10 +122,7 @@ std::vector<FrameRef> listImageSequence(const std::string& path) {
 }
 
 cv::Mat readGreyImage(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (image.empty()) {
-    throw std::runtime_error(fmt::format("cannot read image '{}'", path));
-  }
+  cv::Mat image = readImageFile(path, cv::IMREAD_UNCHANGED);
   if (image.depth() != CV_8U) {
     throw std::runtime_error(fmt::format("image '{}' is not 8-bit", path));
   }

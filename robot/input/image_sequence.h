@@ -29,8 +29,9 @@ std::vector<FrameRef> listImageSequence(const std::string& path);
 std::vector<FrameRef> parseEurocCameraCsv(std::istream& stream, const std::string& source,
                                           const std::string& data_dir);
 
-// Reads an image as 8-bit grey (colour converted). Throws std::runtime_error
-// naming the file when it cannot be read or decoded.
+// Reads an image as 8-bit grey (colour converted) through readImageFile.
+// Throws std::runtime_error naming the file when it cannot be read or decoded,
+// or its header claims more than kDefaultMaxImagePixels.
 cv::Mat readGreyImage(const std::string& path);
 
 }  // namespace lineloc

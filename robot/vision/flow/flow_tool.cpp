@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <ostream>
 
+#include "common/image/image_file.h"
 #include "robot/vision/block_matching/kernel_timing.h"
 #include "robot/vision/flow/correlation_flow.h"
 #include "robot/vision/flow/flo_io.h"
@@ -28,14 +29,6 @@ SimdPath parsePath(const std::string& name) {
   throw std::invalid_argument(fmt::format("simd_path '{}' is not supported here", name));
 }
 
-cv::Mat readImage(const std::string& path, int mode) {
-  cv::Mat image = cv::imread(path, mode);
-  if (image.empty()) {
-    throw std::runtime_error(fmt::format("cannot read image '{}'", path));
-  }
-  return image;
-}
-
 void printTiming(const char* what, const RunSample& sample, SimdPath path, std::ostream& out) {
   out << fmt::format("lineloc-flow: {} in {:.2f} ms ({:.1f} M TSC cycles), {} path\n", what,
                      sample.duration_ns * 1e-6, sample.duration_cycles * 1e-6, simdPathName(path));
@@ -44,8 +37,8 @@ void printTiming(const char* what, const RunSample& sample, SimdPath path, std::
 void runStereo(const FlowToolConfig& config, SimdPath path, std::ostream& out) {
   const StereoOptions options{config.stereo_block_size_px, config.min_disparity_px,
                               config.num_disparities, config.uniqueness_percent};
-  const cv::Mat left = readImage(config.images[0], cv::IMREAD_GRAYSCALE);
-  const cv::Mat right = readImage(config.images[1], cv::IMREAD_GRAYSCALE);
+  const cv::Mat left = readImageFile(config.images[0], cv::IMREAD_GRAYSCALE);
+  const cv::Mat right = readImageFile(config.images[1], cv::IMREAD_GRAYSCALE);
   const RunTimer timer;
   const DisparityMap map = SadStereoMatcher(options, path).compute(left, right);
   printTiming("disparity", timer.elapsed(), path, out);
@@ -65,8 +58,8 @@ void runFlow(const FlowToolConfig& config, SimdPath path, std::ostream& out) {
   } else if (!config.direction.empty()) {
     throw std::invalid_argument("direction needs two numbers: dx dy");
   }
-  const cv::Mat first = readImage(config.images[0], cv::IMREAD_COLOR);
-  const cv::Mat second = readImage(config.images[1], cv::IMREAD_COLOR);
+  const cv::Mat first = readImageFile(config.images[0], cv::IMREAD_COLOR);
+  const cv::Mat second = readImageFile(config.images[1], cv::IMREAD_COLOR);
   const RunTimer timer;
   const FlowField field = computeCorrelationFlow(first, second, options, path);
   printTiming("flow", timer.elapsed(), path, out);

@@ -356,7 +356,18 @@ void printSummary() {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
+  try {
+    // The database every benchmark needs, reached before any of them runs.
+    Connection(benchConninfo()).exec("SELECT 1");
+    benchmark::RunSpecifiedBenchmarks();
+  } catch (const std::exception& error) {
+    fmt::print(stderr,
+               "bench_db: {}\nbench_db: needs a PostGIS server: deploy/pg.sh start, or "
+               "LINELOC_BENCH_DB naming an existing database\n",
+               error.what());
+    benchmark::Shutdown();
+    return 1;
+  }
   benchmark::Shutdown();
   printSummary();
   return 0;

@@ -5,6 +5,8 @@
 #include <opencv2/core.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/camera/camera_calibration.h"
 
@@ -65,6 +67,45 @@ TEST(CameraCalibrationFile, UnwritablePathIsNamed) {
     FAIL() << "expected an error";
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent-folder/camera.yml"), std::string::npos);
+  }
+}
+
+TEST(CameraCalibrationFile, EveryFormatOpenCvWritesIsRead) {
+  for (const std::string name : {"camera.yml", "camera.json", "camera.xml"}) {
+    const std::filesystem::path path = temporaryFile(name);
+    writeCameraCalibration(path.string(), exampleCalibration());
+    EXPECT_EQ(readCameraCalibration(path.string()).distortion, exampleCalibration().distortion)
+        << name;
+    std::filesystem::remove(path);
+  }
+}
+
+TEST(CameraCalibrationFile, DepthBombsAreRefusedBeforeOpenCvParsesThem) {
+  const int depth = 70000;
+  std::string xml = "<?xml version=\"1.0\"?>\n<opencv_storage>";
+  for (int level = 0; level < depth; ++level) {
+    xml += "<a>";
+  }
+  for (int level = 0; level < depth; ++level) {
+    xml += "</a>";
+  }
+  xml += "</opencv_storage>\n";
+  const std::string arrays = std::string(depth, '[') + std::string(depth, ']');
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"bomb.yml", "%YAML:1.0\n---\ncamera_matrix: " + arrays + "\n"},
+           {"bomb.json", "{\"camera_matrix\": " + arrays + "}\n"},
+           {"bomb.xml", xml}}) {
+    const std::filesystem::path path = temporaryFile(name);
+    std::ofstream(path) << text;
+    try {
+      readCameraCalibration(path.string());
+      ADD_FAILURE() << name << " accepted";
+    } catch (const std::runtime_error& error) {
+      EXPECT_NE(std::string(error.what()).find(path.string() + ": nested too deeply"),
+                std::string::npos)
+          << error.what();
+    }
+    std::filesystem::remove(path);
   }
 }
 

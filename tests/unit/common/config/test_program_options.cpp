@@ -77,6 +77,18 @@ TEST_F(ProgramOptionsTest, BadValuesAreErrors) {
   EXPECT_THROW(options_.applyConfig("- a\n- b\n", "c.yml"), std::runtime_error);
 }
 
+TEST_F(ProgramOptionsTest, ConfigNestedTooDeeplyIsAnErrorNamingIt) {
+  try {
+    options_.applyConfig("pose: " + std::string(70000, '[') + std::string(70000, ']') + "\n",
+                         "deep.yml");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("deep.yml: not valid YAML: nested too deeply"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST_F(ProgramOptionsTest, MissingOrBrokenFileExitsNonZero) {
   EXPECT_EQ(parse({"--config", "/nonexistent/lineloc.yml"}), 2);
   const std::string broken = writeConfig("rate_hz: [1,\n");

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <GeographicLib/UTMUPS.hpp>
+#include <functional>
 
 #include "db/citymodel/cityjson_reader.h"
 #include "db/citymodel/crs_transform.h"
@@ -84,6 +85,61 @@ TEST(CityJsonReader, ATinReliefIsReadAsTrianglesFacingUp) {
   }
   EXPECT_EQ(model.terrain[0][0], Eigen::Vector3d(0, 0, 0));
   EXPECT_EQ(model.skipped.total(), 0);
+}
+
+std::string nestedArrays(int depth) {
+  return std::string(depth, '[') + std::string(depth, ']');
+}
+
+void expectTooDeep(const std::function<void()>& read, const std::string& source) {
+  try {
+    read();
+    FAIL() << "expected a ModelError for " << source;
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.reason(), "JSON nested too deeply") << error.what();
+    EXPECT_NE(std::string(error.what()).find(source), std::string::npos) << error.what();
+  }
+}
+
+TEST(JsonReaders, EveryReaderRefusesADepthBomb) {
+  const std::string bomb = nestedArrays(70000);
+  expectTooDeep(
+      [&] {
+        readCityJson(withReplaced(kOneCube, "\"type\":\"Building\",",
+                                  "\"type\":\"Building\",\"attributes\":{\"a\":" + bomb + "},"),
+                     "bomb.json", {});
+      },
+      "bomb.json");
+  const std::string header =
+      R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],"translate":[0,0,0]}})";
+  expectTooDeep([&] { readCityJsonLines(bomb + "\n", "header.jsonl", {}); }, "header.jsonl");
+  expectTooDeep(
+      [&] {
+        readCityJsonLines(header + "\n{\"type\":\"CityJSONFeature\",\"a\":" + bomb + "}\n",
+                          "feature.jsonl", {});
+      },
+      "feature.jsonl");
+  expectTooDeep(
+      [&] {
+        readGeoJsonFootprints(R"({"type":"FeatureCollection","features":[],"a":)" + bomb + "}",
+                              "bomb.geojson", {}, {});
+      },
+      "bomb.geojson");
+}
+
+TEST(JsonReaders, TheDeepestCityJsonGeometryLoadsWithinTheBound) {
+  // A CompositeSolid nests its rings' indices 10 levels deep, the most any
+  // CityJSON geometry does.
+  const std::string composite =
+      withReplaced(withReplaced(withReplaced(kOneCube, "\"Solid\"", "\"CompositeSolid\""),
+                                "[[[[0,3,2,1]]", "[[[[[0,3,2,1]]"),
+                   "[[3,0,4,7]]]]", "[[3,0,4,7]]]]]");
+  EXPECT_EQ(readCityJson(composite, "composite.json", {}).buildings.at(0).faces.size(), 6u);
+  ReadOptions tight;
+  tight.max_json_nesting = 10;
+  EXPECT_EQ(readCityJson(composite, "composite.json", tight).buildings.at(0).faces.size(), 6u);
+  tight.max_json_nesting = 9;
+  expectTooDeep([&] { readCityJson(composite, "composite.json", tight); }, "composite.json");
 }
 
 TEST(WavefrontObjReader, ReadsObjectsWithOffsetAndRejectsBadIndices) {

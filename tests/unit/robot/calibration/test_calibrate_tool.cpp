@@ -144,6 +144,15 @@ TEST_F(CalibrateTool, UnreadableImageIsNamed) {
   expectErrorNaming(config_, "broken.jpg");
 }
 
+TEST_F(CalibrateTool, ImageClaimingMorePixelsThanTheLimitIsNamed) {
+  // A PNG header claiming 20000 x 20000 pixels, and nothing after it.
+  std::ofstream(path("huge.png")) << std::string(
+      "\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0N \0\0N \x08\0\0\0\0", 29);
+  config_.points.clear();
+  config_.images = path("huge.png");
+  expectErrorNaming(config_, "huge.png': its PNG header claims 20000 x 20000");
+}
+
 TEST_F(CalibrateTool, NoBoardAnywhereIsAnError) {
   cv::imwrite(path("grey1.png"), cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)));
   cv::imwrite(path("grey2.png"), cv::Mat(480, 640, CV_8UC1, cv::Scalar(30)));

@@ -47,6 +47,17 @@ TEST(EurocSensor, RejectsMalformedBlocksNamingTheFile) {
   }
 }
 
+TEST(EurocSensor, NestingTooDeepIsAnErrorNamingTheFile) {
+  try {
+    parse("T_BS: " + std::string(70000, '[') + std::string(70000, ']') + "\n");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("cam0/sensor.yaml: not valid YAML: nested too deeply"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(EurocSensor, MissingFileIsAnError) {
   EXPECT_THROW(readEurocSensorPose("no-such-dir/sensor.yaml"), std::runtime_error);
 }

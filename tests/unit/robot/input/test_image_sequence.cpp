@@ -99,5 +99,19 @@ TEST_F(ImageSequenceTest, ReadGreyConvertsColourAndRejectsCorruptFiles) {
   EXPECT_THROW(readGreyImage((root_ / "deep.png").string()), std::runtime_error);
 }
 
+TEST_F(ImageSequenceTest, ReadGreyRefusesAFrameClaimingMorePixelsThanTheLimit) {
+  // A PNG header claiming 20000 x 20000 pixels, and nothing after it.
+  std::ofstream(root_ / "huge.png")
+      << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0N \0\0N \x08\0\0\0\0", 29);
+  try {
+    readGreyImage((root_ / "huge.png").string());
+    FAIL() << "a 400-megapixel frame accepted";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("huge.png': its PNG header claims 20000 x 20000"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace lineloc

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "sim/world/city_mesh.h"
 #include "sim/world/occupancy_map.h"
@@ -51,6 +53,23 @@ TEST(CityMesh, RejectsAnEmptyModel) {
   EXPECT_THROW(buildCityMesh(citymodel::CityModel{}, Eigen::Vector3d::Zero()),
                std::invalid_argument);
   EXPECT_THROW(readCityModelFile("no_such_city.json"), std::runtime_error);
+}
+
+TEST(CityMesh, ACityModelNestedTooDeeplyIsRefusedNamingTheFile) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("depth_bomb_" + std::to_string(getpid()) + ".json");
+  std::ofstream(path) << R"({"type":"CityJSON","version":"2.0","CityObjects":{"b":{"type":)"
+                      << R"("Building","attributes":{"a":)" << std::string(70000, '[')
+                      << std::string(70000, ']') << R"(}}},"vertices":[]})";
+  try {
+    readCityModelFile(path.string());
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find(path.string() + ": JSON nested too deeply"),
+              std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -7,9 +7,11 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <vector>
 
 #include "robot/vision/flow/flo_io.h"
 #include "robot/vision/stereo/pfm_io.h"
@@ -100,6 +102,21 @@ TEST_F(FlowTool, NamesWhatIsWrong) {
     FAIL() << "a missing image accepted";
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("missing.png"), std::string::npos) << error.what();
+  }
+  // A JPEG header claiming 20000 x 20000 pixels is refused before decoding.
+  std::vector<uint8_t> jpeg;
+  cv::imencode(".jpg", cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(128)), jpeg);
+  std::string huge(jpeg.begin(), jpeg.end());
+  huge.replace(huge.find("\xFF\xC0") + 5, 4, "\x4E\x20\x4E\x20");
+  std::ofstream(folder_ / "huge.jpg", std::ios::binary) << huge;
+  config.images = {(folder_ / "huge.jpg").string(), (folder_ / "huge.jpg").string()};
+  try {
+    runFlowTool(config, out);
+    FAIL() << "a 400-megapixel image accepted";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("huge.jpg': its JPEG header claims 20000 x 20000"),
+              std::string::npos)
+        << error.what();
   }
   config.images = writePair(1, 1, false);
   config.simd_path = "neon";

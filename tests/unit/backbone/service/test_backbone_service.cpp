@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "backbone/service/backbone_service.h"
+#include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "tests/support/test_database.h"
@@ -45,14 +46,21 @@ TEST(BackboneService, RefusesASiteItsDatabaseDoesNotHold) {
 TEST(BackboneService, ServesWhileItsDatabaseIsDown) {
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());
   dds::Participant participant(domain);
-  dds::Writer<lineloc_msg_LineSet> line_sets(participant, dds::Qos(dds::kHistoryDepth));
-  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::poseFixQos(dds::kHistoryDepth));
+  dds::Writer<lineloc_msg_LineSet> line_sets(participant, dds::Qos(dds::kHistoryDepth),
+                                             robotPartition("rover1"));
+  dds::Reader<lineloc_msg_PoseFix> fixes(participant, dds::poseFixQos(dds::kHistoryDepth),
+                                         robotPartition("rover1"));
   BackboneConfig config =
       testConfig("host=127.0.0.1 port=1 user=nobody dbname=none connect_timeout=2", "delft");
   config.sun_from_clock = true;
   std::atomic<bool> stop{false};
   std::future<BackboneCounters> backbone =
       std::async(std::launch::async, [&] { return runBackbone(config, stop); });
+  // Stops the backbone however the test ends, before the future waits for it.
+  struct StopOnExit {
+    std::atomic<bool>& stop;
+    ~StopOnExit() { stop = true; }
+  } stop_on_exit{stop};
 
   LineSetData data;
   data.robot_id = "rover1";

@@ -117,8 +117,9 @@ void runPgScript(const std::string& command, const fs::path& log) {
 
 // Faults in turn over a network that loses one packet in ten: the database
 // stopped for 5 s and started again, then the backbone paused (SIGSTOP) for
-// 3 s. The robot dead-reckons through each, is fixed again after each, is
-// never sure of a wrong pose, and ends the drive as accurate as ever.
+// 3 s, after which it answers the frames the network held for it late. The
+// robot dead-reckons through each, is fixed again after each, is never sure
+// of a wrong pose, and ends the drive as accurate as ever.
 TEST_F(DelftDrive, ThroughALossyNetworkADatabaseOutageAndAPausedBackboneTheRobotStaysRight) {
   constexpr int kDatabaseOutageSeconds = 5;
   constexpr int kPauseSeconds = 3;
@@ -144,8 +145,6 @@ TEST_F(DelftDrive, ThroughALossyNetworkADatabaseOutageAndAPausedBackboneTheRobot
   const auto fixes = poses("drive-fixes.tum");
   const auto fused = poses("drive-fused.tum");
   ASSERT_FALSE(fused.empty());
-  // The pause shows as frames without a fix.
-  EXPECT_GE(longestGapS(fixes), kPauseSeconds - 1.0);
   // The drive's last kLastPartSeconds come after the pause.
   const int64_t last_part_ns = fused.rbegin()->first - static_cast<int64_t>(kLastPartSeconds * 1e9);
   EXPECT_GT(std::distance(fixes.lower_bound(last_part_ns), fixes.end()), 10)

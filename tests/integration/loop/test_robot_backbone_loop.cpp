@@ -475,12 +475,24 @@ TEST_F(RobotBackboneLoop, TheBackboneStopsWithHundredsOfSearchesQueued) {
   // The map prepared first, so that the frames below are searched.
   uint32_t sequence = 1;
   do {
-    observer.writer().write(LineSetMessage(probeLineSet("probe", sequence, 5)).message());
-    ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor("probe") == sequence; }))
+    observer.writer().write(LineSetMessage(probeLineSet(kProbeRobot, sequence, 5)).message());
+    ASSERT_TRUE(observer.pollUntil([&] { return observer.fixesFor(kProbeRobot) == sequence; }))
         << log("backbone.log");
     ++sequence;
   } while (observer.fixes.back().status == lineloc_msg_FIX_NO_MATCH_COMPUTED && sequence < 100);
+  // Each robot writes in its own partition; the backbone and the observer
+  // read every robot's.
   constexpr int kSearchedRobots = 300;
+  std::vector<std::unique_ptr<dds::Writer<lineloc_msg_LineSet>>> robots;
+  for (int robot = 0; robot < kSearchedRobots; ++robot) {
+    robots.push_back(std::make_unique<dds::Writer<lineloc_msg_LineSet>>(
+        observer.participant(), dds::Qos(dds::kHistoryDepth),
+        robotPartition("searched-" + std::to_string(robot))));
+  }
+  ASSERT_TRUE(observer.pollUntil([&] {
+    return std::all_of(robots.begin(), robots.end(),
+                       [](const auto& writer) { return writer->matchedReaders() >= 2; });
+  })) << log("backbone.log");
   for (int robot = 0; robot < kSearchedRobots; ++robot) {
     LineSetData poor = probeLineSet("searched-" + std::to_string(robot), 1, 5);
     poor.predicted_T_world_camera.pose.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
@@ -488,7 +500,7 @@ TEST_F(RobotBackboneLoop, TheBackboneStopsWithHundredsOfSearchesQueued) {
     for (ImageSegment& segment : poor.segments) {
       segment.contrast = 40.0f;
     }
-    observer.writer().write(LineSetMessage(poor).message());
+    robots[robot]->write(LineSetMessage(poor).message());
   }
   ASSERT_TRUE(observer.pollUntil([&] {
     return observer.fixes.size() == sequence - 1 + kSearchedRobots;

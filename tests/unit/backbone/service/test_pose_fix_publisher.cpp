@@ -8,24 +8,14 @@
 #include "common/messages/robot_partition.h"
 #include "common/time/clock.h"
 #include "tests/support/test_dds.h"
+#include "tests/support/wait_for.h"
 
 namespace lineloc {
 namespace {
 
-constexpr int64_t kTimeoutNs = 10'000'000'000;
-constexpr int64_t kKeepNs = 1'000'000'000;
+using test::waitFor;
 
-template <typename Predicate>
-bool waitFor(Predicate&& predicate) {
-  const int64_t deadline = steadyClockNs() + kTimeoutNs;
-  while (!predicate()) {
-    if (steadyClockNs() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
+constexpr int64_t kKeepNs = 1'000'000'000;
 
 std::vector<std::string> robotIdsReceived(dds::Reader<lineloc_msg_PoseFix>& reader) {
   std::vector<std::string> robot_ids;

@@ -14,25 +14,14 @@
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "tests/support/test_dds.h"
+#include "tests/support/wait_for.h"
 
 namespace lineloc {
 namespace {
 
+using test::waitFor;
+
 namespace fs = std::filesystem;
-
-constexpr int64_t kTimeoutNs = 10'000'000'000;
-
-template <typename Predicate>
-bool waitFor(Predicate&& predicate) {
-  const int64_t deadline = steadyClockNs() + kTimeoutNs;
-  while (!predicate()) {
-    if (steadyClockNs() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
 
 TEST(DdsLoopback, MatchedEndpointsNameTheirParticipants) {
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());

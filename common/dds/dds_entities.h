@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -258,9 +259,24 @@ class Reader {
     return matchedParticipants(reader_.handle(), EndpointKind::kReader);
   }
 
-  // The partitions of the writer of a sample (SampleInfo::publication_handle).
-  std::vector<std::string> writerPartitions(dds_instance_handle_t publication) const {
-    return matchedWriterPartitions(reader_.handle(), publication);
+  // The partitions of the writer of a sample (SampleInfo::publication_handle),
+  // asked of DDS once per writer, not per sample: a writer changes its
+  // partitions only by being matched anew, under its new ones. Writers no
+  // longer matched are forgotten once they outnumber the matched ones.
+  const std::vector<std::string>& writerPartitions(dds_instance_handle_t publication) {
+    auto known = writer_partitions_.find(publication);
+    if (known == writer_partitions_.end()) {
+      std::vector<std::string> partitions = matchedWriterPartitions(reader_.handle(), publication);
+      if (partitions.empty()) {
+        static const std::vector<std::string> kNone;
+        return kNone;  // not matched (any more), or the default partition
+      }
+      if (writer_partitions_.size() >= 2 * size_t{matchedWriters()}) {
+        writer_partitions_.clear();
+      }
+      known = writer_partitions_.emplace(publication, std::move(partitions)).first;
+    }
+    return known->second;
   }
 
   // The partitions the matched writers write in (partitionsOfMatchedWriters).
@@ -274,6 +290,7 @@ class Reader {
   Entity reader_;
   Entity waitset_;
   Entity condition_;
+  std::map<dds_instance_handle_t, std::vector<std::string>> writer_partitions_;
 };
 
 }  // namespace lineloc::dds

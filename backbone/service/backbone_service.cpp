@@ -255,8 +255,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     uint32_t robot_writers_seen = 0;
     while (serving()) {
       const bool data = reader.waitForData(kWaitNs);
-      if (!data || reader.matchedWriters() != robot_writers_seen) {
-        robot_writers_seen = reader.matchedWriters();
+      const uint32_t robot_writers = reader.matchedWriters();
+      if (!data || robot_writers != robot_writers_seen) {
+        robot_writers_seen = robot_writers;
         fixes.follow(reader.matchedWritersPartitions(), steadyClockNs());
       }
       if (!data) {

@@ -11,8 +11,10 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "backbone/map/database_tile_fetcher.h"
+#include "backbone/service/fair_frame_queue.h"
 #include "backbone/service/pose_fix_publisher.h"
 #include "backbone/service/site_lookup.h"
 #include "common/logging/rate_limited_log.h"
@@ -172,6 +174,7 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"robots_forgotten", counters.robots_forgotten},
                                {"refused_robot_frames", counters.refused_robot_frames},
                                {"refused_searches", counters.refused_searches},
+                               {"superseded_frames", counters.superseded_frames},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -252,9 +255,12 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     });
     // After every background thread has started: they stay time-shared.
     runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
+    // Every LineSet that has come is taken before each answer, and the next
+    // one answered is the fairest (fair_frame_queue.h).
+    FairFrameQueue waiting;
     uint32_t robot_writers_seen = 0;
     while (serving()) {
-      const bool data = reader.waitForData(kWaitNs);
+      const bool data = !waiting.empty() || reader.waitForData(kWaitNs);
       const uint32_t robot_writers = reader.matchedWriters();
       if (!data || robot_writers != robot_writers_seen) {
         robot_writers_seen = robot_writers;
@@ -268,10 +274,19 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       reader.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
         if (!speaksFor(reader.writerPartitions(info.publication_handle), message.robot_id)) {
           handler.countDrop("LineSet", message.sequence_number, notInItsPartition(message));
-        } else if (const auto fix = handler.handle(message)) {
-          fixes.publish(*fix, steadyClockNs());
+        } else if (std::optional<LineSetData> line_set = handler.accept(message)) {
+          const int64_t taken_ns = steadyClockNs();
+          if (const auto superseded = waiting.push(std::move(*line_set), taken_ns)) {
+            fixes.publish(handler.answerSuperseded(*superseded, taken_ns), steadyClockNs());
+          }
         }
       });
+      const int64_t start_ns = steadyClockNs();
+      if (const std::optional<FairFrameQueue::Taken> next = waiting.pop(start_ns)) {
+        fixes.publish(handler.answer(next->line_set, next->taken_ns), steadyClockNs());
+        const int64_t end_ns = steadyClockNs();
+        waiting.charge(next->line_set.robot_id, end_ns - start_ns, end_ns);
+      }
     }
   }
   if (!config.stats_file.empty()) {

@@ -290,8 +290,15 @@ PoseFixData LineSetHandler::countAnswer(PoseFixData fix, int64_t start_ns) {
 }
 
 std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& message) {
-  const ForegroundGate::Scope foreground(foreground_);
-  const int64_t start_ns = steadyClockNs();
+  const int64_t taken_ns = steadyClockNs();
+  const std::optional<LineSetData> line_set = accept(message);
+  if (!line_set) {
+    return std::nullopt;
+  }
+  return answer(*line_set, taken_ns);
+}
+
+std::optional<LineSetData> LineSetHandler::accept(const lineloc_msg_LineSet& message) {
   {
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.received;
@@ -300,14 +307,36 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     countDrop("LineSet", message.sequence_number, *error);
     return std::nullopt;
   }
-  const LineSetData line_set = fromMessage(message);
+  return fromMessage(message);
+}
+
+PoseFixData LineSetHandler::answerSuperseded(const LineSetData& line_set, int64_t taken_ns) {
+  busy_log_.log(taken_ns, fmt::format("LineSet of {} #{} answered busy: superseded by a newer "
+                                      "one before it was handled",
+                                      line_set.robot_id, line_set.sequence_number));
+  {
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.superseded_frames;
+  }
   PoseFixData fix;
   fix.robot_id = line_set.robot_id;
   fix.sequence_number = line_set.sequence_number;
   fix.stamp_ns = line_set.stamp_ns;
   fix.T_world_camera = line_set.predicted_T_world_camera;
-  if (!hearFrom(line_set.robot_id, start_ns)) {
-    busy_log_.log(start_ns,
+  fix.status = lineloc_msg_FIX_BUSY;
+  return countAnswer(fix, taken_ns);
+}
+
+PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns) {
+  const ForegroundGate::Scope foreground(foreground_);
+  const int64_t start_ns = steadyClockNs();
+  PoseFixData fix;
+  fix.robot_id = line_set.robot_id;
+  fix.sequence_number = line_set.sequence_number;
+  fix.stamp_ns = line_set.stamp_ns;
+  fix.T_world_camera = line_set.predicted_T_world_camera;
+  if (!hearFrom(line_set.robot_id, taken_ns)) {
+    busy_log_.log(taken_ns,
                   fmt::format("LineSet of {} #{} answered busy: {} robots are served",
                               line_set.robot_id, line_set.sequence_number, options_.max_robots));
     {
@@ -315,7 +344,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
       ++counters_.refused_robot_frames;
     }
     fix.status = lineloc_msg_FIX_BUSY;
-    return countAnswer(fix, start_ns);
+    return countAnswer(fix, taken_ns);
   }
   std::optional<Notice> notice = takeNotice(line_set);
   const std::shared_ptr<RobotSession> session = sessionOf(line_set.robot_id);
@@ -327,12 +356,12 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
     prefetchAlongMotion(*session, line_set);
     if (!map) {
       fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
-      return finish(fix, start_ns);
+      return finish(fix, taken_ns);
     }
     fix.model_lines = static_cast<uint32_t>(map->view->lines.size());
     if (map->view->lines.empty()) {
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
-      return finish(fix, start_ns);
+      return finish(fix, taken_ns);
     }
     const RobotSession::FramePlan plan = session->planFor(line_set, odometry, *map);
     if (plan.plan == RobotSession::Plan::kTrack) {
@@ -341,7 +370,7 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
           visibilityAhead(line_set, std::move(notice), map, plan.prior);
       fix.timings.visibility = ahead ? steadyClockNs() - waiting_start_ns : 0;
       track(session, line_set, odometry, map, plan, fix, ahead ? &*ahead : nullptr);
-      return finish(fix, start_ns);
+      return finish(fix, taken_ns);
     }
     const SearchWorker::Submitted submitted = submitSearch(
         "search", line_set, [this, session, line_set, odometry, map, prior = plan.prior] {
@@ -351,13 +380,13 @@ std::optional<PoseFixData> LineSetHandler::handle(const lineloc_msg_LineSet& mes
                      ? lineloc_msg_FIX_BUSY
                      : lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
-    map_failure_log_.log(start_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
+    map_failure_log_.log(taken_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
                                                fix.sequence_number, error.what()));
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.map_errors;
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
   }
-  return finish(fix, start_ns);
+  return finish(fix, taken_ns);
 }
 
 void LineSetHandler::countDrop(const char* kind, uint32_t sequence_number,

@@ -100,6 +100,9 @@ struct BackboneCounters {
   // Searches and proof searches not queued as max_queued_searches waited
   // (each search's frame answered FIX_BUSY).
   uint64_t refused_searches = 0;
+  // Frames answered FIX_BUSY as a newer one of their robot came before they
+  // were handled.
+  uint64_t superseded_frames = 0;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -150,8 +153,19 @@ class LineSetHandler {
   LineSetHandler(const LineSetHandler&) = delete;
   LineSetHandler& operator=(const LineSetHandler&) = delete;
 
-  // The fix to publish, or nullopt when the message was dropped.
+  // The fix to publish, or nullopt when the message was dropped: accept()
+  // then answer().
   std::optional<PoseFixData> handle(const lineloc_msg_LineSet& message);
+
+  // Counts `message` received and checks it: its data, or nullopt when it
+  // was dropped (malformed, beyond the limits).
+  std::optional<LineSetData> accept(const lineloc_msg_LineSet& message);
+  // The fix for an accepted LineSet taken at `taken_ns` (steady clock);
+  // its total time counts from then.
+  PoseFixData answer(const LineSetData& line_set, int64_t taken_ns);
+  // FIX_BUSY, counted, for an accepted LineSet a newer one of its robot
+  // superseded before it was answered (fair_frame_queue.h).
+  PoseFixData answerSuperseded(const LineSetData& line_set, int64_t taken_ns);
 
   // A frame's exposure notice (see above); a malformed one is dropped and
   // counted. Safe to call beside handle().

@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,9 +13,11 @@ namespace lineloc::test {
 
 class ChildProcess {
  public:
-  // Starts `program` with `args`; stdout and stderr go to `log_path`.
+  // Starts `program` with `args` in the test's environment plus
+  // `environment` ("NAME=value", taking precedence); stdout and stderr go to
+  // `log_path`.
   ChildProcess(const std::string& program, const std::vector<std::string>& args,
-               const std::string& log_path);
+               const std::string& log_path, const std::vector<std::string>& environment = {});
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
@@ -24,6 +27,8 @@ class ChildProcess {
   std::optional<int> wait(int timeout_ms);
   void signal(int signal_number);
   bool running();
+  // The most memory the running process has held resident so far (VmHWM, KiB).
+  int64_t peakResidentKiB() const;
 
  private:
   pid_t pid_ = -1;

@@ -3,8 +3,10 @@
 // participants on loopback. The test process is a third DDS participant that
 // listens to every LineSet and PoseFix and injects malformed LineSets.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -15,6 +17,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <random>
 #include <regex>
 #include <set>
 #include <thread>
@@ -37,6 +40,12 @@ namespace {
 constexpr int kFrames = 12;
 constexpr int kBackboneMaxSegments = 1000;
 constexpr int kTimeoutMs = 30'000;
+// The backbone's peak resident memory under the flood test's 16 robot ids:
+// its working set (under 50 MiB), plus at most kHistoryDepth LineSets of
+// 4,096 segments (48 bytes each, 192 KiB a LineSet) per flooding robot in
+// DDS's reader, 16 x 32 x 192 KiB = 96 MiB, plus one waiting LineSet per
+// robot in the fair queue, with room for the allocator's slack.
+constexpr int64_t kMaxFloodedBackboneKiB = 256 * 1024;
 
 // Synthetic façade frames: a building outline with a grid of windows, shifted
 // a little from frame to frame, so the extractor finds segments in each.
@@ -663,6 +672,114 @@ TEST_F(RobotBackboneLoop, ASecuredRobotSpeaksAndListensOnlyForItself) {
   ASSERT_EQ(robot_s->wait(kTimeoutMs), 0) << log("robot-s.log");
   EXPECT_EQ(fixesReceived(log("robot-s.log")), kFrames) << "the backbone is up and serving";
   EXPECT_EQ(line_sets.matchedReaders(), 0u) << "the backbone authenticated a revoked robot";
+}
+
+// A flood from inside the domain (a faulty robot, or one whose identity was
+// stolen): one robot id sends 4,096-segment LineSets at 100 Hz and fifteen
+// more send them at 10 Hz, each valid and tracked in a prepared map. Beside
+// it a robot at 10 Hz has every frame answered and none FIX_BUSY
+// (fair_frame_queue.h); the flood's excess is superseded, answered FIX_BUSY
+// and counted; the backbone's memory stays bounded, and it stops when asked.
+// The robot's latency with and without the flood is printed, not asserted.
+TEST_F(RobotBackboneLoop, AFloodFromSixteenRobotIdsLeavesAnotherRobotAnsweredOnEveryFrame) {
+  constexpr int kFloodIds = 16;
+  constexpr int kFloodSegments = 4096;
+  auto backbone = start("lineloc-backbone", "backbone-test", "backbone.log",
+                        {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", "test",
+                         "--max-segments", std::to_string(kFloodSegments), "--stats-file",
+                         (work_ / "stats.json").string(), "--stats-period-s", "0.1"},
+                        {});
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant flooder(domain);
+  dds::Reader<lineloc_msg_PoseFix> fixes(flooder, dds::poseFixQos(256), kEveryRobotPartition);
+  std::vector<std::unique_ptr<dds::Writer<lineloc_msg_LineSet>>> writers;
+  std::vector<std::unique_ptr<LineSetMessage>> frames;
+  std::mt19937 random(81);
+  std::uniform_real_distribution<float> x_px(0.0f, 639.0f);
+  std::uniform_real_distribution<float> y_px(0.0f, 479.0f);
+  for (int id = 0; id < kFloodIds; ++id) {
+    const std::string robot_id = "flood-" + std::to_string(id);
+    writers.push_back(std::make_unique<dds::Writer<lineloc_msg_LineSet>>(
+        flooder, dds::Qos(dds::kHistoryDepth), robotPartition(robot_id)));
+    LineSetData frame = probeLineSet(robot_id, 0, kFloodSegments);
+    for (ImageSegment& segment : frame.segments) {
+      segment.start = {x_px(random), y_px(random)};
+      segment.end = {x_px(random), y_px(random)};
+      segment.contrast = 30.0f;
+    }
+    frames.push_back(std::make_unique<LineSetMessage>(frame));
+  }
+  std::vector<uint32_t> sequence(kFloodIds, 0);
+  std::map<std::string, std::vector<lineloc_msg_FixStatus>> statuses;
+  const auto send = [&](int id) {
+    lineloc_msg_LineSet message = frames[id]->message();
+    message.sequence_number = ++sequence[id];
+    message.stamp_ns = wallClockNs();
+    writers[id]->write(message);
+  };
+  const auto takeFixes = [&](int64_t wait_ns) {
+    fixes.waitForData(wait_ns);
+    fixes.takeEach(
+        [&](const lineloc_msg_PoseFix& fix) { statuses[fix.robot_id].push_back(fix.status); });
+  };
+  // The map prepared first, so that the flood is tracked.
+  const int64_t deadline = steadyClockNs() + int64_t{kTimeoutMs} * 1'000'000;
+  while ((statuses["flood-0"].empty() ||
+          statuses["flood-0"].back() == lineloc_msg_FIX_NO_MATCH_COMPUTED) &&
+         steadyClockNs() < deadline) {
+    send(0);
+    takeFixes(50'000'000);
+  }
+  ASSERT_FALSE(statuses["flood-0"].empty()) << log("backbone.log");
+  ASSERT_NE(statuses["flood-0"].back(), lineloc_msg_FIX_NO_MATCH_COMPUTED) << log("backbone.log");
+
+  auto quiet = startRobot("robot-q", 10.0);
+  ASSERT_EQ(quiet->wait(kTimeoutMs), 0) << log("robot-q.log");
+
+  std::atomic<bool> flooding = true;
+  std::jthread flood([&] {
+    for (int64_t tick = 0; flooding; ++tick) {
+      send(0);
+      if (tick % 10 == 0) {
+        for (int id = 1; id < kFloodIds; ++id) {
+          send(id);
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  });
+  auto robot = startRobot("robot-f", 10.0);
+  while (robot->running()) {
+    takeFixes(10'000'000);
+  }
+  flooding = false;
+  flood.join();
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-f.log");
+  const int64_t backbone_peak_kib = backbone->peakResidentKiB();
+  backbone->signal(SIGTERM);
+  EXPECT_EQ(backbone->wait(kTimeoutMs), 0) << log("backbone.log");
+  takeFixes(0);
+
+  EXPECT_EQ(fixesReceived(log("robot-f.log")), kFrames) << log("robot-f.log");
+  EXPECT_EQ(
+      std::count(statuses["robot-f"].begin(), statuses["robot-f"].end(), lineloc_msg_FIX_BUSY), 0);
+  uint32_t flood_sent = 0;
+  for (const uint32_t sent : sequence) {
+    flood_sent += sent;
+  }
+  const nlohmann::json counters = stats();
+  EXPECT_GT(counters.value("superseded_frames", 0), 0) << counters.dump();
+  EXPECT_LT(backbone_peak_kib, kMaxFloodedBackboneKiB);
+  const std::vector<double> quiet_ms = latencyStageMedians(log("robot-q.log"));
+  const std::vector<double> flooded_ms = latencyStageMedians(log("robot-f.log"));
+  ASSERT_EQ(quiet_ms.size(), 4u);
+  ASSERT_EQ(flooded_ms.size(), 4u);
+  fmt::print(
+      "flood: {} LineSets of {} segments sent, {} superseded; backbone peak {} MiB; the "
+      "robot's medians (front end, to the backbone, backbone, back): {} ms quiet, {} ms "
+      "flooded\n",
+      flood_sent, kFloodSegments, counters.value("superseded_frames", 0), backbone_peak_kib / 1024,
+      fmt::join(quiet_ms, "/"), fmt::join(flooded_ms, "/"));
 }
 
 }  // namespace

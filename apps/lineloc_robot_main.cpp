@@ -43,6 +43,13 @@ int main(int argc, char** argv) {
               "standard deviation of the predicted position (m)");
   options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
               "standard deviation of the predicted rotation (degrees)");
+  options.addFixedSize("start_pose", config.start_pose, 7,
+                       "with IMU data and no GNSS: T_world_camera where the robot stands at its "
+                       "start, tx ty tz qx qy qz qw");
+  options.add("start_position_sigma_m", config.start_position_sigma_m,
+              "standard deviation of the start position (m)");
+  options.add("start_rotation_sigma_deg", config.start_rotation_sigma_deg,
+              "standard deviation of the start rotation (degrees)");
   options.add("camera_height_m", config.camera_height_m,
               "height of the camera above the ground the robot stands on (m); 0: unknown. The "
               "backbone then finds the camera from DGPS and compass however poor the DGPS "

@@ -308,16 +308,24 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   const PoseWithCovariance configured =
       poseOption(config.predicted_pose, config.predicted_position_sigma_m,
                  config.predicted_rotation_sigma_deg, "predicted_pose");
+  const std::optional<PoseWithCovariance> start_pose =
+      config.start_pose.empty()
+          ? std::nullopt
+          : std::optional(poseOption(config.start_pose, config.start_position_sigma_m,
+                                     config.start_rotation_sigma_deg, "start_pose"));
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
   SensorStreams streams =
       loadSensorStreams(config.images, gps.get(), static_cast<int64_t>(config.start_at_s * 1e9));
-  requireNavigationSensors(config.images, streams, gps != nullptr);
+  requireNavigationSensors(config.images, streams, gps != nullptr, start_pose.has_value());
   for (const std::string& reason : streams.drop_reasons) {
     spdlog::warn("input dropped: {}", reason);
   }
   std::optional<InertialNavigator> navigator;
   if (!streams.imu.empty()) {
     navigator.emplace(navigatorConfig(config, gps.get(), streams));
+    if (start_pose) {
+      navigator->setStartPose(*start_pose);
+    }
   }
   FeatureExtractor extractor(calibration, frontEndOptions(config));
 

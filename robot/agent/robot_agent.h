@@ -29,6 +29,12 @@ struct RobotConfig {
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};
   double predicted_position_sigma_m = 5.0;
   double predicted_rotation_sigma_deg = 10.0;
+  // With IMU data and no GNSS: T_world_camera where the robot stands when it
+  // starts, tx ty tz qx qy qz qw (site frame), with these sigmas; empty:
+  // none, and the robot starts from DGPS and compass.
+  std::vector<double> start_pose;
+  double start_position_sigma_m = 0.5;
+  double start_rotation_sigma_deg = 5.0;
   // Height of the camera above the ground under the robot (m); 0: unknown.
   double camera_height_m = 0.0;
   // Site frame for DGPS: CRS ("EPSG:7415") and origin (x y z) subtracted from it.

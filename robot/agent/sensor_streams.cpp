@@ -143,7 +143,7 @@ void addEvents(const std::vector<T>& records, SensorKind kind, SensorStreams& st
 }  // namespace
 
 void requireNavigationSensors(const std::string& root, const SensorStreams& streams,
-                              bool gps_decoded) {
+                              bool gps_decoded, bool start_pose_given) {
   const fs::path dataset(root);
   if (!fs::is_directory(dataset / "cam0")) {
     return;
@@ -159,10 +159,13 @@ void requireNavigationSensors(const std::string& root, const SensorStreams& stre
     throw std::runtime_error(fmt::format("'{}' holds no valid IMU sample", imu.string()));
   }
   const fs::path gps = dataset / "gps0" / "data.csv";
+  if (start_pose_given) {
+    return;
+  }
   if (!fs::is_regular_file(gps)) {
     throw std::runtime_error(fmt::format(
-        "dataset '{}' has no DGPS stream: '{}' is missing, and without a first position the "
-        "robot never localises",
+        "dataset '{}' has no DGPS stream: '{}' is missing, and without a first position (or a "
+        "start pose) the robot never localises",
         root, gps.string()));
   }
   if (!gps_decoded) {

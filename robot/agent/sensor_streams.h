@@ -58,9 +58,10 @@ SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
 // dataset (a folder with cam0/), IMU samples (imu0/data.csv), which carry the
 // pose between fixes, and DGPS positions (gps0/data.csv, read with a site
 // CRS: `gps_decoded`), which give the navigator its first position, without
-// which it never sends a frame. A camera folder or a plain folder of images
-// needs neither: its frames carry a configured prediction.
+// which it never sends a frame, unless `start_pose_given`. A camera folder or
+// a plain folder of images needs neither: its frames carry a configured
+// prediction.
 void requireNavigationSensors(const std::string& root, const SensorStreams& streams,
-                              bool gps_decoded);
+                              bool gps_decoded, bool start_pose_given);
 
 }  // namespace lineloc

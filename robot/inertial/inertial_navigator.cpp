@@ -190,6 +190,10 @@ bool InertialNavigator::initialise(const NavigationState& state,
   return true;
 }
 
+void InertialNavigator::setStartPose(const PoseWithCovariance& T_world_camera) {
+  startup_.setStartPose(bodyFixOf(0, VisionPayload{T_world_camera}, config_.T_body_camera));
+}
+
 void InertialNavigator::startAt(const NavigatorStart& start) {
   FilterSnapshot snapshot;
   snapshot.state = start.state;

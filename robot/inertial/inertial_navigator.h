@@ -114,6 +114,11 @@ class InertialNavigator {
   // Starts the filter from a known state at a time the IMU samples given so far
   // cover. Returns false (and does nothing) when they do not.
   bool initialise(const NavigationState& state, const ErrorCovariance& covariance);
+  // Where the camera stands from power-on until the filter starts (an
+  // operator's or a dock's pose, for a robot without GNSS): the standing start
+  // takes its position and yaw instead of DGPS's and the compass's
+  // (startup_alignment.h). Call before the first IMU sample.
+  void setStartPose(const PoseWithCovariance& T_world_camera);
 
   // T_world_camera and its covariance at `stamp_ns` (a frame's exposure time),
   // using the configured T_body_camera; beyond the last IMU sample the last

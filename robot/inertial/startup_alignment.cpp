@@ -155,41 +155,60 @@ std::optional<NavigatorStart> StartupAlignment::standing(const MeasurementHistor
   // and a robot cruising on a smooth road can be as quiet as a standing one.
   const auto alignment = alignment_detector_.alignment();
   const std::optional<ImuSample> latest = history.latestImu();
-  if (mayHaveMoved() || !alignment || compass_yaws_.size() < kMinStartupCompassReadings ||
-      !latest) {
+  if (mayHaveMoved() || !alignment || !latest ||
+      (!start_pose_ && compass_yaws_.size() < kMinStartupCompassReadings)) {
     return std::nullopt;
   }
-  std::vector<double> compass_yaws_rad;
-  for (const TimedYaw& yaw : compass_yaws_) {
-    compass_yaws_rad.push_back(yaw.yaw_rad);
+  double yaw_rad = 0.0;
+  double yaw_sigma_rad = compass_yaw_sigma_rad_;
+  if (start_pose_) {
+    yaw_rad = yawOf(Eigen::Quaterniond(start_pose_->T_world_body.linear()));
+    yaw_sigma_rad = std::sqrt(start_pose_->covariance(kAttitude + 2, kAttitude + 2));
+  } else {
+    std::vector<double> compass_yaws_rad;
+    for (const TimedYaw& yaw : compass_yaws_) {
+      compass_yaws_rad.push_back(yaw.yaw_rad);
+    }
+    yaw_rad = robustCircularMean(compass_yaws_rad, kCompassGateSigmas * config_.compass_sigma_rad)
+                  .heading_rad;
   }
-  const double yaw_rad =
-      robustCircularMean(compass_yaws_rad, kCompassGateSigmas * config_.compass_sigma_rad)
-          .heading_rad;
   NavigatorStart start;
   NavigationState& state = start.state;
   state.stamp_ns = latest->stamp_ns;
   state.q_world_body =
       quaternionFromYawPitchRoll(yaw_rad, alignment->pitch_rad, alignment->roll_rad);
-  // Without DGPS only the IMU says the robot stands (see the header): the
-  // velocity is unknown, and the window's mean rate may be the body pitching.
-  const bool with_dgps = gps_.has_value();
-  const Eigen::Vector3d position_sigma_m = placeAtDgps(with_dgps ? &*gps_ : nullptr, state);
+  // Without a position only the IMU says the robot stands (see the header):
+  // the velocity is unknown, and the window's mean rate may be the body
+  // pitching.
+  const bool position_known = start_pose_ || gps_;
+  Eigen::Matrix3d position_covariance;
+  if (start_pose_) {
+    state.p_world_body = start_pose_->T_world_body.translation();
+    position_covariance = start_pose_->covariance.topLeftCorner<3, 3>();
+  } else {
+    position_covariance =
+        placeAtDgps(gps_ ? &*gps_ : nullptr, state).cwiseAbs2().asDiagonal().toDenseMatrix();
+  }
   double gyro_bias_sigma = 0.0;
-  state.gyro_bias_radps = initialGyroBias(with_dgps, gyro_bias_sigma);
+  state.gyro_bias_radps = initialGyroBias(position_known, gyro_bias_sigma);
   // A tilt error of b_a / g hides behind an accelerometer bias b_a.
   const double tilt_sigma = config_.accel_turn_on_bias_sigma_mps2 / config_.gravity_mps2;
   const double velocity_sigma_mps =
-      with_dgps ? kStillVelocitySigma_mps : config_.max_ground_speed_mps;
+      position_known ? kStillVelocitySigma_mps : config_.max_ground_speed_mps;
   ErrorVector sigma;
-  sigma << position_sigma_m, Eigen::Vector3d::Constant(velocity_sigma_mps), tilt_sigma, tilt_sigma,
-      compass_yaw_sigma_rad_, Eigen::Vector3d::Constant(gyro_bias_sigma),
+  sigma << Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(velocity_sigma_mps), tilt_sigma,
+      tilt_sigma, yaw_sigma_rad, Eigen::Vector3d::Constant(gyro_bias_sigma),
       Eigen::Vector3d::Constant(config_.accel_turn_on_bias_sigma_mps2);
   start.covariance = sigma.cwiseAbs2().asDiagonal();
+  start.covariance.block<3, 3>(kPosition, kPosition) = position_covariance;
   start.imu = *latest;
-  start.position = with_dgps ? StartPosition::kFromSensors : StartPosition::kUnknown;
-  start.velocity_known = with_dgps;
+  start.position = position_known ? StartPosition::kFromSensors : StartPosition::kUnknown;
+  start.velocity_known = position_known;
   return start;
+}
+
+void StartupAlignment::setStartPose(const BodyFix& pose) {
+  start_pose_ = pose;
 }
 
 std::optional<NavigatorStart> StartupAlignment::inMotion(const MeasurementHistory& history) {

@@ -7,7 +7,9 @@
 // window's readings (robust_heading.h: a disturbance over part of the window
 // is left out), with one reading's sigma_c (compassYawSigma_rad); DGPS gives
 // position; all with large covariances; only if the robot has not moved since
-// power-on. Without a DGPS fix by the end of that window the filter starts
+// power-on. A start pose, where the robot is known to stand (an operator's or
+// a dock's, for a robot without GNSS), gives position and yaw instead, with
+// its covariance. Without a DGPS fix by the end of that window the filter starts
 // all the same, its position unknown (kUnknownPositionSigma_m), and the first
 // DGPS or vision fix accepted gives it. Such a start, which only the IMU
 // calls still, may be a cruise as quiet as a standstill: it takes the
@@ -104,6 +106,8 @@ class StartupAlignment {
   // Returns true when `velocity` denies the motion the one before it claimed.
   bool addGpsVelocity(const GpsVelocity& velocity);
   void addCompassYaw(const TimedYaw& yaw);
+  // The body's pose where the robot stands from power-on (see above).
+  void setStartPose(const BodyFix& pose);
   // Remembers `fix` and returns the velocity a start from it takes: zero
   // when the robot has stood still since power-on, else from the fix before
   // it (nullopt: none within kMaxVelocityBaseline_ns).
@@ -153,6 +157,7 @@ class StartupAlignment {
   std::deque<GpsVelocity> velocities_;
   std::deque<TimedYaw> compass_yaws_;
   std::optional<BodyFix> vision_;
+  std::optional<BodyFix> start_pose_;
 };
 
 }  // namespace lineloc

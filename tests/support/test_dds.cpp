@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace lineloc::test {
@@ -51,6 +52,15 @@ void revokeDdsIdentity(const std::string& folder, const std::string& kind,
 
 uint32_t testDomainId() {
   return 10 + static_cast<uint32_t>(getpid()) % 200;
+}
+
+std::vector<std::string> networkJitterEnvironment(int jitter_ms) {
+  // AddressSanitizer wants its runtime loaded first; preloading comes before it.
+  const char* asan_options = std::getenv("ASAN_OPTIONS");
+  return {std::string("LD_PRELOAD=") + LINELOC_NETWORK_JITTER_LIBRARY,
+          "LINELOC_TEST_SEND_JITTER_MS=" + std::to_string(jitter_ms),
+          std::string("ASAN_OPTIONS=") + (asan_options != nullptr ? asan_options : "") +
+              ":verify_asan_link_order=0"};
 }
 
 }  // namespace lineloc::test

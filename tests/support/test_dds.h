@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace lineloc::test {
 
@@ -23,5 +24,10 @@ std::string issueDdsIdentity(const std::string& folder, const std::string& kind,
 // Revokes "<kind>-<name>" issued in `folder`: participants started after it
 // refuse that identity.
 void revokeDdsIdentity(const std::string& folder, const std::string& kind, const std::string& name);
+
+// The environment ("NAME=value") under which a child process's UDP datagrams
+// each leave up to `jitter_ms` late (tests/support/network_jitter), for
+// ChildProcess.
+std::vector<std::string> networkJitterEnvironment(int jitter_ms);
 
 }  // namespace lineloc::test

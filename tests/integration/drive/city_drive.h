@@ -200,17 +200,19 @@ class CityDrive : public ::testing::Test {
             testDdsConfig() + extra_dds_config_ + "," + overlay};
   }
 
-  // From now on every participant's sends lose `per_mille` of their packets
-  // (Cyclone DDS's transmit lossiness, a test setting); reliable topics
-  // resend what was lost.
-  void loseSentPackets(int per_mille) {
+  // From now on the backbones and robots started lose `lost_per_mille` of the
+  // packets they send (Cyclone DDS's transmit lossiness, a test setting;
+  // reliable topics resend what was lost) and send each of the others up to
+  // `jitter_ms` late (tests/support/network_jitter), out of order.
+  void degradeNetwork(int lost_per_mille, int jitter_ms) {
     const fs::path overlay = work_ / "lossy.xml";
     std::ofstream(overlay) << "<CycloneDDS xmlns=\"https://cdds.io/config\"><Domain id=\"any\">"
                               "<Internal><Test><XmitLossiness>"
-                           << per_mille
+                           << lost_per_mille
                            << "</XmitLossiness></Test></Internal></Domain></CycloneDDS>\n";
     extra_dds_config_ = ",";
     extra_dds_config_ += overlay.string();
+    environment_ = networkJitterEnvironment(jitter_ms);
   }
 
   // Waits until robot `robot_id` has had an OK fix; false after `timeout`.
@@ -232,7 +234,7 @@ class CityDrive : public ::testing::Test {
                 {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", city_.site,
                  "--sun-from-clock", "--ambient", fmt::format("{}", simulated.ambient)});
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-backbone", args,
-                                          (work_ / log_name).string());
+                                          (work_ / log_name).string(), environment_);
   }
 
   // Robot `robot_id` driving through `dataset`; it writes <robot_id>.log,
@@ -251,7 +253,7 @@ class CityDrive : public ::testing::Test {
          (work_ / (robot_id + "-states.txt")).string(), "--site-origin"});
     args.insert(args.end(), city_.origin.begin(), city_.origin.end());
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot", args,
-                                          (work_ / (robot_id + ".log")).string());
+                                          (work_ / (robot_id + ".log")).string(), environment_);
   }
 
   void waitForRobot(ChildProcess& robot, const std::string& robot_id = "drive") const {
@@ -348,6 +350,7 @@ class CityDrive : public ::testing::Test {
   fs::path work_;
   TestDatabase database_{"city_drive"};
   std::string extra_dds_config_;
+  std::vector<std::string> environment_;
 };
 
 }  // namespace lineloc::test

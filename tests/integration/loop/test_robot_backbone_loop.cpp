@@ -28,6 +28,7 @@
 #include "common/messages/topics.h"
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
+#include "robot/inertial/inertial_navigator_config.h"
 #include "tests/support/child_process.h"
 #include "tests/support/test_database.h"
 #include "tests/support/test_dds.h"
@@ -40,6 +41,7 @@ namespace {
 constexpr int kFrames = 12;
 constexpr int kBackboneMaxSegments = 1000;
 constexpr int kTimeoutMs = 30'000;
+constexpr int64_t kFirstFrameNs = 1'700'000'000'000'000'000;
 // The backbone's peak resident memory under the flood test's 16 robot ids:
 // its working set (under 50 MiB), plus at most kHistoryDepth LineSets of
 // 4,096 segments (48 bytes each, 192 KiB a LineSet) per flooding robot in
@@ -79,6 +81,32 @@ void writeCalibration(const fs::path& path) {
   storage << "image_width" << 640 << "image_height" << 480;
   storage << "camera_matrix" << (cv::Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
   storage << "distortion_coefficients" << cv::Mat::zeros(5, 1, CV_64F);
+}
+
+// A timed camera folder of three frames 50 ms apart, as a dataset holds it:
+// `dataset`/cam0.
+void writeTimedCameraFolder(const fs::path& dataset) {
+  const fs::path camera = dataset / "cam0";
+  fs::create_directories(camera / "data");
+  std::ofstream csv(camera / "data.csv");
+  csv << "#timestamp [ns],filename\n";
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = cv::format("frame%03d.png", i);
+    fs::copy_file(dataset.parent_path() / "images" / name, camera / "data" / name);
+    csv << kFirstFrameNs + i * 50'000'000LL << ',' << name << '\n';
+  }
+}
+
+// An IMU standing level from 3 s before the first frame (the alignment
+// window is 2 s) to 300 ms after it, at 200 Hz: `dataset`/imu0.
+void writeStandingImu(const fs::path& dataset) {
+  fs::create_directories(dataset / "imu0");
+  std::ofstream csv(dataset / "imu0" / "data.csv");
+  csv << "#timestamp [ns],w_x,w_y,w_z,a_x,a_y,a_z\n";
+  for (int64_t stamp_ns = kFirstFrameNs - 3'000'000'000; stamp_ns <= kFirstFrameNs + 300'000'000;
+       stamp_ns += 5'000'000) {
+    csv << stamp_ns << ",0,0,0,0,0,9.80665\n";
+  }
 }
 
 // The robot whose messages the observer writes.
@@ -446,22 +474,60 @@ TEST_F(RobotBackboneLoop, ARobotSkipsACorruptFrameAndGoesOn) {
 // A dataset without the IMU that would carry its pose is refused at the
 // start, saying so, instead of a run that never localises.
 TEST_F(RobotBackboneLoop, ADatasetWithoutItsIMUFailsTheRobotsStart) {
-  const fs::path camera = work_ / "dataset" / "cam0";
-  fs::create_directories(camera / "data");
-  std::ofstream csv(camera / "data.csv");
-  csv << "#timestamp [ns],filename\n";
-  for (int i = 0; i < 3; ++i) {
-    const std::string name = cv::format("frame%03d.png", i);
-    fs::copy_file(work_ / "images" / name, camera / "data" / name);
-    csv << 1'700'000'000'000'000'000 + i * 50'000'000LL << ',' << name << '\n';
-  }
-  csv.close();
+  const fs::path dataset = work_ / "dataset";
+  writeTimedCameraFolder(dataset);
   auto robot = start("lineloc-robot", "robot-robot-f", "robot-f.log",
-                     {"--robot-id", "robot-f", "--images", (work_ / "dataset").string(),
-                      "--camera-calibration", (work_ / "camera.yml").string()},
+                     {"--robot-id", "robot-f", "--images", dataset.string(), "--camera-calibration",
+                      (work_ / "camera.yml").string()},
                      {});
   EXPECT_EQ(robot->wait(kTimeoutMs), 1) << log("robot-f.log");
   EXPECT_NE(log("robot-f.log").find("has no IMU stream"), std::string::npos) << log("robot-f.log");
+}
+
+// A robot with an IMU and no GNSS needs to be told where it starts: without
+// a start pose it refuses to start, saying so; with one it starts there once
+// it has stood through the alignment window, and its first frame's
+// prediction is where it was told.
+TEST_F(RobotBackboneLoop, ARobotWithoutGnssStartsFromTheStartPoseItIsGiven) {
+  const fs::path dataset = work_ / "dataset";
+  writeTimedCameraFolder(dataset);
+  writeStandingImu(dataset);
+  const std::vector<std::string> options = {"--robot-id",
+                                            "robot-g",
+                                            "--images",
+                                            dataset.string(),
+                                            "--camera-calibration",
+                                            (work_ / "camera.yml").string(),
+                                            "--wait-for-backbone-s",
+                                            "0",
+                                            "--fused-trajectory-out",
+                                            (work_ / "robot-g-fused.tum").string(),
+                                            "--trajectory-out",
+                                            (work_ / "robot-g.tum").string(),
+                                            "--fix-timeout-s",
+                                            "0.1"};
+  auto refused = start("lineloc-robot", "robot-robot-g", "robot-g.log", options, {});
+  EXPECT_EQ(refused->wait(kTimeoutMs), 1) << log("robot-g.log");
+  EXPECT_NE(log("robot-g.log").find("has no DGPS stream"), std::string::npos) << log("robot-g.log");
+
+  // The body level, the camera looking along it (InertialNavigatorConfig).
+  const Eigen::Isometry3d T_world_camera =
+      makePose({5.0, -20.0, 0.3}, Eigen::Quaterniond::Identity()) *
+      InertialNavigatorConfig::defaultBodyCamera();
+  const Eigen::Quaterniond q(T_world_camera.linear());
+  std::vector<std::string> start_pose = {"--start-pose"};
+  for (const double value : {T_world_camera.translation().x(), T_world_camera.translation().y(),
+                             T_world_camera.translation().z(), q.x(), q.y(), q.z(), q.w()}) {
+    start_pose.push_back(fmt::format("{:.17g}", value));
+  }
+  auto robot = start("lineloc-robot", "robot-robot-g", "robot-g.log", options, start_pose);
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-g.log");
+  const std::vector<StampedPose> fused = readTumFile((work_ / "robot-g-fused.tum").string());
+  ASSERT_EQ(fused.size(), 3u) << log("robot-g.log");
+  EXPECT_LT((fused.front().pose.translation() - T_world_camera.translation()).norm(), 0.01);
+  EXPECT_LT(
+      Eigen::AngleAxisd(fused.front().pose.linear().transpose() * T_world_camera.linear()).angle(),
+      1e-3);
 }
 
 TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsStart) {

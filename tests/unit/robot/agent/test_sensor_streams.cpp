@@ -105,13 +105,14 @@ TEST_F(SensorStreamsTest, StartingLaterNeedsTimeStampedFrames) {
 }
 
 // A dataset without the IMU or DGPS the robot needs is refused with a
-// message naming the file; a camera folder on its own needs neither.
+// message naming the file; with a start pose it needs no DGPS; a camera
+// folder on its own needs neither.
 TEST_F(SensorStreamsTest, RequiresTheIMUAndDGPSOfADataset) {
   NmeaGpsDecoder gps(SiteProjection("EPSG:7415", Eigen::Vector3d(84900.0, 447600.0, 0.0)));
-  const auto errorOf = [&](NmeaGpsDecoder* decoder) -> std::string {
+  const auto errorOf = [&](NmeaGpsDecoder* decoder, bool start_pose_given = false) -> std::string {
     try {
       requireNavigationSensors(root_.string(), loadSensorStreams(root_.string(), decoder),
-                               decoder != nullptr);
+                               decoder != nullptr, start_pose_given);
     } catch (const std::runtime_error& error) {
       return error.what();
     }
@@ -129,6 +130,7 @@ TEST_F(SensorStreamsTest, RequiresTheIMUAndDGPSOfADataset) {
                                "' is missing"),
             std::string::npos)
       << errorOf(&gps);
+  EXPECT_EQ(errorOf(nullptr, true), "");
   writeFile(root_ / "imu0" / "data.csv", "#timestamp [ns],wx,wy,wz,ax,ay,az\n1,2\n");
   EXPECT_NE(errorOf(&gps).find("holds no valid IMU sample"), std::string::npos) << errorOf(&gps);
   fs::remove(root_ / "imu0" / "data.csv");
@@ -136,9 +138,10 @@ TEST_F(SensorStreamsTest, RequiresTheIMUAndDGPSOfADataset) {
                                "' is missing"),
             std::string::npos)
       << errorOf(&gps);
+  EXPECT_NE(errorOf(nullptr, true).find("has no IMU stream"), std::string::npos);
   const std::string camera_folder = (root_ / "cam0").string();
-  EXPECT_NO_THROW(
-      requireNavigationSensors(camera_folder, loadSensorStreams(camera_folder, nullptr), false));
+  EXPECT_NO_THROW(requireNavigationSensors(camera_folder, loadSensorStreams(camera_folder, nullptr),
+                                           false, false));
 }
 
 TEST_F(SensorStreamsTest, MalformedMountingIsAnErrorNamingTheFile) {

@@ -617,6 +617,53 @@ TEST(InertialNavigator, StartsFromCompassAndDgpsThenVisionPullsItIn) {
   EXPECT_GT(health.compass.gated, 0);  // disturbances
 }
 
+// No GNSS: the robot is told where it stands (a camera pose 0.5 m and 5
+// degrees uncertain). It starts after standing through the alignment
+// window, levelled by the IMU, at the pose's position and yaw, within their
+// covariance; it drives off on the IMU alone, and vision fixes from 10 s on
+// pull it in.
+TEST(InertialNavigator, StartsAtAGivenPoseWithoutGnssThenVisionPullsItIn) {
+  const Drive drive(21, 30.0, 5.0);
+  const InertialNavigatorConfig config;
+  InertialNavigator navigator(config);
+  std::mt19937_64 random(21);
+  const int64_t t0 = drive.imu.front().stamp_ns;
+  navigator.setStartPose(testing::noisyCameraFix(drive.trajectory, t0, config.T_body_camera, 0.5,
+                                                 5.0 * M_PI / 180.0, random));
+  int64_t next_fix = t0 + 10'000'000'000;
+  std::optional<int64_t> started_ns;
+  for (const sim::SimImuSample& sample : drive.imu) {
+    if (sample.stamp_ns >= next_fix + 100'000'000) {
+      navigator.applyVisionFix(
+          next_fix, testing::noisyCameraFix(drive.trajectory, next_fix, config.T_body_camera, 0.03,
+                                            0.002, random));
+      next_fix += 100'000'000;
+    }
+    navigator.addImu(toImuSample(sample));
+    const std::optional<NavigatorEstimate> estimate = navigator.state();
+    if (estimate && !started_ns) {
+      started_ns = sample.stamp_ns;
+      const ErrorVector error =
+          errorBetween(truthState(drive.trajectory, sample.stamp_ns, &sample), estimate->state);
+      const Eigen::Matrix<double, 9, 1> pose_velocity = error.head<9>();
+      // chi2(9) at 99.9 %.
+      EXPECT_LT(
+          pose_velocity.dot(estimate->covariance.topLeftCorner<9, 9>().ldlt().solve(pose_velocity)),
+          27.88);
+    }
+  }
+  ASSERT_TRUE(started_ns);
+  EXPECT_LT(*started_ns - t0, 3'000'000'000) << "standing through the 2 s window";
+  const ErrorVector error =
+      errorBetween(truthState(drive.trajectory, drive.imu.back().stamp_ns, &drive.imu.back()),
+                   navigator.state()->state);
+  EXPECT_LT(error.head<3>().norm(), 0.1);
+  const NavigatorHealth health = navigator.health();
+  EXPECT_EQ(health.mode, NavigatorMode::kTracking);
+  EXPECT_EQ(health.gps.accepted, 0);
+  EXPECT_GT(health.vision.accepted, 150);
+}
+
 // DGPS late: the robot stands through the alignment window, drives off, and
 // its first DGPS fix comes ten seconds after that. The filter starts at the
 // window's end without a position and gives no pose, neither predicted nor

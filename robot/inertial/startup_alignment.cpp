@@ -163,7 +163,8 @@ std::optional<NavigatorStart> StartupAlignment::standing(const MeasurementHistor
   double yaw_sigma_rad = compass_yaw_sigma_rad_;
   if (start_pose_) {
     yaw_rad = yawOf(Eigen::Quaterniond(start_pose_->T_world_body.linear()));
-    yaw_sigma_rad = std::sqrt(start_pose_->covariance(kAttitude + 2, kAttitude + 2));
+    // The pose covariance is of [dp; dtheta]: dtheta_z, the world yaw, is its sixth.
+    yaw_sigma_rad = std::sqrt(start_pose_->covariance(5, 5));
   } else {
     std::vector<double> compass_yaws_rad;
     for (const TimedYaw& yaw : compass_yaws_) {

@@ -650,6 +650,9 @@ TEST(InertialNavigator, StartsAtAGivenPoseWithoutGnssThenVisionPullsItIn) {
       EXPECT_LT(
           pose_velocity.dot(estimate->covariance.topLeftCorner<9, 9>().ldlt().solve(pose_velocity)),
           27.88);
+      // The yaw is the start pose's, which standing does not observe.
+      EXPECT_NEAR(std::sqrt(estimate->covariance(kAttitude + 2, kAttitude + 2)), 5.0 * M_PI / 180.0,
+                  0.1 * M_PI / 180.0);
     }
   }
   ASSERT_TRUE(started_ns);

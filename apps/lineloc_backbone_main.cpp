@@ -29,6 +29,11 @@ int main(int argc, char** argv) {
   options.add("db", config.db,
               "libpq connection string of the building database, as its reader role");
   options.add("site", config.site, "name of the site in the database");
+  options.add("backbone_name", config.backbone_name,
+              "this backbone's name among those sharing the domain's robots, "
+              "[A-Za-z0-9][A-Za-z0-9_.-]* (empty: <hostname>-<pid>)");
+  options.add("backbone_lease_s", config.backbone_lease_s,
+              "a backbone silent this long (s) leaves its robots to the others");
   options.add("query_radius_m", config.query_radius_m,
               "model lines within this distance of the predicted position are used (m)");
   options.add("tile_size_m", config.tile_size_m, "side of the square map tiles cached (m)");

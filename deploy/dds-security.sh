@@ -121,7 +121,8 @@ topics_in_partition_xml() {
   echo "</topics><partitions><partition>$2</partition></partitions>"
 }
 
-# $1: participant, $2: what it publishes, $3: what it subscribes, $4: partition pattern.
+# $1: participant, $2: what it publishes, $3: what it subscribes, $4: partition pattern,
+# $5: topics it publishes and subscribes in the backbones' partition (none for a robot).
 permissions_xml() {
   local not_before not_after
   not_before="$(date -u +%Y-%m-%dT%H:%M:%S)"
@@ -138,6 +139,10 @@ permissions_xml() {
         $(domains_xml)
         <publish>$(topics_in_partition_xml "$2" "$4")</publish>
         <subscribe>$(topics_in_partition_xml "$3" "$4")</subscribe>
+        $(if [ -n "${5:-}" ]; then
+          echo "<publish>$(topics_in_partition_xml "$5" lineloc.backbones)</publish>"
+          echo "<subscribe>$(topics_in_partition_xml "$5" lineloc.backbones)</subscribe>"
+        fi)
       </allow_rule>
       <default>DENY</default>
     </grant>
@@ -204,7 +209,7 @@ init() {
 }
 
 issue() {
-  local kind="$1" name="$2" participant publish subscribe partition
+  local kind="$1" name="$2" participant publish subscribe partition peers=""
   [[ "$name" =~ ^[A-Za-z0-9][A-Za-z0-9_.-]*$ ]] || die "$kind name '$name' must match [A-Za-z0-9][A-Za-z0-9_.-]*"
   case "$kind" in
     robot)
@@ -216,6 +221,7 @@ issue() {
       publish="lineloc_PoseFix"
       subscribe="lineloc_LineSet lineloc_Exposure lineloc_RobotState"
       partition="robot.*"
+      peers="lineloc_Backbone"
       ;;
     *) die "issue: unknown participant kind '$kind' (robot or backbone)" ;;
   esac
@@ -229,7 +235,7 @@ issue() {
     -out "$identity/request.pem"
   openssl_ca -notext -in "$identity/request.pem" -out "$identity/cert.pem" \
     -subj "/CN=$participant/O=$ORGANISATION"
-  permissions_xml "$participant" "$publish" "$subscribe" "$partition" |
+  permissions_xml "$participant" "$publish" "$subscribe" "$partition" "$peers" |
     write_file "$identity/permissions.xml"
   sign "$identity/permissions.xml" "$identity/permissions.p7s"
   overlay_xml "$identity" | write_file "$identity/cyclonedds-security.xml"

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -10,10 +14,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "backbone/map/database_tile_fetcher.h"
+#include "backbone/service/backbone_peers.h"
 #include "backbone/service/fair_frame_queue.h"
 #include "backbone/service/pose_fix_publisher.h"
 #include "backbone/service/site_lookup.h"
@@ -31,6 +38,21 @@ namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
 constexpr std::chrono::seconds kSiteRetryPeriod(2);
+
+// The configured name, or <hostname>-<pid>.
+std::string backboneName(const BackboneConfig& config) {
+  if (!config.backbone_name.empty()) {
+    return config.backbone_name;
+  }
+  std::array<char, 256> host{};
+  gethostname(host.data(), host.size() - 1);
+  std::string name = fmt::format("{}-{}", host.data(), getpid());
+  std::replace_if(
+      name.begin(), name.end(),
+      [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.'; },
+      '-');
+  return name.substr(0, lineloc_msg_BACKBONE_NAME_MAX_LENGTH);
+}
 
 std::string notInItsPartition(const lineloc_msg_LineSet& message) {
   return fmt::format("robot_id '{}' written outside partition '{}'", std::string(message.robot_id),
@@ -175,6 +197,8 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"refused_robot_frames", counters.refused_robot_frames},
                                {"refused_searches", counters.refused_searches},
                                {"superseded_frames", counters.superseded_frames},
+                               {"backbones", counters.backbones},
+                               {"frames_served_elsewhere", counters.frames_served_elsewhere},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -229,6 +253,18 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       participant, dds::Qos(dds::kHistoryDepth), kEveryRobotPartition);
   PoseFixPublisher fixes(participant, static_cast<int64_t>(config.forget_robot_after_s * 1e9));
   LineSetHandler handler(map, limits, pipeline);
+  BackbonePeers peers(participant, backboneName(config),
+                      static_cast<int64_t>(config.backbone_lease_s * 1e9));
+  spdlog::info("backbone '{}': serving its share of the robots with the backbones alive",
+               peers.name());
+  // The backbones alive, looked at before each frame; written by the
+  // LineSets' thread, read by the exposure notices'.
+  std::mutex alive_mutex;
+  std::vector<std::string> alive = peers.alive();
+  const auto servesRobot = [&](const std::string& robot_id) {
+    const std::lock_guard<std::mutex> lock(alive_mutex);
+    return peers.serves(robot_id, alive);
+  };
   const SiteWatch site(config, handler);
   const auto serving = [&] { return !stop && !site.refused(); };
   if (serving()) {
@@ -243,11 +279,11 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       while (serving()) {
         if (exposures.waitForData(kWaitNs)) {
           exposures.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
-            if (speaksFor(exposures.writerPartitions(info.publication_handle), message.robot_id)) {
-              handler.handleExposure(message);
-            } else {
+            if (!speaksFor(exposures.writerPartitions(info.publication_handle), message.robot_id)) {
               handler.countDrop("exposure notice", message.sequence_number,
                                 notInItsPartition(message));
+            } else if (servesRobot(message.robot_id)) {
+              handler.handleExposure(message);
             }
           });
         }
@@ -261,6 +297,12 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     uint32_t robot_writers_seen = 0;
     while (serving()) {
       const bool data = !waiting.empty() || reader.waitForData(kWaitNs);
+      {
+        std::vector<std::string> now_alive = peers.alive();
+        handler.countBackbones(now_alive.size());
+        const std::lock_guard<std::mutex> lock(alive_mutex);
+        alive = std::move(now_alive);
+      }
       const uint32_t robot_writers = reader.matchedWriters();
       if (!data || robot_writers != robot_writers_seen) {
         robot_writers_seen = robot_writers;
@@ -274,6 +316,8 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       reader.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
         if (!speaksFor(reader.writerPartitions(info.publication_handle), message.robot_id)) {
           handler.countDrop("LineSet", message.sequence_number, notInItsPartition(message));
+        } else if (!servesRobot(message.robot_id)) {
+          handler.countFrameServedElsewhere();
         } else if (std::optional<LineSetData> line_set = handler.accept(message)) {
           const int64_t taken_ns = steadyClockNs();
           if (const auto superseded = waiting.push(std::move(*line_set), taken_ns)) {

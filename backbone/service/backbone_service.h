@@ -18,6 +18,12 @@ struct BackboneConfig {
   std::string db =
       "host=127.0.0.1 port=55432 user=lineloc_reader dbname=lineloc";  // read-only role
   std::string site = "delft";
+  // This backbone's name among the backbones sharing the domain's robots
+  // (backbone_peers.h), [A-Za-z0-9][A-Za-z0-9_.-]*; empty: <hostname>-<pid>.
+  // Each robot is served by one backbone alive, chosen by name
+  // (robot_assignment.h); a backbone silent for backbone_lease_s is no longer.
+  std::string backbone_name;
+  double backbone_lease_s = 1.0;
   double query_radius_m = 150.0;
   double tile_size_m = 100.0;
   int max_cached_tiles = 4096;

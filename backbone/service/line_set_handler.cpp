@@ -247,6 +247,16 @@ SearchWorker::Submitted LineSetHandler::submitSearch(const char* kind, const Lin
   return submitted;
 }
 
+void LineSetHandler::countBackbones(size_t alive) {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  counters_.backbones = alive;
+}
+
+void LineSetHandler::countFrameServedElsewhere() {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.frames_served_elsewhere;
+}
+
 void LineSetHandler::countSearch() {
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.searches;

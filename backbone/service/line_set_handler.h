@@ -103,6 +103,10 @@ struct BackboneCounters {
   // Frames answered FIX_BUSY as a newer one of their robot came before they
   // were handled.
   uint64_t superseded_frames = 0;
+  // The backbones alive on the domain, this one among them, and the frames
+  // left to the others, whose robots they serve (backbone_peers.h).
+  uint64_t backbones = 1;
+  uint64_t frames_served_elsewhere = 0;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -191,6 +195,10 @@ class LineSetHandler {
   void flushLogs(int64_t now_ns);
 
   BackboneCounters counters() const;
+
+  // Records how many backbones are alive, and a frame left to another.
+  void countBackbones(size_t alive);
+  void countFrameServedElsewhere();
 
   // Counts a dropped message (malformed, or refused before handle()) and
   // logs `kind`'s drop with `error`.

@@ -216,7 +216,12 @@ Qos Qos::keptForLateReaders(int32_t history_depth, int64_t lifespan_ns) {
   return Qos(history_depth, DDS_DURABILITY_TRANSIENT_LOCAL, lifespan_ns);
 }
 
-Qos::Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns)
+Qos Qos::presence(int64_t lease_ns) {
+  return Qos(1, DDS_DURABILITY_TRANSIENT_LOCAL, DDS_INFINITY, lease_ns);
+}
+
+Qos::Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns,
+         int64_t liveliness_lease_ns)
     : qos_(dds_create_qos()) {
   dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
   dds_qset_durability(qos_, durability);
@@ -225,6 +230,7 @@ Qos::Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifesp
   dds_qset_durability_service(qos_, 0, DDS_HISTORY_KEEP_LAST, history_depth, DDS_LENGTH_UNLIMITED,
                               DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
   dds_qset_lifespan(qos_, lifespan_ns);
+  dds_qset_liveliness(qos_, DDS_LIVELINESS_AUTOMATIC, liveliness_lease_ns);
 }
 
 Qos::~Qos() {

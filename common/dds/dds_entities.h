@@ -99,13 +99,20 @@ class Qos {
   // before the writer knows the reader, and what is written in between would
   // reach nobody.
   static Qos keptForLateReaders(int32_t history_depth, int64_t lifespan_ns);
+  // A presence: each instance's last sample, transient-local, its writer's
+  // liveliness asserted automatically by its participant and lost
+  // `lease_ns` after the participant falls silent (killed, paused,
+  // disconnected), when the instance stops being alive for its readers
+  // (Reader::readInstances).
+  static Qos presence(int64_t lease_ns);
   ~Qos();
   Qos(const Qos&) = delete;
   Qos& operator=(const Qos&) = delete;
   const dds_qos_t* get() const { return qos_; }
 
  private:
-  Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns);
+  Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns,
+      int64_t liveliness_lease_ns = DDS_INFINITY);
 
   dds_qos_t* qos_;
 };
@@ -245,6 +252,26 @@ class Reader {
       if (count < kBatch) {
         return handled;
       }
+    }
+  }
+
+  // Reads, without taking, the samples the reader holds (at most
+  // kMaxReadSamples) and calls `handle(const Message&, bool alive)` on each,
+  // `alive` when its instance is (some writer of it keeps its liveliness). A
+  // sample that only tells of an instance's end carries its key fields alone.
+  static constexpr int kMaxReadSamples = 256;
+  template <typename Handler>
+  void readInstances(Handler&& handle) {
+    std::array<void*, kMaxReadSamples> samples{};
+    std::array<dds_sample_info_t, kMaxReadSamples> infos;
+    const dds_return_t count = check(
+        dds_read(reader_.handle(), samples.data(), infos.data(), kMaxReadSamples, kMaxReadSamples),
+        "dds_read");
+    for (int i = 0; i < count; ++i) {
+      handle(*static_cast<const Message*>(samples[i]), infos[i].instance_state == DDS_IST_ALIVE);
+    }
+    if (count > 0) {
+      dds_return_loan(reader_.handle(), samples.data(), count);
     }
   }
 

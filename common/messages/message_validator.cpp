@@ -174,19 +174,28 @@ int32_t rawEnumValue(const Enum& field) {
   return raw;
 }
 
-}  // namespace
-
-bool isValidRobotId(std::string_view robot_id) {
-  if (robot_id.empty() || robot_id.size() > lineloc_msg_ROBOT_ID_MAX_LENGTH ||
-      !std::isalnum(static_cast<unsigned char>(robot_id.front()))) {
+// [A-Za-z0-9][A-Za-z0-9_.-]*, at most `max_length` characters.
+bool isValidName(std::string_view name, size_t max_length) {
+  if (name.empty() || name.size() > max_length ||
+      !std::isalnum(static_cast<unsigned char>(name.front()))) {
     return false;
   }
-  for (const char c : robot_id) {
+  for (const char c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') {
       return false;
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool isValidRobotId(std::string_view robot_id) {
+  return isValidName(robot_id, lineloc_msg_ROBOT_ID_MAX_LENGTH);
+}
+
+bool isValidBackboneName(std::string_view name) {
+  return isValidName(name, lineloc_msg_BACKBONE_NAME_MAX_LENGTH);
 }
 
 std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,

@@ -28,6 +28,8 @@ struct MessageLimits {
 };
 
 bool isValidRobotId(std::string_view robot_id);
+// The same pattern, at most BACKBONE_NAME_MAX_LENGTH characters.
+bool isValidBackboneName(std::string_view name);
 
 // Each returns nullopt for a valid message, or what is wrong and where.
 std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,

@@ -50,4 +50,13 @@ struct TopicTraits<lineloc_msg_RobotState> {
   static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_RobotState_desc; }
 };
 
+template <>
+struct TopicTraits<lineloc_msg_BackbonePresence> {
+  static constexpr const char* kName = "lineloc_Backbone";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_BackbonePresence_desc; }
+};
+
+// The partition of the backbones' presence, apart from the robots'.
+inline constexpr char kBackbonePartition[] = "lineloc.backbones";
+
 }  // namespace lineloc::dds

@@ -17,12 +17,14 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <random>
 #include <regex>
 #include <set>
 #include <thread>
 #include <vector>
 
+#include "backbone/service/robot_assignment.h"
 #include "common/messages/messages.h"
 #include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
@@ -846,6 +848,120 @@ TEST_F(RobotBackboneLoop, AFloodFromSixteenRobotIdsLeavesAnotherRobotAnsweredOnE
       "flooded\n",
       flood_sent, kFloodSegments, counters.value("superseded_frames", 0), backbone_peak_kib / 1024,
       fmt::join(quiet_ms, "/"), fmt::join(flooded_ms, "/"));
+}
+
+// Two backbones on one domain share four robots, two each (robot_assignment.h):
+// every frame is answered once, by its robot's backbone. One killed
+// (SIGKILL), the other answers its robots too once the killed one's
+// liveliness lease (1 s) has run out, each frame again once.
+TEST_F(RobotBackboneLoop, TwoBackbonesShareTheRobotsAndOneTakesOverWhenTheOtherIsKilled) {
+  const auto backbone = [&](const std::string& name) {
+    return start("lineloc-backbone", "backbone-test", name + ".log",
+                 {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", "test",
+                  "--backbone-name", name, "--stats-file", (work_ / (name + ".json")).string(),
+                  "--stats-period-s", "0.1"},
+                 {});
+  };
+  const auto statsOf = [&](const std::string& name) {
+    std::ifstream stream(work_ / (name + ".json"));
+    nlohmann::json parsed = stream ? nlohmann::json::parse(stream, nullptr, false) : nullptr;
+    return parsed.is_object() ? parsed : nlohmann::json::object();
+  };
+  auto east = backbone("east");
+  auto west = backbone("west");
+  Observer observer;
+  ASSERT_TRUE(observer.pollUntil([&] {
+    return statsOf("east").value("backbones", 0) == 2 && statsOf("west").value("backbones", 0) == 2;
+  })) << log("east.log")
+      << log("west.log");
+
+  // Two robots of each backbone.
+  const std::vector<std::string> backbones = {"east", "west"};
+  std::vector<std::string> robot_ids;
+  std::map<std::string, int> share;
+  for (int candidate = 0; robot_ids.size() < 4; ++candidate) {
+    const std::string robot_id = "shared-" + std::to_string(candidate);
+    if (share[servingBackbone(robot_id, backbones)] < 2) {
+      ++share[servingBackbone(robot_id, backbones)];
+      robot_ids.push_back(robot_id);
+    }
+  }
+  std::vector<std::unique_ptr<dds::Writer<lineloc_msg_LineSet>>> writers;
+  for (const std::string& robot_id : robot_ids) {
+    writers.push_back(std::make_unique<dds::Writer<lineloc_msg_LineSet>>(
+        observer.participant(), dds::Qos(dds::kHistoryDepth), robotPartition(robot_id)));
+  }
+  ASSERT_TRUE(observer.pollUntil([&] {
+    return std::all_of(writers.begin(), writers.end(),
+                       [](const auto& writer) { return writer->matchedReaders() >= 3; });
+  }));
+  uint32_t sequence = 0;
+  const auto sendAll = [&] {
+    ++sequence;
+    for (size_t robot = 0; robot < robot_ids.size(); ++robot) {
+      writers[robot]->write(LineSetMessage(probeLineSet(robot_ids[robot], sequence, 5)).message());
+    }
+  };
+  // Every frame sent from `first` to `last` answered exactly once.
+  const auto expectAnsweredOnce = [&](uint32_t first, uint32_t last) {
+    for (const std::string& robot_id : robot_ids) {
+      std::map<uint32_t, int> answers;
+      for (const PoseFixData& fix : observer.fixes) {
+        if (fix.robot_id == robot_id && fix.sequence_number >= first &&
+            fix.sequence_number <= last) {
+          ++answers[fix.sequence_number];
+        }
+      }
+      EXPECT_EQ(answers.size(), last - first + 1) << robot_id;
+      for (const auto& [frame, count] : answers) {
+        EXPECT_EQ(count, 1) << robot_id << " frame " << frame;
+      }
+    }
+  };
+  constexpr uint32_t kFramesEach = 10;
+  for (uint32_t frame = 0; frame < kFramesEach; ++frame) {
+    sendAll();
+    observer.pollUntil([] { return false; }, 50);
+  }
+  ASSERT_TRUE(
+      observer.pollUntil([&] { return observer.fixes.size() >= robot_ids.size() * kFramesEach; }));
+  observer.pollUntil([] { return false; }, 300);
+  expectAnsweredOnce(1, kFramesEach);
+  EXPECT_EQ(statsOf("east").value("frames_served_elsewhere", 0), 2 * kFramesEach);
+  EXPECT_EQ(statsOf("west").value("frames_served_elsewhere", 0), 2 * kFramesEach);
+
+  east->signal(SIGKILL);
+  const int64_t killed_ns = steadyClockNs();
+  std::string east_robot;
+  for (const std::string& robot_id : robot_ids) {
+    if (servingBackbone(robot_id, backbones) == "east") {
+      east_robot = robot_id;
+    }
+  }
+  const uint32_t after_kill = sequence + 1;
+  std::optional<int64_t> taken_over_ns;
+  ASSERT_TRUE(observer.pollUntil([&] {
+    sendAll();
+    observer.pollUntil([] { return false; }, 50);
+    for (const PoseFixData& fix : observer.fixes) {
+      if (fix.robot_id == east_robot && fix.sequence_number >= after_kill && !taken_over_ns) {
+        taken_over_ns = steadyClockNs();
+      }
+    }
+    return taken_over_ns && steadyClockNs() > *taken_over_ns + 500'000'000;
+  })) << log("west.log");
+  const uint32_t taken_over_from = sequence;
+  for (int frame = 0; frame < 10; ++frame) {
+    sendAll();
+    observer.pollUntil([] { return false; }, 50);
+  }
+  observer.pollUntil([] { return false; }, 300);
+  expectAnsweredOnce(taken_over_from, sequence);
+  EXPECT_EQ(statsOf("west").value("backbones", 0), 1);
+  fmt::print("takeover: the killed backbone's robots answered again {:.2f} s after the kill\n",
+             (*taken_over_ns - killed_ns) * 1e-9);
+  west->signal(SIGTERM);
+  EXPECT_EQ(west->wait(kTimeoutMs), 0) << log("west.log");
 }
 
 }  // namespace

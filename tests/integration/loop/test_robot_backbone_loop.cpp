@@ -853,7 +853,8 @@ TEST_F(RobotBackboneLoop, AFloodFromSixteenRobotIdsLeavesAnotherRobotAnsweredOnE
 // Two backbones on one domain share four robots, two each (robot_assignment.h):
 // every frame is answered once, by its robot's backbone. One killed
 // (SIGKILL), the other answers its robots too once the killed one's
-// liveliness lease (1 s) has run out, each frame again once.
+// liveliness lease (1 s) has run out, each frame again once; restarted, it
+// takes them back without a frame left unanswered.
 TEST_F(RobotBackboneLoop, TwoBackbonesShareTheRobotsAndOneTakesOverWhenTheOtherIsKilled) {
   const auto backbone = [&](const std::string& name) {
     return start("lineloc-backbone", "backbone-test", name + ".log",
@@ -960,8 +961,38 @@ TEST_F(RobotBackboneLoop, TwoBackbonesShareTheRobotsAndOneTakesOverWhenTheOtherI
   EXPECT_EQ(statsOf("west").value("backbones", 0), 1);
   fmt::print("takeover: the killed backbone's robots answered again {:.2f} s after the kill\n",
              (*taken_over_ns - killed_ns) * 1e-9);
-  west->signal(SIGTERM);
-  EXPECT_EQ(west->wait(kTimeoutMs), 0) << log("west.log");
+
+  // Restarted, east takes its robots back; every frame is still answered,
+  // once each once both see each other.
+  const int west_elsewhere = statsOf("west").value("frames_served_elsewhere", 0);
+  east = backbone("east");
+  const uint32_t restarted_from = sequence + 1;
+  ASSERT_TRUE(observer.pollUntil([&] {
+    sendAll();
+    observer.pollUntil([] { return false; }, 50);
+    return statsOf("east").value("backbones", 0) == 2 && statsOf("west").value("backbones", 0) == 2;
+  })) << log("east.log");
+  const uint32_t shared_again_from = sequence + 1;
+  for (int frame = 0; frame < 10; ++frame) {
+    sendAll();
+    observer.pollUntil([] { return false; }, 50);
+  }
+  observer.pollUntil([] { return false; }, 300);
+  for (const std::string& robot_id : robot_ids) {
+    std::set<uint32_t> answered;
+    for (const PoseFixData& fix : observer.fixes) {
+      if (fix.robot_id == robot_id && fix.sequence_number >= restarted_from) {
+        answered.insert(fix.sequence_number);
+      }
+    }
+    EXPECT_EQ(answered.size(), sequence - restarted_from + 1) << robot_id << ": a frame unanswered";
+  }
+  expectAnsweredOnce(shared_again_from, sequence);
+  EXPECT_GE(statsOf("west").value("frames_served_elsewhere", 0), west_elsewhere + 2 * 10);
+  for (auto* process : {&east, &west}) {
+    (*process)->signal(SIGTERM);
+    EXPECT_EQ((*process)->wait(kTimeoutMs), 0);
+  }
 }
 
 }  // namespace

@@ -12,6 +12,11 @@
 #                                  or lineloc_reader (lineloc-backbone)
 #   deploy/pg.sh rotate-passwords  give every role a new password
 #   deploy/pg.sh destroy           stop and delete the data directory
+#   deploy/pg.sh replicate PORT    make this port's cluster a read-only streaming
+#                                  replica of the cluster on PORT (running, on
+#                                  this machine) and start it; start, stop,
+#                                  status, conninfo and destroy then work on it
+#                                  as on any cluster
 #
 # Every role logs in with a scram-sha-256 password; pg_hba.conf trusts no one.
 # The passwords are random, made here, and kept in the data directory's pgpass
@@ -23,8 +28,19 @@
 # that is a symbolic link, not the cluster's OS user's, or open to other users
 # is refused, and every file in it is written as the cluster's OS user.
 #
+# A replica is a copy of its primary's data directory (pg_basebackup) that
+# follows its write-ahead log: the same roles and passwords (its own copy of
+# the pgpass file, made again by replicate after rotate-passwords), read-only
+# for every role. The primary lets the role lineloc_replication stream from
+# 127.0.0.1 alone. A program that reads (lineloc-backbone) may name several
+# clusters in one libpq connection string ("host=127.0.0.1,127.0.0.1
+# port=55433,55432 target_session_attrs=prefer-standby"); it then uses the
+# first that answers and another when that one fails.
+#
 # Environment: LINELOC_PG_PORT (default 55432), LINELOC_PG_DIR (default
-# /tmp/lineloc-pg-<port>), LINELOC_PG_USER (OS user when run as root; default lineloc).
+# /tmp/lineloc-pg-<port>), LINELOC_PG_USER (OS user when run as root; default
+# lineloc), LINELOC_PG_PRIMARY_DIR (replicate: the primary's data directory;
+# default /tmp/lineloc-pg-<its port>).
 set -euo pipefail
 
 PORT="${LINELOC_PG_PORT:-55432}"
@@ -36,6 +52,7 @@ SUPERUSER="lineloc"
 OWNER="lineloc_owner"
 WRITER="lineloc_writer"
 READER="lineloc_reader"
+REPLICATION="lineloc_replication"
 DB_NAME="lineloc"
 
 die() { echo "pg.sh: $*" >&2; exit 1; }
@@ -111,11 +128,12 @@ create_data_dir() {
 new_password() { head -c 24 /dev/urandom | base64 | tr -d '+/='; }
 
 # A pgpass file's lines (host:port:database:user:password) with a new password
-# for every role.
+# for every role, on any port: a replica's roles and passwords are its
+# primary's, and one connection string may name both.
 new_pgpass() {
   local role
-  for role in "$SUPERUSER" "$OWNER" "$WRITER" "$READER"; do
-    echo "*:$PORT:*:$role:$(new_password)"
+  for role in "$SUPERUSER" "$OWNER" "$WRITER" "$READER" "$REPLICATION"; do
+    echo "*:*:*:$role:$(new_password)"
   done
 }
 
@@ -127,9 +145,13 @@ password_in() { awk -F: -v role="$2" '$4 == role { print $5 }' <<<"$1"; }
 completed_pgpass() {
   local pgpass role complete=true
   pgpass="$(as_owner cat "$PGPASS")"
-  for role in "$OWNER" "$WRITER" "$READER"; do
+  if grep -q "^\*:$PORT:" <<<"$pgpass"; then
+    pgpass="$(sed "s/^\*:$PORT:/*:*:/" <<<"$pgpass")"
+    complete=false
+  fi
+  for role in "$OWNER" "$WRITER" "$READER" "$REPLICATION"; do
     if [ -z "$(password_in "$pgpass" "$role")" ]; then
-      pgpass+=$'\n'"*:$PORT:*:$role:$(new_password)"
+      pgpass+=$'\n'"*:*:*:$role:$(new_password)"
       complete=false
     fi
   done
@@ -139,10 +161,15 @@ completed_pgpass() {
 
 write_hba() {
   write_as_owner "$DATA_DIR/pg_hba.conf" <<'HBA'
-# Every role logs in with its password, on the socket and on loopback alike.
-# TYPE  DATABASE  USER  ADDRESS       METHOD
-local   all       all                 scram-sha-256
-host    all       all   127.0.0.1/32  scram-sha-256
+# Every role logs in with its password, on the socket and on loopback alike;
+# a replica on this machine streams as lineloc_replication, which may do
+# nothing else ("all" does not match replication connections).
+# TYPE  DATABASE     USER                 ADDRESS       METHOD
+local   all          lineloc_replication                reject
+host    all          lineloc_replication  127.0.0.1/32  reject
+local   all          all                                scram-sha-256
+host    all          all                  127.0.0.1/32  scram-sha-256
+host    replication  lineloc_replication  127.0.0.1/32  scram-sha-256
 HBA
 }
 
@@ -198,11 +225,14 @@ secure_trusting_cluster() {
 # superuser; the owner may create databases (the tests make their own).
 apply_roles() {
   psql_superuser -d postgres <<SQL
-SELECT format('CREATE ROLE %I', role) FROM unnest(ARRAY['$OWNER', '$WRITER', '$READER']) AS role
+SELECT format('CREATE ROLE %I', role)
+  FROM unnest(ARRAY['$OWNER', '$WRITER', '$READER', '$REPLICATION']) AS role
   WHERE NOT EXISTS (SELECT FROM pg_roles WHERE rolname = role) \gexec
 ALTER ROLE $OWNER LOGIN NOSUPERUSER CREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$OWNER")';
 ALTER ROLE $WRITER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$WRITER")';
 ALTER ROLE $READER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$READER")';
+ALTER ROLE $REPLICATION LOGIN REPLICATION NOSUPERUSER NOCREATEDB NOCREATEROLE
+  PASSWORD '$(password_in "$1" "$REPLICATION")';
 ALTER ROLE $SUPERUSER PASSWORD '$(password_in "$1" "$SUPERUSER")';
 SQL
 }
@@ -239,12 +269,20 @@ start() {
     initialise
   elif [ ! -f "$PGPASS" ]; then
     secure_trusting_cluster
-  elif is_running; then
-    echo "pg.sh: running on port $PORT ($DATA_DIR)"
+  fi
+  if [ -f "$DATA_DIR/standby.signal" ]; then
+    is_running || start_server
+    echo "pg.sh: running on port $PORT ($DATA_DIR), a replica"
     return 0
   fi
-  as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -l "$DATA_DIR/server.log" -w -t 60 start >/dev/null \
-    || { as_owner tail -20 "$DATA_DIR/server.log" >&2; die "server did not start"; }
+  # A cluster of an earlier pg.sh is brought up to this one's rules whether
+  # it runs already or not.
+  write_hba
+  if is_running; then
+    as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" reload >/dev/null
+  else
+    start_server
+  fi
   apply_roles "$(completed_pgpass)"
   # Extensions in template1 so every database created later (tests) has them.
   psql_superuser -d template1 \
@@ -254,7 +292,12 @@ SELECT 'CREATE DATABASE $DB_NAME OWNER $OWNER'
   WHERE NOT EXISTS (SELECT FROM pg_database WHERE datname = '$DB_NAME') \gexec
 SQL
   hand_over_databases
-  echo "pg.sh: started on port $PORT ($DATA_DIR)"
+  echo "pg.sh: running on port $PORT ($DATA_DIR)"
+}
+
+start_server() {
+  as_owner "$PG_BIN/pg_ctl" -D "$DATA_DIR" -l "$DATA_DIR/server.log" -w -t 60 start >/dev/null \
+    || { as_owner tail -20 "$DATA_DIR/server.log" >&2; die "server did not start"; }
 }
 
 stop() {
@@ -287,6 +330,34 @@ conninfo() {
   echo "host=127.0.0.1 port=$PORT user=$role dbname=$DB_NAME passfile='$PGPASS'"
 }
 
+# This port's cluster as a streaming replica of the one on $1 (see above).
+replicate() {
+  local primary_port="$1" primary_dir primary_pgpass
+  [[ "$primary_port" =~ ^[0-9]+$ ]] && [ "$primary_port" != "$PORT" ] \
+    || die "replicate: give the primary's port, not this cluster's ($PORT)"
+  primary_dir="${LINELOC_PG_PRIMARY_DIR:-${TMPDIR:-/tmp}/lineloc-pg-${primary_port}}"
+  primary_pgpass="$primary_dir/pgpass"
+  check_data_dir
+  [ ! -f "$DATA_DIR/PG_VERSION" ] || die "$DATA_DIR holds a cluster already; destroy it first"
+  LINELOC_PG_PORT="$primary_port" LINELOC_PG_DIR="$primary_dir" "$0" status >/dev/null \
+    || die "no cluster runs on port $primary_port ($primary_dir)"
+  ensure_os_user
+  [ -d "$DATA_DIR" ] || create_data_dir
+  local output
+  output="$(as_owner env PGPASSFILE="$primary_pgpass" "$PG_BIN/pg_basebackup" -w \
+    -h 127.0.0.1 -p "$primary_port" -U "$REPLICATION" -D "$DATA_DIR" -R -X stream 2>&1)" \
+    || { echo "$output" >&2; die "pg_basebackup from port $primary_port failed"; }
+  as_owner chmod 700 "$DATA_DIR"
+  append_as_owner "$DATA_DIR/postgresql.conf" <<CONF
+port = $PORT
+unix_socket_directories = '$DATA_DIR'
+hot_standby = on
+CONF
+  as_owner cat "$primary_pgpass" | write_as_owner "$PGPASS"
+  start_server
+  echo "pg.sh: replica of port $primary_port started on port $PORT ($DATA_DIR)"
+}
+
 destroy() {
   stop
   as_owner rm -rf "$DATA_DIR"
@@ -303,5 +374,6 @@ case "${1:-}" in
   conninfo) conninfo "${2:-}" ;;
   rotate-passwords) rotate_passwords ;;
   destroy) destroy ;;
-  *) echo "usage: $0 start|stop|status|conninfo [ROLE]|rotate-passwords|destroy" >&2; exit 2 ;;
+  replicate) replicate "${2:-}" ;;
+  *) echo "usage: $0 start|stop|status|conninfo [ROLE]|rotate-passwords|destroy|replicate PORT" >&2; exit 2 ;;
 esac

@@ -9,7 +9,10 @@
 namespace lineloc {
 
 // Connects to `conninfo` and finds site `site_name` now; throws
-// db::DatabaseError when either fails.
+// db::DatabaseError when either fails. A fetch whose server has gone away
+// connects again and asks once more: with a connection string that names
+// several servers (a replica, then its primary; docs/production.md), the
+// next that answers.
 TileFetcher makeDatabaseTileFetcher(const std::string& conninfo, const std::string& site_name);
 
 }  // namespace lineloc

@@ -50,12 +50,29 @@ std::string clusterConninfo(const std::string& port, DatabaseRole role) {
   return conninfo;
 }
 
-std::string testClusterConninfo(const std::string& database, DatabaseRole role) {
+namespace {
+
+std::string testClusterPort() {
   const char* port = std::getenv("LINELOC_TEST_PG_PORT");
   if (port == nullptr) {
     throw std::runtime_error(
         "LINELOC_TEST_PG_PORT is not set: run this test through ctest (fixture 'postgis')");
   }
+  return port;
+}
+
+void runPgScript(const std::string& port, const std::string& arguments) {
+  const std::string command = fmt::format("LINELOC_PG_PORT='{}' '{}/deploy/pg.sh' {} >/dev/null",
+                                          port, LINELOC_SOURCE_DIR, arguments);
+  if (std::system(command.c_str()) != 0) {
+    throw std::runtime_error(command + " failed");
+  }
+}
+
+}  // namespace
+
+std::string testClusterConninfo(const std::string& database, DatabaseRole role) {
+  const std::string port = testClusterPort();
   // deploy/pg.sh runs once per role and process.
   static std::mutex mutex;
   static std::map<DatabaseRole, std::string> cluster_conninfo;
@@ -66,6 +83,27 @@ std::string testClusterConninfo(const std::string& database, DatabaseRole role) 
   }
   // libpq takes the last value of a repeated keyword.
   return fmt::format("{} dbname={}", known->second, database);
+}
+
+TestReplica::TestReplica() : port_(std::to_string(std::stoi(testClusterPort()) + 1)) {
+  runPgScript(port_, "destroy");
+  runPgScript(port_, "replicate " + testClusterPort());
+}
+
+TestReplica::~TestReplica() {
+  try {
+    runPgScript(port_, "destroy");
+  } catch (const std::exception&) {
+    // Nothing more to clean.
+  }
+}
+
+std::string TestReplica::conninfo(const std::string& database, DatabaseRole role) const {
+  return fmt::format("{} dbname={}", clusterConninfo(port_, role), database);
+}
+
+void TestReplica::run(const std::string& command) const {
+  runPgScript(port_, command);
 }
 
 TestDatabase::TestDatabase(const std::string& name)

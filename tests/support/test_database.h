@@ -37,6 +37,26 @@ class TestDatabase {
   std::string database_;
 };
 
+// A streaming replica of the test cluster (deploy/pg.sh replicate) on the
+// port after the cluster's, for one test: made anew, destroyed afterwards.
+// One test at a time may hold it.
+class TestReplica {
+ public:
+  TestReplica();
+  ~TestReplica();
+  TestReplica(const TestReplica&) = delete;
+  TestReplica& operator=(const TestReplica&) = delete;
+
+  const std::string& port() const { return port_; }
+  // libpq connection string of the replica's database `database` as `role`.
+  std::string conninfo(const std::string& database, DatabaseRole role) const;
+  // deploy/pg.sh `command` ("stop", "start") on the replica.
+  void run(const std::string& command) const;
+
+ private:
+  std::string port_;
+};
+
 // Inserts site 'test' (EPSG:7415, origin `origin`) and a 10 m cube at the site
 // origin offset by `corner_world` (12 lines, 6 faces); returns the site id.
 int insertCubeBuilding(const std::string& conninfo, double origin_x, double origin_y,

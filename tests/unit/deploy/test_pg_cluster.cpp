@@ -66,7 +66,7 @@ TEST(PgCluster, HbaTrustsNoOneAndAsksEveryoneForAPassword) {
       continue;
     }
     ++rules;
-    EXPECT_EQ(fields.back(), "scram-sha-256") << line;
+    EXPECT_TRUE(fields.back() == "scram-sha-256" || fields.back() == "reject") << line;
     EXPECT_EQ(line.find("trust"), std::string::npos) << line;
   }
   EXPECT_GT(rules, 0);
@@ -92,6 +92,13 @@ TEST(PgCluster, RefusesEveryRoleWithoutItsPassword) {
   }
 }
 
+// It streams to a replica (test_pg_replica.cpp) and logs in nowhere else.
+TEST(PgCluster, TheReplicationRoleLogsInToNoDatabase) {
+  const std::string error =
+      connectionError(test::testClusterConninfo("postgres") + " user=lineloc_replication");
+  EXPECT_NE(error.find("pg_hba.conf rejects connection"), std::string::npos) << error;
+}
+
 TEST(PgCluster, NoRoleOfTheProgramsIsASuperuserOrRunsServerPrograms) {
   db::Connection owner(test::testClusterConninfo("postgres"));
   const db::Result superusers =
@@ -99,10 +106,11 @@ TEST(PgCluster, NoRoleOfTheProgramsIsASuperuserOrRunsServerPrograms) {
   EXPECT_EQ(superusers.text(0, 0), "lineloc") << "the setup superuser alone";
   const db::Result powerful = owner.exec(
       "SELECT count(*) FROM pg_roles WHERE rolname LIKE 'lineloc\\_%' AND (rolcreaterole OR "
-      "rolreplication OR rolbypassrls OR pg_has_role(oid, 'pg_execute_server_program', 'USAGE') "
-      "OR pg_has_role(oid, 'pg_write_server_files', 'USAGE') OR pg_has_role(oid, "
+      "(rolreplication AND rolname <> 'lineloc_replication') OR rolbypassrls OR "
+      "pg_has_role(oid, 'pg_execute_server_program', 'USAGE') OR "
+      "pg_has_role(oid, 'pg_write_server_files', 'USAGE') OR pg_has_role(oid, "
       "'pg_read_server_files', 'USAGE'))");
-  EXPECT_EQ(powerful.text(0, 0), "0");
+  EXPECT_EQ(powerful.text(0, 0), "0") << "replication is the replication role's alone";
   for (const DatabaseRole role : kRoles) {
     db::Connection connection(test::testClusterConninfo("postgres", role));
     EXPECT_THROW(connection.exec("COPY (SELECT 1) TO PROGRAM 'true'"), db::DatabaseError);

@@ -2,7 +2,8 @@
 # deploy/pg.sh refuses a data directory path another user could have planted
 # (a symbolic link, a file, a directory not the cluster user's alone, a parent
 # others may rename entries of) with a message saying so, and changes nothing
-# it finds there. No cluster is started.
+# it finds there; it refuses to replicate without a primary. No cluster is
+# started.
 #
 #   test_pg_sh.sh PATH/TO/pg.sh
 set -euo pipefail
@@ -45,5 +46,23 @@ expect_refusal open "refusing to use it"
 mkdir -m 777 "$WORK/shared"
 expect_refusal shared/cluster "writable by other users and not sticky"
 [ ! -e "$WORK/shared/cluster" ] || { echo "FAIL: pg.sh created shared/cluster"; failures=$((failures + 1)); }
+
+# replicate needs another cluster's port, and one running there; nothing is made without.
+expect_replicate_refusal() {
+  local output
+  if output="$(LINELOC_PG_PORT=55449 LINELOC_PG_DIR="$WORK/replica" "$PG_SH" replicate "$1" 2>&1)"; then
+    echo "FAIL: pg.sh replicated port '$1': $output"
+    failures=$((failures + 1))
+  elif [[ "$output" != *"$2"* ]]; then
+    echo "FAIL: pg.sh refused to replicate '$1' without saying '$2': $output"
+    failures=$((failures + 1))
+  else
+    echo "ok: replicate '$1': $output"
+  fi
+  [ ! -e "$WORK/replica" ] || { echo "FAIL: pg.sh created the replica"; failures=$((failures + 1)); }
+}
+expect_replicate_refusal "" "give the primary's port"
+expect_replicate_refusal 55449 "give the primary's port"
+expect_replicate_refusal 1 "no cluster runs on port 1"
 
 [ "$failures" -eq 0 ]

@@ -345,7 +345,8 @@ replicate() {
   [ -d "$DATA_DIR" ] || create_data_dir
   local output
   output="$(as_owner env PGPASSFILE="$primary_pgpass" "$PG_BIN/pg_basebackup" -w \
-    -h 127.0.0.1 -p "$primary_port" -U "$REPLICATION" -D "$DATA_DIR" -R -X stream 2>&1)" \
+    -h 127.0.0.1 -p "$primary_port" -U "$REPLICATION" -D "$DATA_DIR" -R -X stream --checkpoint=fast \
+    2>&1)" \
     || { echo "$output" >&2; die "pg_basebackup from port $primary_port failed"; }
   as_owner chmod 700 "$DATA_DIR"
   append_as_owner "$DATA_DIR/postgresql.conf" <<CONF

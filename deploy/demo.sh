@@ -24,6 +24,12 @@
 # LINELOC_DEMO_DDS_SECURITY (1: the robot and the backbone talk through DDS
 # Security, deploy/dds-security.sh, with the CA in LINELOC_DDS_SECURITY_DIR,
 # default out/dds-security/; 0: unsecured, for development).
+#
+# A fleet (deploy/fleet.sh): LINELOC_DEMO_BACKBONES backbones (default 1)
+# sharing LINELOC_DEMO_ROBOTS robots (default 1), robot i driving seed
+# SEED + i - 1 with its outputs in robot-i/; LINELOC_DEMO_KILL_BACKBONE_AT_S
+# (default 0: never) kills the first backbone (SIGKILL) that long after the
+# robots start, and the others take its robots over.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${LINELOC_BUILD_DIR:-$ROOT/build}"
@@ -43,6 +49,9 @@ REALTIME_PRIORITY="${LINELOC_DEMO_REALTIME_PRIORITY:-10}"
 BACKBONE_REALTIME_PRIORITY="${LINELOC_DEMO_BACKBONE_REALTIME_PRIORITY:-5}"
 CITY="${LINELOC_DEMO_CITY:-delft}"
 DDS_SECURITY="${LINELOC_DEMO_DDS_SECURITY:-1}"
+BACKBONES="${LINELOC_DEMO_BACKBONES:-1}"
+ROBOTS="${LINELOC_DEMO_ROBOTS:-1}"
+KILL_BACKBONE_AT_S="${LINELOC_DEMO_KILL_BACKBONE_AT_S:-0}"
 MODEL_CRS=()
 # Site frame: the site's CRS minus an origin near the model's centre; for the
 # named cities EPSG:7415 (RD New + NAP height).
@@ -81,20 +90,24 @@ DDS_CONFIG="$ROOT/deploy/cyclonedds.xml"
 if [ "$BACKBONE_REALTIME_PRIORITY" -gt 0 ] && chrt -f 6 true 2>/dev/null; then
   DDS_CONFIG+=",$ROOT/deploy/cyclonedds-realtime.xml"
 fi
-# DDS Security (deploy/dds-security.sh): the backbone and the robot each with
-# an identity of the site's CA, kept in $LINELOC_DDS_SECURITY_DIR.
-ROBOT_ID=demo-robot
-BACKBONE_DDS_CONFIG="$DDS_CONFIG"
-ROBOT_DDS_CONFIG="$DDS_CONFIG"
-# The overlay of identity $1-$2, issued when there is none yet.
-identity() {
-  "$ROOT/deploy/dds-security.sh" config "$1-$2" 2>/dev/null ||
-    "$ROOT/deploy/dds-security.sh" issue "$1" "$2"
+# One robot's id and folder, or robot $1's of a fleet; backbone $1's name and
+# the prefix of its log and counters.
+robot_id() { if [ "$ROBOTS" -eq 1 ]; then echo demo-robot; else echo "demo-robot-$1"; fi; }
+robot_out() { if [ "$ROBOTS" -eq 1 ]; then echo "$OUT"; else echo "$OUT/robot-$1"; fi; }
+backbone_name() { if [ "$BACKBONES" -eq 1 ]; then echo demo; else echo "demo-$1"; fi; }
+backbone_out() { if [ "$BACKBONES" -eq 1 ]; then echo "$OUT/backbone"; else echo "$OUT/backbone-$1"; fi; }
+# DDS Security (deploy/dds-security.sh): each backbone and robot with an
+# identity of the site's CA, kept in $LINELOC_DDS_SECURITY_DIR. The DDS
+# configuration of participant $1 ("backbone" or "robot") named $2, its
+# identity issued when there is none yet.
+dds_config_of() {
+  if [ "$DDS_SECURITY" = 1 ]; then
+    echo "$DDS_CONFIG,$("$ROOT/deploy/dds-security.sh" config "$1-$2" 2>/dev/null ||
+      "$ROOT/deploy/dds-security.sh" issue "$1" "$2")"
+  else
+    echo "$DDS_CONFIG"
+  fi
 }
-if [ "$DDS_SECURITY" = 1 ]; then
-  BACKBONE_DDS_CONFIG+=",$(identity backbone demo)"
-  ROBOT_DDS_CONFIG+=",$(identity robot "$ROBOT_ID")"
-fi
 # The simulated robot's camera rides this high above the road; the robot knows
 # it as a constant of its build and tells the backbone.
 CAMERA_HEIGHT_M=1.5
@@ -119,34 +132,65 @@ READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
 "$BIN/lineloc-load" --db "$WRITER_CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
   --site-origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
 
-echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $SEED, camera ${CAMERA_HZ} Hz)${SIM_ARGS[*]:+, ${SIM_ARGS[*]}}"
-"$BIN/lineloc-sim" --city-model "$CITY_MODEL" "${MODEL_CRS[@]}" --site-origin "${SITE_ORIGIN[@]}" \
-  --out "$OUT/dataset" --seed "$SEED" --duration-s "$DURATION_S" \
-  --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
-  --start-utc "$START_UTC" --sun-from-clock "${SIM_ARGS[@]}"
+for robot in $(seq 1 "$ROBOTS"); do
+  seed=$((SEED + robot - 1))
+  echo "demo: simulating a ${DURATION_S} s drive through $SITE (seed $seed, camera ${CAMERA_HZ} Hz)${SIM_ARGS[*]:+, ${SIM_ARGS[*]}}"
+  mkdir -p "$(robot_out "$robot")"
+  "$BIN/lineloc-sim" --city-model "$CITY_MODEL" "${MODEL_CRS[@]}" --site-origin "${SITE_ORIGIN[@]}" \
+    --out "$(robot_out "$robot")/dataset" --seed "$seed" --duration-s "$DURATION_S" \
+    --camera-height-m "$CAMERA_HEIGHT_M" --camera-rate-hz "$CAMERA_HZ" \
+    --start-utc "$START_UTC" --sun-from-clock "${SIM_ARGS[@]}"
+done
 
-"$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$BACKBONE_DDS_CONFIG" \
-  --db "$READER_CONNINFO" --site "$SITE" --sun-from-clock \
-  --realtime-priority "$BACKBONE_REALTIME_PRIORITY" --stats-file "$OUT/backbone-stats.json" \
-  >"$OUT/backbone.log" 2>&1 &
-BACKBONE_PID=$!
-trap 'kill "$BACKBONE_PID" 2>/dev/null || true' EXIT
+BACKBONE_PIDS=()
+trap 'kill "${BACKBONE_PIDS[@]}" 2>/dev/null || true' EXIT
+for backbone in $(seq 1 "$BACKBONES"); do
+  "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" \
+    --dds-config "$(dds_config_of backbone "$(backbone_name "$backbone")")" \
+    --backbone-name "$(backbone_name "$backbone")" --db "$READER_CONNINFO" --site "$SITE" \
+    --sun-from-clock --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
+    --stats-file "$(backbone_out "$backbone")-stats.json" >"$(backbone_out "$backbone").log" 2>&1 &
+  BACKBONE_PIDS+=($!)
+done
 
-echo "demo: robot and backbone running in real time over DDS"
-"$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" --dds-config "$ROBOT_DDS_CONFIG" \
-  --robot-id "$ROBOT_ID" --images "$OUT/dataset" \
-  --camera-calibration "$OUT/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
-  --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
-  --start-at-s "$ROBOT_START_S" --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$OUT/fixes.tum" \
-  --fix-log-out "$OUT/fixes.txt" --state-log-out "$OUT/states.txt" \
-  --fused-trajectory-out "$OUT/fused.tum" 2>"$OUT/robot.log"
+echo "demo: $ROBOTS robot(s) and $BACKBONES backbone(s) running in real time over DDS"
+ROBOT_PIDS=()
+for robot in $(seq 1 "$ROBOTS"); do
+  dir="$(robot_out "$robot")"
+  "$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" \
+    --dds-config "$(dds_config_of robot "$(robot_id "$robot")")" \
+    --robot-id "$(robot_id "$robot")" --images "$dir/dataset" \
+    --camera-calibration "$dir/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
+    --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \
+    --start-at-s "$ROBOT_START_S" --site-origin "${SITE_ORIGIN[@]}" --trajectory-out "$dir/fixes.tum" \
+    --fix-log-out "$dir/fixes.txt" --state-log-out "$dir/states.txt" \
+    --fused-trajectory-out "$dir/fused.tum" 2>"$dir/robot.log" &
+  ROBOT_PIDS+=($!)
+done
+if [ "$KILL_BACKBONE_AT_S" != 0 ]; then
+  (sleep "$KILL_BACKBONE_AT_S" && kill -KILL "${BACKBONE_PIDS[0]}" &&
+    echo "demo: backbone $(backbone_name 1) killed ${KILL_BACKBONE_AT_S} s after the robots started") &
+fi
+robots_failed=0
+for pid in "${ROBOT_PIDS[@]}"; do
+  wait "$pid" || robots_failed=$((robots_failed + 1))
+done
 
-kill -TERM "$BACKBONE_PID" && wait "$BACKBONE_PID" || true
+for pid in "${BACKBONE_PIDS[@]}"; do
+  kill -TERM "$pid" 2>/dev/null && wait "$pid" || true
+done
 trap - EXIT
-grep -v "^\[" "$OUT/backbone.log" || true
+for backbone in $(seq 1 "$BACKBONES"); do
+  grep -v "^\[" "$(backbone_out "$backbone").log" || true
+done
 
-echo "demo: the robot's pose at each frame (what it knew then) against the ground truth"
-"$BIN/lineloc-eval" --ground-truth "$OUT/dataset/groundtruth_cam0.tum" --estimate "$OUT/fused.tum" \
-  --fix-log "$OUT/fixes.txt" --state-log "$OUT/states.txt" --city-model "$CITY_MODEL" --site-origin "${SITE_ORIGIN[@]}" \
-  --plot "$OUT/evaluation.png"
-echo "demo: plot in $OUT/evaluation.png; fixes in $OUT/fixes.tum, backbone counters in $OUT/backbone-stats.json"
+for robot in $(seq 1 "$ROBOTS"); do
+  dir="$(robot_out "$robot")"
+  echo "demo: robot $(robot_id "$robot")'s pose at each frame (what it knew then) against the ground truth"
+  "$BIN/lineloc-eval" --ground-truth "$dir/dataset/groundtruth_cam0.tum" --estimate "$dir/fused.tum" \
+    --fix-log "$dir/fixes.txt" --state-log "$dir/states.txt" --city-model "$CITY_MODEL" \
+    --site-origin "${SITE_ORIGIN[@]}" --plot "$dir/evaluation.png"
+  echo "demo: plot in $dir/evaluation.png; fixes in $dir/fixes.tum"
+done
+echo "demo: backbone counters in $(backbone_out 1)-stats.json$([ "$BACKBONES" -gt 1 ] && echo " and the others beside it")"
+[ "$robots_failed" -eq 0 ] || { echo "demo: $robots_failed robot(s) failed; see their robot.log" >&2; exit 1; }

@@ -45,8 +45,6 @@ class HeaderBytes {
     }
   }
 
-  int peek() { return in_.peek(); }
-
  private:
   std::istream& in_;
   const std::string& source_;
@@ -129,7 +127,10 @@ ImageHeader readBmp(HeaderBytes& bytes) {
   return checkedSize(bytes, "BMP", width, height < 0 ? -height : height);
 }
 
-// A decimal after whitespace and '#' comments (Netpbm's header tokens).
+// A decimal after whitespace and '#' comments (Netpbm's header tokens). The
+// byte after its digits ends it and is consumed with it, '#' included, as
+// OpenCV's decoder reads it: "10#6\n255" is 10 then 6, where the Netpbm
+// specification would read 10, a comment, then 255.
 int64_t netpbmNumber(HeaderBytes& bytes) {
   uint8_t c = bytes.byte("Netpbm header");
   while (std::isspace(c) || c == '#') {
@@ -149,14 +150,10 @@ int64_t netpbmNumber(HeaderBytes& bytes) {
     if (value > kMaxSide) {
       bytes.fail("Netpbm header gives a size out of range");
     }
-    const int next = bytes.peek();
-    if (next == std::char_traits<char>::eof()) {
-      bytes.fail("truncated Netpbm header");
-    }
-    if (!std::isdigit(next)) {
+    c = bytes.byte("Netpbm header");
+    if (!std::isdigit(c)) {
       return value;
     }
-    c = bytes.byte("Netpbm header");
   }
 }
 

@@ -78,6 +78,22 @@ TEST(ImageHeader, SkipsJpegSegmentsFillBytesAndNetpbmComments) {
   EXPECT_EQ(pgm.height_px, 480);
 }
 
+// A '#' right after a number ends it, and what follows is the next number,
+// as OpenCV decodes it: a header that hid a huge height behind it
+// ("32000#32000") would otherwise pass as one row and be decoded at 1 GP,
+// within OpenCV's own limit (CV_IO_MAX_IMAGE_PIXELS, 2^30).
+TEST(ImageHeader, ANetpbmNumberEndsAtTheByteAfterItAsOpenCvReadsIt) {
+  const std::string pgm = std::string("P5\n10#6\n255\n") + std::string(60, '\x07');
+  EXPECT_EQ(headerOf(pgm).width_px, 10);
+  EXPECT_EQ(headerOf(pgm).height_px, 6);
+  const std::vector<uint8_t> bytes(pgm.begin(), pgm.end());
+  const cv::Mat decoded = cv::imdecode(bytes, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
+  ASSERT_FALSE(decoded.empty());
+  EXPECT_EQ(decoded.cols, 10);
+  EXPECT_EQ(decoded.rows, 6);
+  EXPECT_EQ(headerOf("P5 32000#32000\n1\n").height_px, 32000);
+}
+
 TEST(ImageHeader, CraftedHeadersGiveTheHugeSizeTheyClaim) {
   std::string jpeg = encoded(".jpg");
   putBigEndian16(jpeg, jpegHeightOffset(jpeg), 20000);

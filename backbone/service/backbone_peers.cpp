@@ -25,7 +25,7 @@ struct BackbonePeers::Endpoints {
 
 BackbonePeers::BackbonePeers(const dds::Participant& participant, const std::string& name,
                              int64_t lease_ns)
-    : name_(name) {
+    : name_(name), alive_({name}) {
   if (!isValidBackboneName(name)) {
     throw std::invalid_argument("backbone name '" + name +
                                 "' must match [A-Za-z0-9][A-Za-z0-9_.-]* (at most 64 characters)");
@@ -49,24 +49,25 @@ BackbonePeers::BackbonePeers(const dds::Participant& participant, const std::str
 
 BackbonePeers::~BackbonePeers() = default;
 
-std::vector<std::string> BackbonePeers::alive() {
+std::vector<std::string> BackbonePeers::refresh() {
   std::vector<std::string> names = {name_};
-  if (!endpoints_) {
-    return names;
+  if (endpoints_) {
+    endpoints_->reader.readInstances([&](const lineloc_msg_BackbonePresence& presence, bool alive) {
+      const std::string name(presence.name);
+      if (alive && !name.empty() && std::find(names.begin(), names.end(), name) == names.end()) {
+        names.push_back(name);
+      }
+    });
   }
-  endpoints_->reader.readInstances([&](const lineloc_msg_BackbonePresence& presence, bool alive) {
-    const std::string name(presence.name);
-    if (alive && !name.empty() && std::find(names.begin(), names.end(), name) == names.end()) {
-      names.push_back(name);
-    }
-  });
   std::sort(names.begin(), names.end());
+  const std::lock_guard<std::mutex> lock(mutex_);
+  alive_ = names;
   return names;
 }
 
-bool BackbonePeers::serves(const std::string& robot_id,
-                           const std::vector<std::string>& alive) const {
-  return servingBackbone(robot_id, alive) == name_;
+bool BackbonePeers::serves(const std::string& robot_id) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return servingBackbone(robot_id, alive_) == name_;
 }
 
 }  // namespace lineloc

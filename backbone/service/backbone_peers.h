@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,16 +30,20 @@ class BackbonePeers {
 
   const std::string& name() const { return name_; }
 
-  // The backbones alive now, this one among them, sorted.
-  std::vector<std::string> alive();
+  // Looks which backbones are alive now and returns them, this one among
+  // them, sorted; serves() answers among them from then on.
+  std::vector<std::string> refresh();
 
-  // Whether this backbone serves `robot_id` among `alive` (alive()'s).
-  bool serves(const std::string& robot_id, const std::vector<std::string>& alive) const;
+  // Whether this backbone serves `robot_id` among the backbones alive at the
+  // last refresh(). Safe to call beside refresh().
+  bool serves(const std::string& robot_id) const;
 
  private:
   struct Endpoints;
   std::string name_;
   std::unique_ptr<Endpoints> endpoints_;
+  mutable std::mutex mutex_;
+  std::vector<std::string> alive_;
 };
 
 }  // namespace lineloc

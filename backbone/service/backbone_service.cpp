@@ -257,14 +257,6 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
                       static_cast<int64_t>(config.backbone_lease_s * 1e9));
   spdlog::info("backbone '{}': serving its share of the robots with the backbones alive",
                peers.name());
-  // The backbones alive, looked at before each frame; written by the
-  // LineSets' thread, read by the exposure notices'.
-  std::mutex alive_mutex;
-  std::vector<std::string> alive = peers.alive();
-  const auto servesRobot = [&](const std::string& robot_id) {
-    const std::lock_guard<std::mutex> lock(alive_mutex);
-    return peers.serves(robot_id, alive);
-  };
   const SiteWatch site(config, handler);
   const auto serving = [&] { return !stop && !site.refused(); };
   if (serving()) {
@@ -282,7 +274,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
             if (!speaksFor(exposures.writerPartitions(info.publication_handle), message.robot_id)) {
               handler.countDrop("exposure notice", message.sequence_number,
                                 notInItsPartition(message));
-            } else if (servesRobot(message.robot_id)) {
+            } else if (peers.serves(message.robot_id)) {
               handler.handleExposure(message);
             }
           });
@@ -297,12 +289,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     uint32_t robot_writers_seen = 0;
     while (serving()) {
       const bool data = !waiting.empty() || reader.waitForData(kWaitNs);
-      {
-        std::vector<std::string> now_alive = peers.alive();
-        handler.countBackbones(now_alive.size());
-        const std::lock_guard<std::mutex> lock(alive_mutex);
-        alive = std::move(now_alive);
-      }
+      handler.countBackbones(peers.refresh().size());
       const uint32_t robot_writers = reader.matchedWriters();
       if (!data || robot_writers != robot_writers_seen) {
         robot_writers_seen = robot_writers;
@@ -316,7 +303,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       reader.takeEach([&](const lineloc_msg_LineSet& message, const dds::SampleInfo& info) {
         if (!speaksFor(reader.writerPartitions(info.publication_handle), message.robot_id)) {
           handler.countDrop("LineSet", message.sequence_number, notInItsPartition(message));
-        } else if (!servesRobot(message.robot_id)) {
+        } else if (!peers.serves(message.robot_id)) {
           handler.countFrameServedElsewhere();
         } else if (std::optional<LineSetData> line_set = handler.accept(message)) {
           const int64_t taken_ns = steadyClockNs();

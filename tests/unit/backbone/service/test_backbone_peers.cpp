@@ -25,26 +25,24 @@ TEST(BackbonePeers, EachSeesTheOthersAliveAndOneThatLeavesIsGone) {
   dds::Participant east_participant(domain);
   dds::Participant west_participant(domain);
   BackbonePeers east(east_participant, "east", kLeaseNs);
-  EXPECT_EQ(east.alive(), Names({"east"}));
+  EXPECT_EQ(east.refresh(), Names({"east"}));
   {
     dds::Participant north_participant(domain);
     BackbonePeers west(west_participant, "west", kLeaseNs);
     BackbonePeers north(north_participant, "north", kLeaseNs);
     ASSERT_TRUE(test::waitFor([&] {
-      return east.alive() == Names({"east", "north", "west"}) &&
-             west.alive() == Names({"east", "north", "west"});
-    })) << east.alive().size();
-    const Names alive = east.alive();
+      return east.refresh() == Names({"east", "north", "west"}) &&
+             west.refresh() == Names({"east", "north", "west"}) &&
+             north.refresh() == Names({"east", "north", "west"});
+    })) << east.refresh().size();
     for (int robot = 0; robot < 100; ++robot) {
       const std::string robot_id = "robot-" + std::to_string(robot);
-      EXPECT_EQ(east.serves(robot_id, alive) + west.serves(robot_id, alive) +
-                    north.serves(robot_id, alive),
-                1)
+      EXPECT_EQ(east.serves(robot_id) + west.serves(robot_id) + north.serves(robot_id), 1)
           << robot_id;
     }
   }
-  EXPECT_TRUE(test::waitFor([&] { return east.alive() == Names({"east"}); }))
-      << east.alive().size();
+  EXPECT_TRUE(test::waitFor([&] { return east.refresh() == Names({"east"}); }))
+      << east.refresh().size();
 }
 
 TEST(BackbonePeers, RefusesANameThatIsNone) {

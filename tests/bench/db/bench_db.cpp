@@ -2,7 +2,8 @@
 // fast), on a PostGIS server named by LINELOC_BENCH_DB (a libpq connection
 // string; default the deploy/pg.sh cluster as its owner role, database
 // lineloc_bench, which is created and filled with a 100,000-building synthetic
-// city on first run):
+// city on first run; a streaming replica of a cluster that holds it, named by
+// LINELOC_BENCH_DB, is queried as it is, with --benchmark_filter=LinesWithin):
 //  - the 150 m query around random street positions: ModelLineQuery (line
 //    packs under a 2D GiST box, binary bytea, exact distance in C++) beside a
 //    plain ST_3DDWithin query decoded from text (with the n-D index it needs,
@@ -76,6 +77,10 @@ const lineloc::citymodel::SyntheticCityOptions& cityOptions() {
 Connection& cityDatabase() {
   static Connection connection = [] {
     Connection db(benchConninfo());
+    if (db.exec("SELECT pg_is_in_recovery()").text(0, 0) == "t") {
+      fmt::print("bench_db: querying a replica, which follows its primary's city and index\n");
+      return db;
+    }
     lineloc::db::applyMigrations(db, lineloc::db::embeddedMigrations());
     const std::string name = fmt::format("synthetic-{}-1", kCityBuildings);
     if (db.execParams("SELECT 1 FROM source_file WHERE name = $1", {name}).rows() == 0) {

@@ -333,8 +333,9 @@ conninfo() {
 # This port's cluster as a streaming replica of the one on $1 (see above).
 replicate() {
   local primary_port="$1" primary_dir primary_pgpass
-  [[ "$primary_port" =~ ^[0-9]+$ ]] && [ "$primary_port" != "$PORT" ] \
-    || die "replicate: give the primary's port, not this cluster's ($PORT)"
+  if [[ ! "$primary_port" =~ ^[0-9]+$ ]] || [ "$primary_port" = "$PORT" ]; then
+    die "replicate: give the primary's port, not this cluster's ($PORT)"
+  fi
   primary_dir="${LINELOC_PG_PRIMARY_DIR:-${TMPDIR:-/tmp}/lineloc-pg-${primary_port}}"
   primary_pgpass="$primary_dir/pgpass"
   check_data_dir

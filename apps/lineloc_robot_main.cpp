@@ -1,5 +1,6 @@
 // lineloc-robot: the onboard agent. Reads camera frames, sends their line
 // segments to the backbone over DDS and writes the poses it gets back.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -27,6 +28,17 @@ std::string describeLatency(const std::vector<int64_t>& durations_ns) {
                      lineloc::toMilliseconds(lineloc::percentile(durations_ns, 99)),
                      lineloc::toMilliseconds(lineloc::percentile(durations_ns, 100)));
 }
+// Options <prefix>_pose (tx ty tz qx qy qz qw) and its sigmas
+// <prefix>_position_sigma_m and <prefix>_rotation_sigma_deg.
+void addPoseOption(lineloc::ProgramOptions& options, const std::string& prefix,
+                   std::vector<double>& pose, double& position_sigma_m, double& rotation_sigma_deg,
+                   const std::string& what) {
+  options.addFixedSize(prefix + "_pose", pose, 7, fmt::format("{}, tx ty tz qx qy qz qw", what));
+  options.add(prefix + "_position_sigma_m", position_sigma_m,
+              fmt::format("standard deviation of the {} position (m)", prefix));
+  options.add(prefix + "_rotation_sigma_deg", rotation_sigma_deg,
+              fmt::format("standard deviation of the {} rotation (degrees)", prefix));
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -37,19 +49,11 @@ int main(int argc, char** argv) {
               "EuRoC/ASL dataset (cam0/, imu0/, gps0/, compass0/), cam0/ folder or image folder");
   options.add("camera_calibration", config.camera_calibration,
               "camera calibration (OpenCV YAML layout)");
-  options.addFixedSize("predicted_pose", config.predicted_pose, 7,
-                       "without IMU data: predicted T_world_camera, tx ty tz qx qy qz qw");
-  options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,
-              "standard deviation of the predicted position (m)");
-  options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
-              "standard deviation of the predicted rotation (degrees)");
-  options.addFixedSize("start_pose", config.start_pose, 7,
-                       "with IMU data and no GNSS: T_world_camera where the robot stands at its "
-                       "start, tx ty tz qx qy qz qw");
-  options.add("start_position_sigma_m", config.start_position_sigma_m,
-              "standard deviation of the start position (m)");
-  options.add("start_rotation_sigma_deg", config.start_rotation_sigma_deg,
-              "standard deviation of the start rotation (degrees)");
+  addPoseOption(options, "predicted", config.predicted_pose, config.predicted_position_sigma_m,
+                config.predicted_rotation_sigma_deg, "without IMU data: predicted T_world_camera");
+  addPoseOption(options, "start", config.start_pose, config.start_position_sigma_m,
+                config.start_rotation_sigma_deg,
+                "with IMU data and no GNSS: T_world_camera where the robot stands at its start");
   options.add("camera_height_m", config.camera_height_m,
               "height of the camera above the ground the robot stands on (m); 0: unknown. The "
               "backbone then finds the camera from DGPS and compass however poor the DGPS "

@@ -37,6 +37,9 @@ namespace lineloc {
 namespace {
 
 constexpr int64_t kWaitNs = 100'000'000;
+// How often the backbones alive are looked at: a small part of their 1 s
+// liveliness lease, not at every frame.
+constexpr int64_t kPeersRefreshNs = 20'000'000;
 constexpr std::chrono::seconds kSiteRetryPeriod(2);
 
 // The configured name, or <hostname>-<pid>.
@@ -287,9 +290,13 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     // one answered is the fairest (fair_frame_queue.h).
     FairFrameQueue waiting;
     uint32_t robot_writers_seen = 0;
+    int64_t peers_refreshed_ns = 0;
     while (serving()) {
       const bool data = !waiting.empty() || reader.waitForData(kWaitNs);
-      handler.countBackbones(peers.refresh().size());
+      if (steadyClockNs() - peers_refreshed_ns >= kPeersRefreshNs) {
+        handler.countBackbones(peers.refresh().size());
+        peers_refreshed_ns = steadyClockNs();
+      }
       const uint32_t robot_writers = reader.matchedWriters();
       if (!data || robot_writers != robot_writers_seen) {
         robot_writers_seen = robot_writers;

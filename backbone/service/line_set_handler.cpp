@@ -10,6 +10,19 @@
 #include "common/time/clock.h"
 
 namespace lineloc {
+namespace {
+
+// The answer to `line_set` before it is localized: its frame, its prediction.
+PoseFixData answerTo(const LineSetData& line_set) {
+  PoseFixData fix;
+  fix.robot_id = line_set.robot_id;
+  fix.sequence_number = line_set.sequence_number;
+  fix.stamp_ns = line_set.stamp_ns;
+  fix.T_world_camera = line_set.predicted_T_world_camera;
+  return fix;
+}
+
+}  // namespace
 
 LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
                                const PipelineOptions& options)
@@ -328,11 +341,7 @@ PoseFixData LineSetHandler::answerSuperseded(const LineSetData& line_set, int64_
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.superseded_frames;
   }
-  PoseFixData fix;
-  fix.robot_id = line_set.robot_id;
-  fix.sequence_number = line_set.sequence_number;
-  fix.stamp_ns = line_set.stamp_ns;
-  fix.T_world_camera = line_set.predicted_T_world_camera;
+  PoseFixData fix = answerTo(line_set);
   fix.status = lineloc_msg_FIX_BUSY;
   return countAnswer(fix, taken_ns);
 }
@@ -340,11 +349,7 @@ PoseFixData LineSetHandler::answerSuperseded(const LineSetData& line_set, int64_
 PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns) {
   const ForegroundGate::Scope foreground(foreground_);
   const int64_t start_ns = steadyClockNs();
-  PoseFixData fix;
-  fix.robot_id = line_set.robot_id;
-  fix.sequence_number = line_set.sequence_number;
-  fix.stamp_ns = line_set.stamp_ns;
-  fix.T_world_camera = line_set.predicted_T_world_camera;
+  PoseFixData fix = answerTo(line_set);
   if (!hearFrom(line_set.robot_id, taken_ns)) {
     busy_log_.log(taken_ns,
                   fmt::format("LineSet of {} #{} answered busy: {} robots are served",

@@ -12,17 +12,20 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 failures=0
 
-# expect_refusal NAME MESSAGE: pg.sh start on $WORK/NAME fails, saying MESSAGE.
+# expect_refusal NAME MESSAGE [ARGUMENTS...]: pg.sh ARGUMENTS (default start)
+# on $WORK/NAME fails, saying MESSAGE.
 expect_refusal() {
-  local output
-  if output="$(LINELOC_PG_PORT=55449 LINELOC_PG_DIR="$WORK/$1" "$PG_SH" start 2>&1)"; then
-    echo "FAIL: pg.sh started on $1: $output"
+  local name="$1" message="$2" output
+  shift 2
+  [ $# -gt 0 ] || set -- start
+  if output="$(LINELOC_PG_PORT=55449 LINELOC_PG_DIR="$WORK/$name" "$PG_SH" "$@" 2>&1)"; then
+    echo "FAIL: pg.sh $* succeeded on $name: $output"
     failures=$((failures + 1))
-  elif [[ "$output" != *"$2"* ]]; then
-    echo "FAIL: pg.sh refused $1 without saying '$2': $output"
+  elif [[ "$output" != *"$message"* ]]; then
+    echo "FAIL: pg.sh $* refused $name without saying '$message': $output"
     failures=$((failures + 1))
   else
-    echo "ok: $1: $output"
+    echo "ok: $* on $name: $output"
   fi
 }
 
@@ -48,21 +51,11 @@ expect_refusal shared/cluster "writable by other users and not sticky"
 [ ! -e "$WORK/shared/cluster" ] || { echo "FAIL: pg.sh created shared/cluster"; failures=$((failures + 1)); }
 
 # replicate needs another cluster's port, and one running there; nothing is made without.
-expect_replicate_refusal() {
-  local output
-  if output="$(LINELOC_PG_PORT=55449 LINELOC_PG_DIR="$WORK/replica" "$PG_SH" replicate "$1" 2>&1)"; then
-    echo "FAIL: pg.sh replicated port '$1': $output"
-    failures=$((failures + 1))
-  elif [[ "$output" != *"$2"* ]]; then
-    echo "FAIL: pg.sh refused to replicate '$1' without saying '$2': $output"
-    failures=$((failures + 1))
-  else
-    echo "ok: replicate '$1': $output"
-  fi
+for port in "" 55449 1; do
+  message="give the primary's port"
+  [ "$port" != 1 ] || message="no cluster runs on port 1"
+  expect_refusal replica "$message" replicate "$port"
   [ ! -e "$WORK/replica" ] || { echo "FAIL: pg.sh created the replica"; failures=$((failures + 1)); }
-}
-expect_replicate_refusal "" "give the primary's port"
-expect_replicate_refusal 55449 "give the primary's port"
-expect_replicate_refusal 1 "no cluster runs on port 1"
+done
 
 [ "$failures" -eq 0 ]

@@ -78,7 +78,9 @@ class DelayLine {
         wake_.wait(lock);
         continue;
       }
-      if (wake_.wait_until(lock, waiting_.top().due) == std::cv_status::no_timeout &&
+      // A copy: wait_until reads its deadline after a push may have moved the heap.
+      const Clock::time_point due = waiting_.top().due;
+      if (wake_.wait_until(lock, due) == std::cv_status::no_timeout &&
           Clock::now() < waiting_.top().due) {
         continue;
       }

@@ -221,7 +221,7 @@ issue() {
       publish="lineloc_PoseFix"
       subscribe="lineloc_LineSet lineloc_Exposure lineloc_RobotState"
       partition="robot.*"
-      peers="lineloc_Backbone"
+      peers="lineloc_Backbone lineloc_TrackingHandover"
       ;;
     *) die "issue: unknown participant kind '$kind' (robot or backbone)" ;;
   esac

@@ -24,6 +24,7 @@
 #include "backbone/service/fair_frame_queue.h"
 #include "backbone/service/pose_fix_publisher.h"
 #include "backbone/service/site_lookup.h"
+#include "backbone/service/tracking_handovers.h"
 #include "common/logging/rate_limited_log.h"
 #include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
@@ -255,9 +256,11 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   dds::Reader<lineloc_msg_LineSet, dds::ExposureTopic> exposures(
       participant, dds::Qos(dds::kHistoryDepth), kEveryRobotPartition);
   PoseFixPublisher fixes(participant, static_cast<int64_t>(config.forget_robot_after_s * 1e9));
-  LineSetHandler handler(map, limits, pipeline);
   BackbonePeers peers(participant, backboneName(config),
                       static_cast<int64_t>(config.backbone_lease_s * 1e9));
+  TrackingHandovers handovers(participant, peers.name(),
+                              static_cast<int64_t>(config.forget_robot_after_s * 1e9));
+  LineSetHandler handler(map, limits, pipeline, handovers.channel());
   spdlog::info("backbone '{}': serving its share of the robots with the backbones alive",
                peers.name());
   const SiteWatch site(config, handler);
@@ -311,7 +314,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
         if (!speaksFor(reader.writerPartitions(info.publication_handle), message.robot_id)) {
           handler.countDrop("LineSet", message.sequence_number, notInItsPartition(message));
         } else if (!peers.serves(message.robot_id)) {
-          handler.countFrameServedElsewhere();
+          handler.leaveToAnotherBackbone(message.robot_id);
         } else if (std::optional<LineSetData> line_set = handler.accept(message)) {
           const int64_t taken_ns = steadyClockNs();
           if (const auto superseded = waiting.push(std::move(*line_set), taken_ns)) {

@@ -25,9 +25,10 @@ PoseFixData answerTo(const LineSetData& line_set) {
 }  // namespace
 
 LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
-                               const PipelineOptions& options)
+                               const PipelineOptions& options, HandoverChannel handovers)
     : map_(map),
       limits_(limits),
+      handovers_(std::move(handovers)),
       options_(options),
       silence_ns_(static_cast<int64_t>(options.forget_robot_after_s * 1e9)),
       drop_log_("dropped messages", kLoggedPerSecond, 1.0),
@@ -88,6 +89,12 @@ void LineSetHandler::forgetSilentRobots(int64_t now_ns) {
     spdlog::info("forgetting robot {}: not heard from for {:.1f} s", robot.robot_id,
                  robot.silent_ns * 1e-9);
   }
+  dropRobotsNotServed();
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  counters_.robots_forgotten += forgotten.size();
+}
+
+void LineSetHandler::dropRobotsNotServed() {
   const auto unheard = [this](const std::string& robot_id) { return !roster_.serves(robot_id); };
   cadence_.forget(unheard);
   {
@@ -100,7 +107,6 @@ void LineSetHandler::forgetSilentRobots(int64_t now_ns) {
   }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   counters_.robots = roster_.size();
-  counters_.robots_forgotten += forgotten.size();
 }
 
 std::shared_ptr<RobotSession> LineSetHandler::sessionOf(const std::string& robot_id) {
@@ -149,7 +155,10 @@ void LineSetHandler::track(const std::shared_ptr<RobotSession>& session,
       localize(line_set.segments, line_set.corners, map->segments, map->scene, plan.prior,
                line_set.camera, options, visible_from_prior);
   const RobotSession::Answered answered = session->answer(line_set, odometry, localization, fix);
-  if (answered.started_from_prediction) {
+  if (answered.resumed) {
+    spdlog::info("tracking {} from #{} on continues the proof its last backbone handed over",
+                 line_set.robot_id, line_set.sequence_number);
+  } else if (answered.started_from_prediction) {
     spdlog::info(
         "tracking {} from #{} on from its own prediction, which no search here found: its "
         "fixes stay widened until proof searches agree",
@@ -265,7 +274,11 @@ void LineSetHandler::countBackbones(size_t alive) {
   counters_.backbones = alive;
 }
 
-void LineSetHandler::countFrameServedElsewhere() {
+void LineSetHandler::leaveToAnotherBackbone(const std::string& robot_id) {
+  if (roster_.forget(robot_id)) {
+    spdlog::info("robot {} is served by another backbone from now on", robot_id);
+    dropRobotsNotServed();
+  }
   const std::lock_guard<std::mutex> lock(counters_mutex_);
   ++counters_.frames_served_elsewhere;
 }
@@ -364,6 +377,22 @@ PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns
   std::optional<Notice> notice = takeNotice(line_set);
   const std::shared_ptr<RobotSession> session = sessionOf(line_set.robot_id);
   const OdometryPose odometry = session->hear(line_set);
+  if (handovers_.latest && session->awaitsHandover()) {
+    if (const std::optional<TrackingHandover> handover = handovers_.latest(line_set.robot_id)) {
+      session->offerHandover(*handover);
+    }
+  }
+  fix = localizeFrame(session, line_set, odometry, std::move(notice), std::move(fix), start_ns);
+  if (handovers_.publish) {
+    handovers_.publish(line_set.robot_id, session->handover(line_set.stamp_ns, odometry));
+  }
+  return finish(fix, taken_ns);
+}
+
+PoseFixData LineSetHandler::localizeFrame(const std::shared_ptr<RobotSession>& session,
+                                          const LineSetData& line_set, const OdometryPose& odometry,
+                                          std::optional<Notice> notice, PoseFixData fix,
+                                          int64_t start_ns) {
   try {
     const std::shared_ptr<const PreparedMap> map =
         maps_.around(line_set.predicted_T_world_camera.pose.translation());
@@ -371,12 +400,12 @@ PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns
     prefetchAlongMotion(*session, line_set);
     if (!map) {
       fix.status = lineloc_msg_FIX_NO_MATCH_COMPUTED;
-      return finish(fix, taken_ns);
+      return fix;
     }
     fix.model_lines = static_cast<uint32_t>(map->view->lines.size());
     if (map->view->lines.empty()) {
       fix.status = lineloc_msg_FIX_NO_MAP_LINES;
-      return finish(fix, taken_ns);
+      return fix;
     }
     const RobotSession::FramePlan plan = session->planFor(line_set, odometry, *map);
     if (plan.plan == RobotSession::Plan::kTrack) {
@@ -385,7 +414,7 @@ PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns
           visibilityAhead(line_set, std::move(notice), map, plan.prior);
       fix.timings.visibility = ahead ? steadyClockNs() - waiting_start_ns : 0;
       track(session, line_set, odometry, map, plan, fix, ahead ? &*ahead : nullptr);
-      return finish(fix, taken_ns);
+      return fix;
     }
     const SearchWorker::Submitted submitted = submitSearch(
         "search", line_set, [this, session, line_set, odometry, map, prior = plan.prior] {
@@ -395,13 +424,13 @@ PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns
                      ? lineloc_msg_FIX_BUSY
                      : lineloc_msg_FIX_NO_MATCH_COMPUTED;
   } catch (const std::exception& error) {
-    map_failure_log_.log(taken_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
+    map_failure_log_.log(start_ns, fmt::format("map for {} #{} failed: {}", fix.robot_id,
                                                fix.sequence_number, error.what()));
     const std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.map_errors;
     fix.status = lineloc_msg_FIX_INTERNAL_ERROR;
   }
-  return finish(fix, taken_ns);
+  return fix;
 }
 
 void LineSetHandler::countDrop(const char* kind, uint32_t sequence_number,

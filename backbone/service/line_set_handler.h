@@ -45,6 +45,14 @@
 // after a backbone restart. The sweep runs on the LineSets' thread, at most
 // every forget_robot_after_s / 2.
 //
+// Backbones. Where several share the robots (backbone_peers.h), a robot left
+// to another backbone is forgotten here at once, so that one taken back is
+// served as a robot new here. Each frame answered hands the robot's tracking
+// proof over (HandoverChannel::publish, tracking_proof.h), and a robot new
+// here is offered the newest handover of it (HandoverChannel::latest) at each
+// frame until its tracking is proven here: a robot taken over continues the
+// proof of the backbone before.
+//
 // Logs. What outside input causes at any rate (drops, refusals) and what
 // each frame may meet (a map that fails while the database is down) is
 // logged at most kLoggedPerSecond times a second each, the rest summarised
@@ -144,13 +152,22 @@ struct PipelineOptions {
   std::optional<SiteSun> sun_from_clock;
 };
 
+// How a backbone's sessions hand their robots' tracking over to the backbone
+// that takes them over (tracking_handovers.h); empty for a backbone alone.
+// Both are called from the handler's threads.
+struct HandoverChannel {
+  std::function<void(const std::string& robot_id, const TrackingHandover& handover)> publish;
+  std::function<std::optional<TrackingHandover>(const std::string& robot_id)> latest;
+};
+
 // The sun a LineSet taken at `stamp_ns` is localized under: the clock's when
 // options.sun_from_clock is set (none while it is down), else the localizer's.
 std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp_ns);
 
 class LineSetHandler {
  public:
-  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options);
+  LineSetHandler(MapTileCache& map, const MessageLimits& limits, const PipelineOptions& options,
+                 HandoverChannel handovers = {});
   // Cancels the searches and map preparation under way (foreground_gate.h)
   // and drops the queued ones, so that it ends promptly.
   ~LineSetHandler();
@@ -196,9 +213,11 @@ class LineSetHandler {
 
   BackboneCounters counters() const;
 
-  // Records how many backbones are alive, and a frame left to another.
+  // Records how many backbones are alive.
   void countBackbones(size_t alive);
-  void countFrameServedElsewhere();
+  // Counts a frame of `robot_id` left to the backbone that serves it, and
+  // forgets the robot here (see above).
+  void leaveToAnotherBackbone(const std::string& robot_id);
 
   // Counts a dropped message (malformed, or refused before handle()) and
   // logs `kind`'s drop with `error`.
@@ -211,6 +230,9 @@ class LineSetHandler {
   bool hearFrom(const std::string& robot_id, int64_t arrival_ns);
   // Records the roster's answer for a robot heard from; false when refused.
   bool served(RobotRoster::Heard heard);
+  // Drops the sessions, notices and cadence of the robots the roster no
+  // longer serves.
+  void dropRobotsNotServed();
   // The robot's session, made when it has none.
   std::shared_ptr<RobotSession> sessionOf(const std::string& robot_id);
   void prefetchAlongMotion(RobotSession& session, const LineSetData& line_set);
@@ -243,6 +265,11 @@ class LineSetHandler {
     PinholeCamera camera;
     std::shared_future<std::vector<VisibleSegment>> visible;
   };
+  // Localizes a served robot's frame as its session plans into `fix`
+  // (timed from `start_ns`): tracked, or searched on the worker.
+  PoseFixData localizeFrame(const std::shared_ptr<RobotSession>& session,
+                            const LineSetData& line_set, const OdometryPose& odometry,
+                            std::optional<Notice> notice, PoseFixData fix, int64_t start_ns);
   // Queues `notice` for its LineSet; false, queueing nothing, when that
   // LineSet or a later one has come already.
   bool aheadOfLineSet(const std::string& robot_id, Notice notice);
@@ -275,6 +302,7 @@ class LineSetHandler {
 
   MapTileCache& map_;
   MessageLimits limits_;
+  HandoverChannel handovers_;
   // Its sun_from_clock under sun_mutex_ (takeSunFromClock).
   PipelineOptions options_;
   mutable std::mutex sun_mutex_;

@@ -44,6 +44,11 @@ std::vector<RobotRoster::Forgotten> RobotRoster::forgetSilent(int64_t now_ns) {
   return forgotten;
 }
 
+bool RobotRoster::forget(const std::string& robot_id) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return last_heard_ns_.erase(robot_id) > 0;
+}
+
 size_t RobotRoster::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return last_heard_ns_.size();

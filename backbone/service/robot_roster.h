@@ -36,6 +36,10 @@ class RobotRoster {
   };
   std::vector<Forgotten> forgetSilent(int64_t now_ns);
 
+  // Forgets `robot_id` now: another backbone serves it. False when it was
+  // not served.
+  bool forget(const std::string& robot_id);
+
   size_t size() const;
 
  private:

@@ -88,8 +88,14 @@ RobotSession::Answered RobotSession::answer(const LineSetData& line_set,
   fix.T_world_camera =
       fix_scatter_.floorAndAdd(line_set.stamp_ns, odometry, alignment.T_world_camera);
   TrackingProof::Unproven unproven;
+  bool resumed = false;
   {
     const std::lock_guard<std::mutex> lock(proof_mutex_);
+    if (offered_handover_) {
+      resumed = proof_.resume(*offered_handover_, line_set.stamp_ns, odometry, fix.T_world_camera,
+                              line_set.predicted_T_world_camera);
+      offered_handover_.reset();
+    }
     unproven = proof_.unprovenAt(line_set.stamp_ns, odometry, fix.T_world_camera);
   }
   if (unproven.offset) {
@@ -98,7 +104,22 @@ RobotSession::Answered RobotSession::answer(const LineSetData& line_set,
     fix.T_world_camera.covariance +=
         diagonalPoseCovariance(fix.unproven_position_sigma_m, fix.unproven_rotation_sigma_rad);
   }
-  return {unproven.proof_due, unproven.started_from_prediction};
+  return {unproven.proof_due, unproven.started_from_prediction, resumed};
+}
+
+bool RobotSession::awaitsHandover() const {
+  const std::lock_guard<std::mutex> lock(proof_mutex_);
+  return !proof_.proven();
+}
+
+void RobotSession::offerHandover(const TrackingHandover& handover) {
+  const std::lock_guard<std::mutex> lock(proof_mutex_);
+  offered_handover_ = handover;
+}
+
+TrackingHandover RobotSession::handover(int64_t stamp_ns, const OdometryPose& odometry) const {
+  const std::lock_guard<std::mutex> lock(proof_mutex_);
+  return proof_.handover(stamp_ns, odometry);
 }
 
 AcquisitionSession::Searched RobotSession::search(const LineSetData& line_set,

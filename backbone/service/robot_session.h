@@ -23,9 +23,15 @@
 // motion (fix_scatter.h), and carries the part of it tracking has not proven
 // yet (tracking_proof.h), whose proof searches the session asks for.
 //
-// Threads: frames (hear, planFor, answer, positionAhead) come on one thread,
-// and prior on that one or the exposure notices'; searches and proofs on
-// another, one at a time per robot; the tracking proof they share is locked.
+// A robot taken over from another backbone is offered that backbone's
+// newest handover at each frame until its tracking is proven here; an OK fix
+// continues the proof from it when the rule of tracking_proof.h allows. Every
+// frame answered states the handover this backbone leaves.
+//
+// Threads: frames (hear, planFor, answer, awaitsHandover, handover,
+// positionAhead) come on one thread, and prior on that one or the exposure notices'; searches and
+// proofs on another, one at a time per robot; the tracking proof they share,
+// and the handover offered (from any thread), are locked.
 #pragma once
 
 #include <cstdint>
@@ -87,8 +93,10 @@ class RobotSession {
   // proof search due, if one is.
   struct Answered {
     std::optional<ProofRequest> proof_due;
-    // Whether this frame started tracking from the robot's own prediction.
+    // Whether this frame started tracking from the robot's own prediction,
+    // or continued it from the handover offered.
     bool started_from_prediction = false;
+    bool resumed = false;
   };
   Answered answer(const LineSetData& line_set, const OdometryPose& odometry,
                   const Localization& localization, PoseFixData& fix);
@@ -112,6 +120,16 @@ class RobotSession {
                const Eigen::Isometry3d& tracked, const ProofRequest& request,
                const LocalizerOptions& options);
 
+  // Whether tracking is not proven here yet, and so whether a handover from
+  // another backbone could add to it (offerHandover).
+  bool awaitsHandover() const;
+  // The handover from another backbone, in place of any offered before; the
+  // robot's next OK fix here takes it or leaves it.
+  void offerHandover(const TrackingHandover& handover);
+  // What a backbone taking the robot over at the frame of (`stamp_ns`,
+  // `odometry`) continues from.
+  TrackingHandover handover(int64_t stamp_ns, const OdometryPose& odometry) const;
+
   // Where the robot will be `lookahead_s` after `line_set`'s frame at the
   // speed between its last two frames; nullopt for its first.
   std::optional<Eigen::Vector3d> positionAhead(const LineSetData& line_set, double lookahead_s);
@@ -133,6 +151,7 @@ class RobotSession {
   AcquisitionSession acquisition_;
   mutable std::mutex proof_mutex_;
   TrackingProof proof_;
+  std::optional<TrackingHandover> offered_handover_;  // under proof_mutex_
 };
 
 }  // namespace lineloc

@@ -127,9 +127,7 @@ TrackingProof::Unproven TrackingProof::unprovenAt(int64_t stamp_ns, const Odomet
   if (start_->agreeing_proofs >= options_.agreeing_proofs_needed) {
     return unproven;
   }
-  const double moved_m =
-      (odometry.T_odom_camera.translation() - start_->origin.odometry.T_odom_camera.translation())
-          .norm();
+  const double moved_m = movedFrom(*start_, odometry);
   if (moved_m >= start_->proof_due_m) {
     unproven.proof_due = ProofRequest{start_->origin, moved_m};
   }
@@ -140,6 +138,52 @@ TrackingProof::Unproven TrackingProof::unprovenAt(int64_t stamp_ns, const Odomet
   unproven.offset = rival.farthest(
       {acquisition.acquired_position_sigma_m, acquisition.acquired_rotation_sigma_rad});
   return unproven;
+}
+
+bool TrackingProof::proven() const {
+  return start_ && start_->agreeing_proofs >= options_.agreeing_proofs_needed;
+}
+
+double TrackingProof::movedFrom(const Start& start, const OdometryPose& odometry) {
+  return (odometry.T_odom_camera.translation() - start.origin.odometry.T_odom_camera.translation())
+      .norm();
+}
+
+bool TrackingProof::resume(const TrackingHandover& handover, int64_t stamp_ns,
+                           const OdometryPose& odometry,
+                           const PoseWithCovariance& T_world_camera_fixed,
+                           const PoseWithCovariance& T_world_camera_predicted) {
+  const Eigen::Matrix<double, 6, 6>& predicted = T_world_camera_predicted.covariance;
+  const double max_position_variance = std::pow(options_.confirm_position_m / 3.0, 2);
+  const double max_rotation_variance = std::pow(options_.confirm_rotation_rad / 3.0, 2);
+  const bool narrow = predicted.diagonal().head<3>().maxCoeff() <= max_position_variance &&
+                      predicted.diagonal().tail<3>().maxCoeff() <= max_rotation_variance;
+  const bool started_here = start_ && start_->origin.odometry.epoch == odometry.epoch;
+  if ((started_here && start_->agreeing_proofs >= handover.agreeing_proofs) || !handover.tracking ||
+      handover.stamp_ns >= stamp_ns || !narrow ||
+      !PoseOffset::between(T_world_camera_predicted.pose, T_world_camera_fixed.pose)
+           .within(agreement())) {
+    return false;
+  }
+  start_ = Start{.origin = {stamp_ns, T_world_camera_fixed, odometry},
+                 .agreeing_proofs = handover.agreeing_proofs,
+                 .proof_due_m = std::max(0.0, handover.proof_due_in_m),
+                 .rival = handover.rival,
+                 .looked_around = handover.looked_around};
+  searching_again_ = false;
+  return true;
+}
+
+TrackingHandover TrackingProof::handover(int64_t stamp_ns, const OdometryPose& odometry) const {
+  if (!start_ || start_->origin.odometry.epoch != odometry.epoch) {
+    return {.stamp_ns = stamp_ns};
+  }
+  return TrackingHandover{.stamp_ns = stamp_ns,
+                          .tracking = true,
+                          .agreeing_proofs = start_->agreeing_proofs,
+                          .proof_due_in_m = start_->proof_due_m - movedFrom(*start_, odometry),
+                          .rival = start_->rival,
+                          .looked_around = start_->looked_around};
 }
 
 bool TrackingProof::apply(const ProofVerdict& verdict, const ProofRequest& request) {

@@ -28,6 +28,19 @@
 // over at least proof_position_sigma_m. A verdict on a start the robot no
 // longer tracks from is dropped.
 //
+// Handover. A backbone that takes a robot over from another (several
+// backbones, backbone_peers.h) continues the proof the other published at a
+// frame it answered (TrackingHandover: its agreeing proofs, rival, and the
+// motion left until the next proof search), instead of proving tracking from
+// the start. It does so at an OK fix of its own that is newer than the
+// handover, while the handover states more agreeing proofs than tracking has
+// here (none when the robot has no start here), when the robot's prediction
+// at that fix is narrow (position sigma at most confirm_position_m / 3,
+// rotation sigma at most confirm_rotation_rad / 3 per axis) and agrees with
+// the fix: the robot's filter fused the handed-over fixes with their own
+// unproven part, so a narrow prediction is in their basin, and dead
+// reckoning since cannot have left it. Otherwise tracking goes on as above.
+//
 // Not thread-safe: its owner serialises the frames' and the proof searches'
 // calls, but for proofPrior and agreement, which read its options only.
 #pragma once
@@ -69,6 +82,20 @@ struct TrackingOrigin {
   bool operator==(const TrackingOrigin& other) const {
     return stamp_ns == other.stamp_ns && odometry.epoch == other.odometry.epoch;
   }
+};
+
+// A robot's proof as the backbone that tracked it left it at its OK fix of
+// `stamp_ns` (see Handover above).
+struct TrackingHandover {
+  int64_t stamp_ns = 0;
+  // False when the robot was not tracked there (not yet, or searched for
+  // again): nothing to continue.
+  bool tracking = false;
+  int agreeing_proofs = 0;
+  // The robot's motion (m) left until the next proof search is due.
+  double proof_due_in_m = 0.0;
+  PoseOffset rival = {};
+  bool looked_around = false;
 };
 
 // A proof search due at a tracked frame: `moved_m` from `origin`'s viewpoint.
@@ -130,6 +157,22 @@ class TrackingProof {
   Unproven unprovenAt(int64_t stamp_ns, const OdometryPose& odometry,
                       const PoseWithCovariance& T_world_camera_fixed);
 
+  // Whether tracking is proven here, so that no handover adds to it.
+  bool proven() const;
+
+  // Continues tracking from `handover` at the OK fix `T_world_camera_fixed`
+  // of (`stamp_ns`, `odometry`), whose prediction was
+  // `T_world_camera_predicted`, when the rule above allows it; true when it
+  // did. The caller then asks unprovenAt for the same fix.
+  bool resume(const TrackingHandover& handover, int64_t stamp_ns, const OdometryPose& odometry,
+              const PoseWithCovariance& T_world_camera_fixed,
+              const PoseWithCovariance& T_world_camera_predicted);
+
+  // The proof as it stands at the frame of (`stamp_ns`, `odometry`), for a
+  // backbone that takes the robot over: not tracking while the robot has no
+  // start of that epoch.
+  TrackingHandover handover(int64_t stamp_ns, const OdometryPose& odometry) const;
+
   // Applies the verdict of a proof search requested at `request`; false,
   // changing nothing, when the robot no longer tracks from the start it judged.
   bool apply(const ProofVerdict& verdict, const ProofRequest& request);
@@ -154,6 +197,9 @@ class TrackingProof {
 
   TrackingProofOptions options_;
   LocalizerOptions localizer_;
+  // The robot's motion (m) from `start`'s viewpoint to `odometry`.
+  static double movedFrom(const Start& start, const OdometryPose& odometry);
+
   std::optional<Start> start_;
   bool searching_again_ = false;
 };

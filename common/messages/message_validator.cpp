@@ -262,4 +262,26 @@ std::optional<std::string> findRobotStateError(const lineloc_msg_RobotState& mes
   return checkPose(message.T_world_body, "T_world_body");
 }
 
+std::optional<std::string> findTrackingHandoverError(const lineloc_msg_TrackingHandover& message) {
+  if (Error e = checkRobotId(message.robot_id))
+    return e;
+  if (!isValidBackboneName(message.backbone)) {
+    return fmt::format("backbone '{}' is not of the form [A-Za-z0-9][A-Za-z0-9_.-]*",
+                       message.backbone);
+  }
+  if (message.agreeing_proofs > kMaxAgreeingProofs) {
+    return fmt::format("agreeing_proofs {} exceeds {}", message.agreeing_proofs,
+                       kMaxAgreeingProofs);
+  }
+  if (!std::isfinite(message.proof_due_in_m)) {
+    return std::string("proof_due_in_m is not finite");
+  }
+  if (!(std::isfinite(message.rival_position_m) && message.rival_position_m >= 0.0 &&
+        std::isfinite(message.rival_rotation_rad) && message.rival_rotation_rad >= 0.0)) {
+    return fmt::format("rival {} m, {} rad must be finite and non-negative",
+                       message.rival_position_m, message.rival_rotation_rad);
+  }
+  return std::nullopt;
+}
+
 }  // namespace lineloc

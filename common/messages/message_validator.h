@@ -36,5 +36,9 @@ std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
                                             const MessageLimits& limits);
 std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message);
 std::optional<std::string> findRobotStateError(const lineloc_msg_RobotState& message);
+// At most kMaxAgreeingProofs agreeing proofs; finite distances, the rival's
+// non-negative.
+std::optional<std::string> findTrackingHandoverError(const lineloc_msg_TrackingHandover& message);
+inline constexpr uint32_t kMaxAgreeingProofs = 1'000'000;
 
 }  // namespace lineloc

@@ -56,7 +56,14 @@ struct TopicTraits<lineloc_msg_BackbonePresence> {
   static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_BackbonePresence_desc; }
 };
 
-// The partition of the backbones' presence, apart from the robots'.
+template <>
+struct TopicTraits<lineloc_msg_TrackingHandover> {
+  static constexpr const char* kName = "lineloc_TrackingHandover";
+  static const dds_topic_descriptor_t* descriptor() { return &lineloc_msg_TrackingHandover_desc; }
+};
+
+// The partition of the backbones' presence and handovers, apart from the
+// robots'.
 inline constexpr char kBackbonePartition[] = "lineloc.backbones";
 
 }  // namespace lineloc::dds

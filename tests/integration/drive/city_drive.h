@@ -27,6 +27,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <string>
 #include <thread>
@@ -168,10 +169,11 @@ class CityDrive : public ::testing::Test {
     }
   }
 
-  // Simulates the drive of `seed` into `dataset`, under work_, with
-  // lineloc-sim's `options` besides.
+  // Simulates the `duration_s` drive of `seed` into `dataset`, under work_,
+  // with lineloc-sim's `options` besides.
   void simulateDrive(int seed, const fs::path& dataset,
-                     const std::vector<std::string>& options = {}) const {
+                     const std::vector<std::string>& options = {},
+                     int duration_s = kDriveSeconds) const {
     std::vector<std::string> simulate = {"--city-model",
                                          city_.model.string(),
                                          "--out",
@@ -179,7 +181,7 @@ class CityDrive : public ::testing::Test {
                                          "--seed",
                                          std::to_string(seed),
                                          "--duration-s",
-                                         std::to_string(kDriveSeconds),
+                                         std::to_string(duration_s),
                                          "--camera-height-m",
                                          fmt::format("{}", city_.camera_height_m),
                                          "--start-utc",
@@ -227,8 +229,12 @@ class CityDrive : public ::testing::Test {
     return true;
   }
 
-  std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name) const {
-    std::vector<std::string> args = dds("backbone", "test");
+  // Backbone `name`, with lineloc-backbone's `options` besides.
+  std::unique_ptr<ChildProcess> startBackbone(const std::string& log_name,
+                                              const std::string& name = "test",
+                                              const std::vector<std::string>& options = {}) const {
+    std::vector<std::string> args = dds("backbone", name);
+    args.insert(args.end(), options.begin(), options.end());
     const DriveSimulationConfig simulated;
     args.insert(args.end(),
                 {"--db", database_.conninfo(test::DatabaseRole::kReader), "--site", city_.site,
@@ -237,11 +243,14 @@ class CityDrive : public ::testing::Test {
                                           (work_ / log_name).string(), environment_);
   }
 
-  // Robot `robot_id` driving through `dataset`; it writes <robot_id>.log,
-  // <robot_id>-fixes.tum and <robot_id>-fused.tum under work_.
+  // Robot `robot_id` driving through `dataset`, with lineloc-robot's
+  // `options` besides; it writes <robot_id>.log, <robot_id>-fixes.tum and
+  // <robot_id>-fused.tum under work_.
   std::unique_ptr<ChildProcess> startRobot(const std::string& robot_id = "drive",
-                                           const fs::path& dataset = "dataset") const {
+                                           const fs::path& dataset = "dataset",
+                                           const std::vector<std::string>& options = {}) const {
     std::vector<std::string> args = dds("robot", robot_id);
+    args.insert(args.end(), options.begin(), options.end());
     args.insert(
         args.end(),
         {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--camera-calibration",
@@ -256,8 +265,9 @@ class CityDrive : public ::testing::Test {
                                           (work_ / (robot_id + ".log")).string(), environment_);
   }
 
-  void waitForRobot(ChildProcess& robot, const std::string& robot_id = "drive") const {
-    ASSERT_EQ(robot.wait((kDriveSeconds + 120) * 1000), std::optional<int>(0))
+  void waitForRobot(ChildProcess& robot, const std::string& robot_id = "drive",
+                    int duration_s = kDriveSeconds) const {
+    ASSERT_EQ(robot.wait((duration_s + 120) * 1000), std::optional<int>(0))
         << readFile(work_ / (robot_id + ".log"));
   }
 
@@ -310,16 +320,41 @@ class CityDrive : public ::testing::Test {
   }
 
   // lineloc-eval's report on robot `robot_id`'s drive through `dataset`:
-  // each OK fix's and each reported state's error in its own covariance.
-  std::string consistencyReport(const std::string& robot_id, const fs::path& dataset) const {
+  // each OK fix's and each reported state's error in its own covariance; of
+  // those stamped within `window` (from, to, ns) when given.
+  std::string consistencyReport(const std::string& robot_id, const fs::path& dataset,
+                                std::optional<std::pair<int64_t, int64_t>> window = {}) const {
     const fs::path report = work_ / (robot_id + "-eval.log");
+    fs::path fix_log = work_ / (robot_id + "-fixes.txt");
+    fs::path state_log = work_ / (robot_id + "-states.txt");
+    if (window) {
+      fix_log = copyLinesWithin(fix_log, *window);
+      state_log = copyLinesWithin(state_log, *window);
+    }
     runOrFail("lineloc-eval",
               {"--ground-truth", (work_ / dataset / "groundtruth_cam0.tum").string(), "--estimate",
-               (work_ / (robot_id + "-fused.tum")).string(), "--fix-log",
-               (work_ / (robot_id + "-fixes.txt")).string(), "--state-log",
-               (work_ / (robot_id + "-states.txt")).string()},
+               (work_ / (robot_id + "-fused.tum")).string(), "--fix-log", fix_log.string(),
+               "--state-log", state_log.string()},
               report, 60'000);
     return readFile(report);
+  }
+
+  // The header and the lines stamped within `window` of the log at `path`
+  // (its first column: seconds), written beside it; returns the copy's path.
+  static fs::path copyLinesWithin(const fs::path& path, std::pair<int64_t, int64_t> window) {
+    fs::path copy = path;
+    copy.replace_extension(".window.txt");
+    std::ifstream in(path);
+    std::ofstream out(copy);
+    std::string line;
+    while (std::getline(in, line)) {
+      const bool header = !line.empty() && line[0] == '#';
+      const auto stamp_ns = header ? 0 : static_cast<int64_t>(std::llround(std::stod(line) * 1e9));
+      if (header || (stamp_ns >= window.first && stamp_ns <= window.second)) {
+        out << line << '\n';
+      }
+    }
+    return copy;
   }
 
   // OK fixes beyond chi2_6(0.9973) of their own covariance (precise wrong

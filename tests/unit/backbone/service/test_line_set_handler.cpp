@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 
@@ -491,6 +492,61 @@ TEST_F(LineSetHandlerTest, ARobotTrackedFromItsOwnPredictionIsProvenLikeASearche
   ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
   expectWithinThreeSigma(fix->T_world_camera, truth);
   EXPECT_EQ(fix->unproven_position_sigma_m, options.robot.proof.proof_position_sigma_m);
+}
+
+// Two backbones share a robot through their handovers (a map stands in for
+// their topic, tracking_handovers.h). Proven on the first, then left to the
+// second, the robot is tracked there proven from its first frame, with no
+// proof search; taken back by the first, which forgot it when it left it, it
+// is tracked there proven from the second's handover.
+TEST_F(LineSetHandlerTest, ARobotTakenOverContinuesTheProofItsLastBackboneHandedOver) {
+  std::map<std::string, TrackingHandover> topic;
+  const HandoverChannel channel{
+      [&](const std::string& robot_id, const TrackingHandover& handover) {
+        topic[robot_id] = handover;
+      },
+      [&](const std::string& robot_id) -> std::optional<TrackingHandover> {
+        const auto found = topic.find(robot_id);
+        return found != topic.end() ? std::optional(found->second) : std::nullopt;
+      }};
+  const PipelineOptions options;
+  MapTileCache first_cache = makeCache(database_.conninfo());
+  LineSetHandler first(first_cache, MessageLimits{}, options, channel);
+  prepareMapAt(first, {13, -30, 1.5});
+  expectProvenBySearchesFromElsewhere(first, database_.conninfo(), options,
+                                      lookingNorth({13, -30, 1.5}),
+                                      lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003), 3);
+  ASSERT_TRUE(topic.contains("handler-test"));
+  EXPECT_TRUE(topic["handler-test"].tracking);
+  EXPECT_EQ(topic["handler-test"].agreeing_proofs, options.robot.proof.agreeing_proofs_needed);
+  const uint64_t first_searches = first.counters().searches;
+  first.leaveToAnotherBackbone("handler-test");
+  EXPECT_EQ(first.counters().frames_served_elsewhere, 1u);
+  EXPECT_EQ(first.counters().robots, 1u) << "the warm-up robot alone";
+
+  // A tracked robot's prediction: 2 cm off, 2 cm and 0.05 degree wide.
+  const auto expectProvenFix = [&](LineSetHandler& handler, uint32_t sequence, double north_m) {
+    const PoseWithCovariance truth = lookingNorth({13, north_m, 1.5});
+    const PoseWithCovariance predicted = lookingNorth({13.02, north_m + 0.01, 1.5}, 0.02, 0.001);
+    const auto fix = handler.handle(
+        lineSetMessage(observedEdges(database_.conninfo(), truth), predicted, sequence)->message());
+    ASSERT_TRUE(fix.has_value());
+    ASSERT_EQ(fix->status, lineloc_msg_FIX_OK) << toString(fix->status);
+    expectWithinThreeSigma(fix->T_world_camera, truth);
+    EXPECT_EQ(fix->unproven_position_sigma_m, 0.0) << "frame " << sequence;
+    EXPECT_EQ(fix->unproven_rotation_sigma_rad, 0.0) << "frame " << sequence;
+    handler.waitForSearches();
+  };
+  MapTileCache second_cache = makeCache(database_.conninfo());
+  LineSetHandler second(second_cache, MessageLimits{}, options, channel);
+  prepareMapAt(second, {13, -27.5, 1.5});
+  expectProvenFix(second, 20, -27.5);
+  expectProvenFix(second, 21, -27.4);
+  EXPECT_EQ(second.counters().searches, 0u);
+
+  second.leaveToAnotherBackbone("handler-test");
+  expectProvenFix(first, 22, -27.3);
+  EXPECT_EQ(first.counters().searches, first_searches);
 }
 
 // A proof search judges the tracking start it was submitted for. A robot

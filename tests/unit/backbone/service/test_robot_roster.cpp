@@ -43,6 +43,17 @@ TEST(RobotRoster, ForgetsTheSilentRobotsToMakeRoom) {
   EXPECT_EQ(roster.size(), 2u);
 }
 
+// A robot another backbone serves from now on is forgotten at once, making
+// room; one not served is not.
+TEST(RobotRoster, ForgetsARobotLeftToAnotherBackbone) {
+  RobotRoster roster(1, 30 * kSecondNs);
+  ASSERT_EQ(roster.hear("rover1", 0), Heard::kNew);
+  EXPECT_FALSE(roster.forget("rover2"));
+  EXPECT_TRUE(roster.forget("rover1"));
+  EXPECT_FALSE(roster.serves("rover1"));
+  EXPECT_EQ(roster.hear("rover2", kSecondNs), Heard::kNew);
+}
+
 TEST(RobotRoster, RefusesAnEmptyRoster) {
   EXPECT_THROW(RobotRoster(0, kSecondNs), std::invalid_argument);
   EXPECT_THROW(RobotRoster(1, 0), std::invalid_argument);

@@ -2,6 +2,8 @@
 // searches are due, and what their verdicts do.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "backbone/service/tracking_proof.h"
 
 namespace lineloc {
@@ -135,6 +137,124 @@ TEST(TrackingProof, ATakenHypothesisIsCarriedForCarrySearchS) {
   EXPECT_FALSE(unproven.started_from_prediction);
   ASSERT_TRUE(unproven.offset);
   EXPECT_NEAR(unproven.offset->position_m, 1.5, 1e-12);
+}
+
+// A prediction as narrow as a tracked robot's: 2 cm, 0.05 degree.
+PoseWithCovariance narrowPredictionAt(double forward_m) {
+  PoseWithCovariance predicted = fixAt(forward_m);
+  predicted.covariance = diagonalPoseCovariance(0.02, 0.05 * kDeg);
+  return predicted;
+}
+
+// Proven on one backbone at 3 m of motion, tracking is handed over: another
+// backbone's first OK fix, with the robot's prediction narrow and agreeing,
+// continues it proven, with no proof search due.
+TEST(TrackingProof, AProvenRobotHandedOverStaysProvenWithoutAProofSearch) {
+  const TrackingProofOptions options;
+  TrackingProof first(options, LocalizerOptions{});
+  for (double moved_m : {0.0, 1.0, 2.0}) {
+    const TrackingProof::Unproven due =
+        first.unprovenAt(stampAt(moved_m), movedOn(moved_m), fixAt(moved_m));
+    ASSERT_TRUE(due.proof_due) << moved_m << " m";
+    ASSERT_TRUE(first.apply(agreeing(), *due.proof_due));
+  }
+  EXPECT_FALSE(first.unprovenAt(stampAt(3.0), movedOn(3.0), fixAt(3.0)).offset);
+  const TrackingHandover handover = first.handover(stampAt(3.0), movedOn(3.0));
+  EXPECT_TRUE(handover.tracking);
+  EXPECT_EQ(handover.agreeing_proofs, 2);
+
+  // The next backbone's odometry chain starts at its first frame.
+  TrackingProof next(options, LocalizerOptions{});
+  ASSERT_TRUE(
+      next.resume(handover, stampAt(4.0), movedOn(0.0, 7), fixAt(4.0), narrowPredictionAt(4.01)));
+  const TrackingProof::Unproven unproven =
+      next.unprovenAt(stampAt(4.0), movedOn(0.0, 7), fixAt(4.0));
+  EXPECT_FALSE(unproven.started_from_prediction);
+  EXPECT_FALSE(unproven.offset);
+  EXPECT_FALSE(unproven.proof_due);
+  EXPECT_EQ(next.handover(stampAt(4.0), movedOn(0.0, 7)).agreeing_proofs, 2);
+}
+
+// An unproven robot handed over keeps its rival and the motion left to its
+// next proof search.
+TEST(TrackingProof, AnUnprovenRobotHandedOverKeepsItsRivalAndItsNextProofsDistance) {
+  const TrackingProofOptions options;
+  TrackingProof first(options, LocalizerOptions{});
+  const TrackingProof::Unproven start = first.unprovenAt(stampAt(0.0), movedOn(0.0), fixAt(0.0));
+  ASSERT_TRUE(first.apply({Proof::kUndecided, "", {1.2, 0.4 * kDeg}, true}, *start.proof_due));
+  const TrackingHandover handover = first.handover(stampAt(0.4), movedOn(0.4));
+  EXPECT_NEAR(handover.proof_due_in_m, options.acquisition_proven_after_m - 0.4, 1e-12);
+
+  TrackingProof next(options, LocalizerOptions{});
+  ASSERT_TRUE(
+      next.resume(handover, stampAt(0.5), movedOn(0.0), fixAt(0.5), narrowPredictionAt(0.5)));
+  const TrackingProof::Unproven resumed = next.unprovenAt(stampAt(0.5), movedOn(0.0), fixAt(0.5));
+  ASSERT_TRUE(resumed.offset);
+  EXPECT_EQ(resumed.offset->position_m, 1.2);
+  EXPECT_FALSE(resumed.proof_due);
+  const double due_m = options.acquisition_proven_after_m - 0.4;
+  EXPECT_FALSE(next.unprovenAt(stampAt(0.6), movedOn(due_m - 0.05), fixAt(0.6)).proof_due);
+  EXPECT_TRUE(next.unprovenAt(stampAt(0.7), movedOn(due_m + 0.05), fixAt(0.7)).proof_due);
+}
+
+// A handover is not continued, and tracking is proven from the start, when
+// the robot was not tracked, the handover is not older than the fix, the
+// robot's prediction is wide (its dead reckoning may have left the handed-over
+// basin) or disagrees with the fix, or tracking here has as many agreeing
+// proofs already.
+TEST(TrackingProof, AHandoverIsContinuedOnlyFromANarrowAgreeingPredictionOfAnUntrackedRobot) {
+  const TrackingProofOptions options;
+  TrackingProof first(options, LocalizerOptions{});
+  EXPECT_FALSE(first.handover(stampAt(0.0), movedOn(0.0)).tracking) << "no start yet";
+  first.unprovenAt(stampAt(0.0), movedOn(0.0), fixAt(0.0));
+  const TrackingHandover handover = first.handover(stampAt(1.0), movedOn(1.0));
+  ASSERT_TRUE(handover.tracking);
+
+  TrackingHandover untracked = handover;
+  untracked.tracking = false;
+  PoseWithCovariance wide_position = narrowPredictionAt(2.0);
+  wide_position.covariance(1, 1) = std::pow(options.confirm_position_m / 2.0, 2);
+  PoseWithCovariance wide_rotation = narrowPredictionAt(2.0);
+  wide_rotation.covariance(5, 5) = std::pow(options.confirm_rotation_rad / 2.0, 2);
+  const PoseWithCovariance beside = narrowPredictionAt(2.0 + 2.0 * options.confirm_position_m);
+  struct Case {
+    const char* what;
+    TrackingHandover handover;
+    int64_t stamp_ns;
+    PoseWithCovariance predicted;
+  };
+  for (const Case& refused : {Case{"not tracked", untracked, stampAt(2.0), narrowPredictionAt(2.0)},
+                              Case{"not older", handover, stampAt(1.0), narrowPredictionAt(2.0)},
+                              Case{"wide position", handover, stampAt(2.0), wide_position},
+                              Case{"wide rotation", handover, stampAt(2.0), wide_rotation},
+                              Case{"disagreeing", handover, stampAt(2.0), beside}}) {
+    TrackingProof next(options, LocalizerOptions{});
+    EXPECT_FALSE(next.resume(refused.handover, refused.stamp_ns, movedOn(0.0), fixAt(2.0),
+                             refused.predicted))
+        << refused.what;
+    EXPECT_TRUE(next.unprovenAt(refused.stamp_ns, movedOn(0.0), fixAt(2.0)).started_from_prediction)
+        << refused.what;
+  }
+  TrackingProof tracking(options, LocalizerOptions{});
+  tracking.unprovenAt(stampAt(1.5), movedOn(0.0), fixAt(1.5));
+  EXPECT_FALSE(
+      tracking.resume(handover, stampAt(2.0), movedOn(0.5), fixAt(2.0), narrowPredictionAt(2.0)))
+      << "tracked here already, with as many proofs";
+}
+
+// A backbone that started tracking a robot from its prediction before the
+// other's handover reached it (one restarted, taking its robots back)
+// continues from the handover once it comes, as it states more proof.
+TEST(TrackingProof, AHandoverWithMoreProofReplacesAStartFromThePrediction) {
+  const TrackingProofOptions options;
+  TrackingProof here(options, LocalizerOptions{});
+  ASSERT_TRUE(here.unprovenAt(stampAt(1.0), movedOn(0.0), fixAt(1.0)).started_from_prediction);
+  TrackingHandover proven = here.handover(stampAt(0.9), movedOn(0.0));
+  proven.agreeing_proofs = options.agreeing_proofs_needed;
+  EXPECT_FALSE(here.proven());
+  ASSERT_TRUE(here.resume(proven, stampAt(1.1), movedOn(0.1), fixAt(1.1), narrowPredictionAt(1.1)));
+  EXPECT_TRUE(here.proven());
+  EXPECT_FALSE(here.unprovenAt(stampAt(1.1), movedOn(0.1), fixAt(1.1)).offset);
 }
 
 }  // namespace

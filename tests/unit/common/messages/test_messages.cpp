@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
+#include <vector>
 
 #include "common/messages/message_validator.h"
 #include "common/messages/messages.h"
@@ -210,6 +213,24 @@ TEST(Validator, PoseFixAndRobotState) {
   EXPECT_EQ(findRobotStateError(state), std::nullopt);
   state.velocity_world[1] = std::nan("");
   EXPECT_TRUE(findRobotStateError(state).has_value());
+
+  lineloc_msg_TrackingHandover handover{};
+  copyRobotId("r1", handover.robot_id);
+  std::snprintf(handover.backbone, sizeof(handover.backbone), "%s", "east");
+  EXPECT_EQ(findTrackingHandoverError(handover), std::nullopt);
+  handover.proof_due_in_m = -0.5;
+  EXPECT_EQ(findTrackingHandoverError(handover), std::nullopt) << "a proof search overdue";
+  for (const auto& spoil : std::vector<std::function<void(lineloc_msg_TrackingHandover&)>>{
+           [](auto& m) { m.robot_id[0] = '\0'; },
+           [](auto& m) { m.backbone[0] = '-'; },
+           [](auto& m) { m.agreeing_proofs = kMaxAgreeingProofs + 1; },
+           [](auto& m) { m.proof_due_in_m = std::nan(""); },
+           [](auto& m) { m.rival_position_m = -0.1; },
+           [](auto& m) { m.rival_rotation_rad = std::numeric_limits<double>::infinity(); }}) {
+    lineloc_msg_TrackingHandover spoiled = handover;
+    spoil(spoiled);
+    EXPECT_TRUE(findTrackingHandoverError(spoiled).has_value());
+  }
 }
 
 TEST(Validator, PoseFixUnprovenPartLiesWithinItsCovariance) {

@@ -20,8 +20,6 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
@@ -30,9 +28,8 @@
 #include "common/messages/messages.h"
 #include "common/time/clock.h"
 #include "robot/vision/features/feature_extractor.h"
+#include "tests/bench/backbone/delft_frames.h"
 #include "tests/support/delft_drive.h"
-
-namespace fs = std::filesystem;
 
 namespace lineloc {
 namespace {
@@ -44,58 +41,28 @@ constexpr double kTrackingRotationSigmaRad = 0.1 * M_PI / 180.0;
 constexpr double kDgpsSigmaM = 4.0;
 constexpr double kCompassSigmaRad = 0.5 * M_PI / 180.0;
 
-struct Frame {
-  cv::Mat image;
-  Eigen::Isometry3d truth;
-  std::vector<ImageSegment> segments;
-  std::vector<ImageCorner> corners;
-};
+using Frame = test::DelftFrame;
 
 // A simulated drive's frames, the Delft model in the same site frame and its
 // ray-casting scene: built once for every benchmark.
 struct Drive {
-  Drive() {
-    const fs::path folder = fs::temp_directory_path() / fmt::format("bench_stages_{}", getpid());
-    fs::remove_all(folder);
-    DriveSimulationConfig config;
-    config.duration_s = kDriveSeconds;
-    config.drive.initial_still_s = 0.5;
-    config.camera_rate_hz = kCameraRateHz;
-    const test::SimulatedFrames simulated = test::simulateDelftDrive(config, folder);
-    calibration = simulated.calibration;
-    FeatureExtractor extractor(calibration);
-    for (size_t i = 0; i < simulated.images.size(); ++i) {
-      Frame frame{
-          cv::imread(simulated.images[i], cv::IMREAD_GRAYSCALE), simulated.truth[i], {}, {}};
-      FrameFeatures features = extractor.extract(frame.image);
-      frame.segments = std::move(features.segments);
-      frame.corners = std::move(features.corners);
-      frames.push_back(std::move(frame));
-    }
-    fs::remove_all(folder);
+  Drive() : simulated(test::simulateDelftFrames(kDriveSeconds, kCameraRateHz)) {
     model = readLocalModel(test::delftCityModel().string(), test::delftSiteOrigin(), std::nullopt)
                 .model;
     scene = std::make_unique<OcclusionScene>(model.faces, model.face_building_ids);
     // The backbone knows the sun the drive is rendered under, as the demo's does.
-    localizer.visibility.sunlight = drivingSunlight(config);
+    localizer.visibility.sunlight = simulated.sunlight;
   }
 
   // The truth moved by one draw of the given uncertainty.
   PoseWithCovariance predicted(const Frame& frame, double position_sigma_m,
                                double rotation_sigma_rad, std::mt19937& random) const {
-    std::normal_distribution<double> n(0.0, 1.0);
-    PoseWithCovariance prediction;
-    prediction.pose.linear() =
-        Eigen::AngleAxisd(rotation_sigma_rad * n(random), Eigen::Vector3d::UnitZ()) *
-        frame.truth.linear();
-    prediction.pose.translation() =
-        frame.truth.translation() + position_sigma_m * Eigen::Vector3d(n(random), n(random), 0.0);
-    prediction.covariance = diagonalPoseCovariance(position_sigma_m, rotation_sigma_rad);
-    return prediction;
+    return test::predictedAround(frame.truth, position_sigma_m, rotation_sigma_rad, random);
   }
 
-  CameraCalibration calibration;
-  std::vector<Frame> frames;
+  test::DelftFrames simulated;
+  const CameraCalibration& calibration = simulated.calibration;
+  const std::vector<Frame>& frames = simulated.frames;
   TrackedModel model;
   std::unique_ptr<OcclusionScene> scene;
   LocalizerOptions localizer;

@@ -3,7 +3,10 @@
 // string; default the deploy/pg.sh cluster as its owner role, database
 // lineloc_bench, which is created and filled with a 100,000-building synthetic
 // city on first run; a streaming replica of a cluster that holds it, named by
-// LINELOC_BENCH_DB, is queried as it is, with --benchmark_filter=LinesWithin):
+// LINELOC_BENCH_DB, is queried as it is, with --benchmark_filter=LinesWithin).
+// With LINELOC_BENCH_CITY_MODEL set, the queries run on that city model
+// instead (loaded on first run as site LINELOC_BENCH_SITE, default "city"),
+// around random positions within its lines' extent:
 //  - the 150 m query around random street positions: ModelLineQuery (line
 //    packs under a 2D GiST box, binary bytea, exact distance in C++) beside a
 //    plain ST_3DDWithin query decoded from text (with the n-D index it needs,
@@ -25,6 +28,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <random>
 
 #include "db/citymodel/polygon_geometry.h"
 #include "db/loader/loader.h"
@@ -74,6 +78,19 @@ const lineloc::citymodel::SyntheticCityOptions& cityOptions() {
 // The benchmark city, loaded once (lineloc-load --site synthetic
 // --synthetic-buildings 100000 stores the same source), with the n-D index a
 // plain ST_3DDWithin query needs.
+// The model the queries run on, when not the synthetic city.
+const char* cityModel() {
+  return std::getenv("LINELOC_BENCH_CITY_MODEL");
+}
+
+const std::string& siteName() {
+  static const std::string name = cityModel() == nullptr ? "synthetic"
+                                  : std::getenv("LINELOC_BENCH_SITE")
+                                      ? std::getenv("LINELOC_BENCH_SITE")
+                                      : "city";
+  return name;
+}
+
 Connection& cityDatabase() {
   static Connection connection = [] {
     Connection db(benchConninfo());
@@ -83,7 +100,11 @@ Connection& cityDatabase() {
     }
     lineloc::db::applyMigrations(db, lineloc::db::embeddedMigrations());
     const std::string name = fmt::format("synthetic-{}-1", kCityBuildings);
-    if (db.execParams("SELECT 1 FROM source_file WHERE name = $1", {name}).rows() == 0) {
+    if (cityModel() != nullptr) {
+      lineloc::db::LoadOptions options;
+      options.site = siteName();
+      lineloc::db::loadFile(cityModel(), options, &db, nullptr);
+    } else if (db.execParams("SELECT 1 FROM source_file WHERE name = $1", {name}).rows() == 0) {
       lineloc::db::LoadOptions options;
       options.site = "synthetic";
       lineloc::db::storeModel(db, options, {name, name, ""},
@@ -112,8 +133,22 @@ Connection& loadDatabase() {
   return connection;
 }
 
-std::vector<Eigen::Vector3d> queryCentres(const lineloc::db::Site& site) {
+std::vector<Eigen::Vector3d> queryCentres(Connection& db, const lineloc::db::Site& site) {
   std::vector<Eigen::Vector3d> centres;
+  if (cityModel() != nullptr) {
+    const lineloc::db::Result extent = db.execParams(
+        "SELECT ST_XMin(e), ST_YMin(e), ST_ZMin(e), ST_XMax(e), ST_YMax(e) FROM "
+        "(SELECT ST_3DExtent(geom) AS e FROM line WHERE site_id = $1) AS lines",
+        {std::to_string(site.id)});
+    const auto value = [&](int column) { return std::stod(extent.text(0, column)); };
+    std::mt19937 random(1);
+    std::uniform_real_distribution<double> x(value(0), value(3));
+    std::uniform_real_distribution<double> y(value(1), value(4));
+    for (int draw = 0; draw < kQueries; ++draw) {
+      centres.push_back(Eigen::Vector3d(x(random), y(random), value(2) + 1.5) - site.origin);
+    }
+    return centres;
+  }
   for (uint32_t draw = 0; draw < kQueries; ++draw) {
     const Eigen::Vector2d street = lineloc::citymodel::randomStreetPoint(cityOptions(), draw);
     centres.emplace_back(street.x() - site.origin.x(), street.y() - site.origin.y(), 1.5);
@@ -142,8 +177,8 @@ void reportLatencies(benchmark::State& state, const std::string& name,
 template <typename Query>
 void timeQueries(benchmark::State& state, const std::string& name, Query&& query) {
   Connection& db = cityDatabase();
-  const lineloc::db::Site site = *lineloc::db::findSite(db, "synthetic");
-  const std::vector<Eigen::Vector3d> centres = queryCentres(site);
+  const lineloc::db::Site site = *lineloc::db::findSite(db, siteName());
+  const std::vector<Eigen::Vector3d> centres = queryCentres(db, site);
   std::vector<double> latencies_ms;
   size_t lines = 0;
   size_t next = 0;
@@ -342,10 +377,9 @@ void printSummary() {
     const auto& [median_ms, p99_ms] = values.at("lineloc");
     const auto& [plain_median_ms, plain_p99_ms] = values.at("plain");
     fmt::print(
-        "150 m query, {} buildings: lineloc median {:.3f} ms p99 {:.3f} ms; plain ST_3DDWithin "
+        "150 m query, site {}: lineloc median {:.3f} ms p99 {:.3f} ms; plain ST_3DDWithin "
         "median {:.3f} ms p99 {:.3f} ms; speed-up (median) {:.2f}x\n",
-        kCityBuildings, median_ms, p99_ms, plain_median_ms, plain_p99_ms,
-        plain_median_ms / median_ms);
+        siteName(), median_ms, p99_ms, plain_median_ms, plain_p99_ms, plain_median_ms / median_ms);
   }
   if (has("load lineloc") && has("load naive")) {
     const auto& [wall, cpu] = values.at("load lineloc");

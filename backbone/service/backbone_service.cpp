@@ -325,6 +325,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       const int64_t start_ns = steadyClockNs();
       if (const std::optional<FairFrameQueue::Taken> next = waiting.pop(start_ns)) {
         fixes.publish(handler.answer(next->line_set, next->taken_ns), steadyClockNs());
+        handovers.writeQueued();
         const int64_t end_ns = steadyClockNs();
         waiting.charge(next->line_set.robot_id, end_ns - start_ns, end_ns);
       }

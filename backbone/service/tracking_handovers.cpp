@@ -70,6 +70,22 @@ void TrackingHandovers::publish(const std::string& robot_id, const TrackingHando
   }
 }
 
+void TrackingHandovers::queue(const std::string& robot_id, const TrackingHandover& handover) {
+  const std::lock_guard<std::mutex> lock(queue_mutex_);
+  queued_[robot_id] = handover;
+}
+
+void TrackingHandovers::writeQueued() {
+  std::map<std::string, TrackingHandover> queued;
+  {
+    const std::lock_guard<std::mutex> lock(queue_mutex_);
+    queued.swap(queued_);
+  }
+  for (const auto& [robot_id, handover] : queued) {
+    publish(robot_id, handover);
+  }
+}
+
 void TrackingHandovers::takeArrived(int64_t now_ns) {
   endpoints_->reader.takeEach([&](const lineloc_msg_TrackingHandover& message) {
     if (const std::optional<std::string> error = findTrackingHandoverError(message)) {
@@ -105,7 +121,7 @@ std::optional<TrackingHandover> TrackingHandovers::latest(const std::string& rob
 
 HandoverChannel TrackingHandovers::channel() {
   return {[this](const std::string& robot_id, const TrackingHandover& handover) {
-            publish(robot_id, handover);
+            queue(robot_id, handover);
           },
           [this](const std::string& robot_id) { return latest(robot_id); }};
 }

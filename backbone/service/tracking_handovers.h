@@ -35,12 +35,16 @@ class TrackingHandovers {
   TrackingHandovers& operator=(const TrackingHandovers&) = delete;
 
   void publish(const std::string& robot_id, const TrackingHandover& handover);
+  // Keeps `handover` until writeQueued(), in place of one of the same robot
+  // queued before: a frame's handover is written after its fix, not before.
+  void queue(const std::string& robot_id, const TrackingHandover& handover);
+  void writeQueued();
 
   // The newest handover of `robot_id`, by its stamp, that another backbone
   // wrote and was read within keep_ns.
   std::optional<TrackingHandover> latest(const std::string& robot_id);
 
-  // publish and latest, for a LineSetHandler; this must outlive it.
+  // queue and latest, for a LineSetHandler; this must outlive it.
   HandoverChannel channel();
 
   // Robots whose newest handover is kept at most: the oldest read is
@@ -63,6 +67,8 @@ class TrackingHandovers {
     int64_t read_ns = 0;  // steady clock
   };
   std::map<std::string, Read> newest_;
+  std::mutex queue_mutex_;
+  std::map<std::string, TrackingHandover> queued_;
 };
 
 }  // namespace lineloc

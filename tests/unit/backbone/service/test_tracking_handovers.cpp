@@ -1,8 +1,9 @@
 // The backbones' handovers of their robots' tracking, with real DDS
-// participants on loopback: one backbone's handover reaches another, and one
-// that starts later; the newest by stamp is the one taken, and stays after
-// its writer is gone; a backbone does not read its own back, nor one read
-// longer ago than it keeps them; a malformed one is dropped.
+// participants on loopback: one backbone's handover reaches another (one
+// queued once written, the last queued of a robot alone), and one that starts
+// later; the newest by stamp is the one taken, and stays after its writer is
+// gone; a backbone does not read its own back, nor one read longer ago than
+// it keeps them; a malformed one is dropped.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -41,8 +42,12 @@ TEST(TrackingHandovers, AHandoverReachesTheOtherBackbonesAndOneThatStartsLater) 
       east.publish("rover1", provenAt(2'000));
       return west.latest("rover1").has_value();
     }));
-    east.publish("rover1", provenAt(3'000));
-    ASSERT_TRUE(test::waitFor([&] { return west.latest("rover1")->stamp_ns == 3'000; }));
+    east.queue("rover1", provenAt(3'000));
+    east.queue("rover1", provenAt(3'500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(west.latest("rover1")->stamp_ns, 2'000) << "queued, not yet written";
+    east.writeQueued();
+    ASSERT_TRUE(test::waitFor([&] { return west.latest("rover1")->stamp_ns == 3'500; }));
     const TrackingHandover read = *west.latest("rover1");
     EXPECT_TRUE(read.tracking);
     EXPECT_EQ(read.agreeing_proofs, 2);
@@ -56,12 +61,12 @@ TEST(TrackingHandovers, AHandoverReachesTheOtherBackbonesAndOneThatStartsLater) 
     TrackingHandovers north(north_participant, "north", kKeepNs);
     EXPECT_TRUE(test::waitFor([&] {
       const std::optional<TrackingHandover> late = north.latest("rover1");
-      return late && late->stamp_ns == 3'000;
+      return late && late->stamp_ns == 3'500;
     })) << "kept for a backbone that starts later";
   }
   // East is gone, as a killed backbone is: what it handed over stays.
   ASSERT_TRUE(west.latest("rover1"));
-  EXPECT_EQ(west.latest("rover1")->stamp_ns, 3'000);
+  EXPECT_EQ(west.latest("rover1")->stamp_ns, 3'500);
 }
 
 TEST(TrackingHandovers, ABackboneReadsNeitherItsOwnNorOnesReadLongerAgoThanItKeepsThem) {

@@ -46,8 +46,11 @@ void MapTileCache::enqueue(const TileKey& key, bool urgent) {
   if (pending != pending_.end()) {
     if (urgent && !pending->second) {
       pending->second = true;
-      std::erase(queue_, key);
-      queue_.push_front(key);
+      // Still queued, it goes first; already being loaded, it is not queued again.
+      if (const auto queued = std::ranges::find(queue_, key); queued != queue_.end()) {
+        queue_.erase(queued);
+        queue_.push_front(key);
+      }
     }
     return;
   }

@@ -118,6 +118,34 @@ TEST(MapTileCache, EvictsLeastRecentlyUsedAndStillAnswersCorrectly) {
   EXPECT_EQ(cache.around({50, 50, 0}, 150.0)->lines.size(), 17u);
 }
 
+// A tile asked for while its prefetch is being loaded is loaded once, and
+// the loader goes on serving after it.
+TEST(MapTileCache, ATileAskedForWhileItsPrefetchLoadsIsLoadedOnce) {
+  CountingLoader loader;
+  std::atomic<bool> release{false};
+  std::atomic<int> started{0};
+  MapTileCache cache(
+      [&] {
+        return [&, fetch = loader.fetcher()](const Eigen::AlignedBox2d& bounds) {
+          ++started;
+          while (!release) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+          }
+          return fetch(bounds);
+        };
+      },
+      kTileSize, 64);
+  cache.prefetch({50, 50, 1.5}, 1.0);
+  ASSERT_TRUE(eventually([&] { return started == 1; }));
+  std::thread asking([&] { cache.around({50, 50, 1.5}, 1.0); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  release = true;
+  asking.join();
+  EXPECT_EQ(loader.calls, 1);
+  EXPECT_EQ(cache.around({250, 50, 1.5}, 1.0)->lines.size(), 2u) << "the loader still serves";
+  EXPECT_EQ(loader.calls, 2);
+}
+
 TEST(MapTileCache, ServesConcurrentCallers) {
   CountingLoader loader;
   MapTileCache cache([&] { return loader.fetcher(); }, kTileSize, 256);

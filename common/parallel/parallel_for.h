@@ -11,6 +11,8 @@
 // BackgroundWorkCancelled.
 #pragma once
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -22,8 +24,14 @@
 
 namespace lineloc {
 
-// One thread per core the machine reports, at least one.
+// One thread per core the calling thread may run on (its CPU affinity, as
+// taskset or a container's cpuset sets it), at least one.
 inline int hardwareThreads() {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) == 0) {
+    return std::max(1, CPU_COUNT(&allowed));
+  }
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 

@@ -1,6 +1,7 @@
 // parallelFor: every index exactly once whatever the thread count, work
 // really spread over threads, and a thrown exception brought back to the caller.
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <atomic>
 #include <chrono>
@@ -26,6 +27,25 @@ TEST(ParallelFor, CallsEveryIndexExactlyOnce) {
       }
     }
   }
+}
+
+// On a thread of its own, whose CPU affinity the test may change.
+TEST(HardwareThreads, CountsTheCoresTheThreadMayRunOn) {
+  std::thread([] {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
+    EXPECT_EQ(hardwareThreads(), CPU_COUNT(&allowed));
+    int first = 0;
+    while (!CPU_ISSET(first, &allowed)) {
+      ++first;
+    }
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(first, &one);
+    ASSERT_EQ(sched_setaffinity(0, sizeof(one), &one), 0);
+    EXPECT_EQ(hardwareThreads(), 1);
+  }).join();
 }
 
 TEST(ParallelFor, RunsOnAsManyThreadsAsAsked) {

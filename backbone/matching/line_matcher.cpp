@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lineloc {
 
@@ -83,17 +84,50 @@ double gateChi2(const GatedLine& line, const ImageSegment& segment) {
   return chi2;
 }
 
-// True when the start q0 of an image segment lies too far from the line for
-// the gate, whatever t: d_0^2 / variance_0 > gate with variance_0 at most
-// trace(Sigma_q0) plus the larger endpoint variance (floor included). Cheaper
-// than the overlap, and it turns away most pairs.
-bool startBeyondGate(const GatedLine& line, const Eigen::Vector2d& q0, double q0_variance_bound,
-                     double gate_chi2) {
-  const double distance = line.normal.dot(q0 - line.start_px);
-  const double variance_bound =
-      q0_variance_bound + std::max(line.start_normal_variance, line.end_normal_variance);
-  return distance * distance > gate_chi2 * variance_bound;
-}
+// The lines' start test, in arrays a loop over all lines reads in step: the
+// start q0 of an image segment lies too far from line m for the gate,
+// whatever t, when d_0^2 / variance_0 > gate with variance_0 at most
+// trace(Sigma_q0) plus the line's larger endpoint variance (floor included).
+// Cheaper than the overlap, it turns away most pairs.
+class StartGate {
+ public:
+  explicit StartGate(const std::vector<GatedLine>& lines) {
+    for (const GatedLine& line : lines) {
+      const bool usable = line.length_px >= 1e-9;
+      normal_x_.push_back(line.normal.x());
+      normal_y_.push_back(line.normal.y());
+      offset_.push_back(line.normal.dot(line.start_px));
+      // A line too short to have a direction passes no start.
+      variance_.push_back(usable ? std::max(line.start_normal_variance, line.end_normal_variance)
+                                 : -std::numeric_limits<double>::infinity());
+    }
+    passes_.resize(lines.size());
+  }
+
+  // For each line m, 1 when q0 (its covariance's trace `q0_variance_bound`)
+  // may pass the gate, else 0; valid until the next call.
+  const std::vector<double>& passing(const Eigen::Vector2d& q0, double q0_variance_bound,
+                                     double gate_chi2) {
+    const double* __restrict normal_x = normal_x_.data();
+    const double* __restrict normal_y = normal_y_.data();
+    const double* __restrict offset = offset_.data();
+    const double* __restrict variance = variance_.data();
+    double* __restrict passes = passes_.data();
+    const double x = q0.x();
+    const double y = q0.y();
+    const size_t count = passes_.size();
+    for (size_t m = 0; m < count; ++m) {
+      const double distance = normal_x[m] * x + normal_y[m] * y - offset[m];
+      passes[m] = distance * distance <= gate_chi2 * (q0_variance_bound + variance[m]) ? 1.0 : 0.0;
+    }
+    return passes_;
+  }
+
+ private:
+  std::vector<double> normal_x_, normal_y_, offset_, variance_;
+  // 1 or 0: doubles, so that the loop over the lines vectorizes.
+  std::vector<double> passes_;
+};
 
 // Length of the image segment q0-q1's extent along the line that lies on it.
 double overlapPx(const GatedLine& line, const Eigen::Vector2d& q0, const Eigen::Vector2d& q1) {
@@ -122,6 +156,7 @@ std::vector<std::vector<LineMatch>> gateCandidates(const std::vector<ImageSegmen
                                                    const MatchingOptions& options) {
   const std::vector<GatedLine> lines =
       gatedLines(model, T_world_camera, camera, options.model_sigma_floor_px);
+  StartGate start_gate(lines);
   std::vector<std::vector<LineMatch>> candidates(image.size());
   for (size_t i = 0; i < image.size(); ++i) {
     const Eigen::Vector2d q0 = image[i].start.cast<double>();
@@ -130,10 +165,10 @@ std::vector<std::vector<LineMatch>> gateCandidates(const std::vector<ImageSegmen
     if (!(image_length >= 1e-9)) {
       continue;
     }
-    const double q0_variance_bound = image[i].start_covariance.trace();
+    const std::vector<double>& passing =
+        start_gate.passing(q0, image[i].start_covariance.trace(), options.gate_chi2);
     for (size_t m = 0; m < lines.size(); ++m) {
-      if (!(lines[m].length_px >= 1e-9) ||
-          startBeyondGate(lines[m], q0, q0_variance_bound, options.gate_chi2) ||
+      if (passing[m] == 0.0 ||
           overlapPx(lines[m], q0, q1) < options.min_overlap_fraction * image_length ||
           (options.use_polarity && !polaritiesAgree(lines[m], image[i], q0, q1))) {
         continue;

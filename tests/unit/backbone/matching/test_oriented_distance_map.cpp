@@ -2,7 +2,10 @@
 // truncated, and nothing but the truncation for anything outside the image.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "backbone/matching/oriented_distance_map.h"
 
@@ -34,6 +37,49 @@ TEST(OrientedDistanceMap, MeasuresTheDistanceToASegmentOfTheSameDirection) {
   EXPECT_NEAR(map.distance({304, 103}, kHorizontal), 5.0, kHalfLevelPx);
   EXPECT_NEAR(map.distance({96, 97}, kHorizontal), 5.0, kHalfLevelPx);
   EXPECT_FLOAT_EQ(map.distance({200, 150}, kHorizontal), 10.0f);  // truncated
+}
+
+double distanceToSegment(const Eigen::Vector2d& q, const ImageSegment& s) {
+  const Eigen::Vector2d a = s.start.cast<double>();
+  const Eigen::Vector2d along = s.end.cast<double>() - a;
+  const double t = std::clamp((q - a).dot(along) / along.squaredNorm(), 0.0, 1.0);
+  return (q - a - t * along).norm();
+}
+
+// Every cell against the exact truncated distance to the nearest of a few
+// random segments of one direction, some reaching beyond the image, at full
+// and half resolution: within half a level.
+TEST(OrientedDistanceMap, EveryCellHoldsTheExactTruncatedDistance) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> position(-40.0, 360.0);
+  std::uniform_real_distribution<double> length(15.0, 200.0);
+  for (const double direction_deg : {0.0, 30.0, 90.0, 137.0, 179.0}) {
+    const double direction = direction_deg * M_PI / 180.0;
+    std::vector<ImageSegment> segments;
+    for (int k = 0; k < 6; ++k) {
+      const double x = position(random);
+      const double y = position(random) * 0.75;
+      const double l = length(random);
+      segments.push_back(segment(static_cast<float>(x), static_cast<float>(y),
+                                 static_cast<float>(x + l * std::cos(direction)),
+                                 static_cast<float>(y + l * std::sin(direction))));
+    }
+    for (const int downsample : {1, 2}) {
+      const OrientedDistanceMap map(segments, 320, 240, {15.0, 10.0, downsample});
+      for (int row = 0; row < 240 / downsample; ++row) {
+        for (int col = 0; col < 320 / downsample; ++col) {
+          const Eigen::Vector2d q(col * downsample, row * downsample);
+          double exact = 10.0;
+          for (const ImageSegment& s : segments) {
+            exact = std::min(exact, distanceToSegment(q, s));
+          }
+          ASSERT_NEAR(map.distance(q, direction), exact, 10.0 / 255.0 / 2.0 + 1e-9)
+              << direction_deg << " deg, downsample " << downsample << ", cell " << col << ", "
+              << row;
+        }
+      }
+    }
+  }
 }
 
 TEST(OrientedDistanceMap, IgnoresSegmentsOfAnotherDirection) {

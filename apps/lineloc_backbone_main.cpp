@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
   options.add("max_queued_searches", config.max_queued_searches,
               "searches from a poor prediction waiting in all; a frame whose search finds them "
               "waiting is answered busy");
+  options.add("answer_threads", config.answer_threads,
+              "threads answering the LineSets of different robots at once (0: one per core); a "
+              "frame that would be answered after its robot's next is answered busy at once");
   options.add("realtime_priority", config.realtime_priority,
               "SCHED_FIFO priority (1-99) of the threads that answer LineSets and exposure "
               "notices, so that background work does not delay an answer (needs CAP_SYS_NICE or "

@@ -21,13 +21,14 @@
 
 #include "backbone/map/database_tile_fetcher.h"
 #include "backbone/service/backbone_peers.h"
-#include "backbone/service/fair_frame_queue.h"
+#include "backbone/service/frame_workers.h"
 #include "backbone/service/pose_fix_publisher.h"
 #include "backbone/service/site_lookup.h"
 #include "backbone/service/tracking_handovers.h"
 #include "common/logging/rate_limited_log.h"
 #include "common/messages/robot_partition.h"
 #include "common/messages/topics.h"
+#include "common/parallel/parallel_for.h"
 #include "common/parallel/periodic_task.h"
 #include "common/parallel/realtime_thread.h"
 #include "common/time/clock.h"
@@ -201,6 +202,7 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"refused_robot_frames", counters.refused_robot_frames},
                                {"refused_searches", counters.refused_searches},
                                {"superseded_frames", counters.superseded_frames},
+                               {"late_frames", counters.late_frames},
                                {"backbones", counters.backbones},
                                {"frames_served_elsewhere", counters.frames_served_elsewhere},
                                {"last_drop_reason", counters.last_drop_reason},
@@ -228,6 +230,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
         "max_segments, max_camera_side_px, max_camera_megapixels, query_radius_m, tile_size_m, "
         "max_cached_tiles, stats_period_s, forget_robot_after_s, max_robots and "
         "max_queued_searches must be positive");
+  }
+  if (config.answer_threads < 0) {
+    throw std::runtime_error("answer_threads must not be negative (0: one per core)");
   }
   requireRealtimePriority(config.realtime_priority);
   if (config.sun_from_clock && config.sunlight) {
@@ -289,13 +294,24 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
     });
     // After every background thread has started: they stay time-shared.
     runThreadRealtimeLogged(config.realtime_priority, "LineSets' thread");
-    // Every LineSet that has come is taken before each answer, and the next
-    // one answered is the fairest (fair_frame_queue.h).
-    FairFrameQueue waiting;
+    // Every LineSet that has come is taken at once, and the fairest waiting
+    // is answered by the next thread free (frame_workers.h).
+    FrameWorkers workers(
+        config.answer_threads > 0 ? config.answer_threads : hardwareThreads(),
+        {.answer = [&](const LineSetData& line_set,
+                       int64_t taken_ns) { return handler.answer(line_set, taken_ns); },
+         .busy = [&](const LineSetData& line_set, int64_t taken_ns,
+                     FrameRefusal why) { return handler.answerBusy(line_set, taken_ns, why); },
+         .publish =
+             [&](const PoseFixData& fix) {
+               fixes.publish(fix, steadyClockNs());
+               handovers.writeQueued();
+             }},
+        [&config] { runThreadRealtimeLogged(config.realtime_priority, "LineSets' threads"); });
     uint32_t robot_writers_seen = 0;
     int64_t peers_refreshed_ns = 0;
     while (serving()) {
-      const bool data = !waiting.empty() || reader.waitForData(kWaitNs);
+      const bool data = reader.waitForData(kWaitNs);
       if (steadyClockNs() - peers_refreshed_ns >= kPeersRefreshNs) {
         handler.countBackbones(peers.refresh().size());
         peers_refreshed_ns = steadyClockNs();
@@ -316,19 +332,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
         } else if (!peers.serves(message.robot_id)) {
           handler.leaveToAnotherBackbone(message.robot_id);
         } else if (std::optional<LineSetData> line_set = handler.accept(message)) {
-          const int64_t taken_ns = steadyClockNs();
-          if (const auto superseded = waiting.push(std::move(*line_set), taken_ns)) {
-            fixes.publish(handler.answerSuperseded(*superseded, taken_ns), steadyClockNs());
-          }
+          workers.take(std::move(*line_set), steadyClockNs());
         }
       });
-      const int64_t start_ns = steadyClockNs();
-      if (const std::optional<FairFrameQueue::Taken> next = waiting.pop(start_ns)) {
-        fixes.publish(handler.answer(next->line_set, next->taken_ns), steadyClockNs());
-        handovers.writeQueued();
-        const int64_t end_ns = steadyClockNs();
-        waiting.charge(next->line_set.robot_id, end_ns - start_ns, end_ns);
-      }
     }
   }
   if (!config.stats_file.empty()) {

@@ -34,6 +34,9 @@ struct BackboneConfig {
   double forget_robot_after_s = 30.0;
   int max_robots = 64;
   int max_queued_searches = 8;
+  // Threads answering LineSets at once, each robot's one at a time
+  // (frame_workers.h); 0: one per core the process may run on.
+  int answer_threads = 0;
   // SCHED_FIFO priority (1-99) of the threads a frame's answer waits on, the
   // LineSets' and the exposure notices' (thread_priority.h); 0: time-shared.
   // Below a robot's front end sharing the machine, above the searches and the

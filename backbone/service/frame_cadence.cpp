@@ -15,6 +15,7 @@ FrameCadence::FrameCadence(int64_t lead_ns, int64_t stale_after_ns)
 
 void FrameCadence::add(const std::string& robot_id, int64_t stamp_ns, int64_t arrival_ns,
                        bool tracked) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   Robot& robot = robots_[robot_id];
   const int64_t period_ns = stamp_ns - robot.stamp_ns;
   robot.stamp_ns = stamp_ns;
@@ -24,6 +25,7 @@ void FrameCadence::add(const std::string& robot_id, int64_t stamp_ns, int64_t ar
 }
 
 int64_t FrameCadence::quietFrom_ns(int64_t now_ns) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   int64_t earliest_ns = kNever;
   for (const auto& [robot_id, robot] : robots_) {
     if (robot.quiet_from_ns >= now_ns - stale_after_ns_) {
@@ -34,6 +36,7 @@ int64_t FrameCadence::quietFrom_ns(int64_t now_ns) const {
 }
 
 void FrameCadence::forget(const std::function<bool(const std::string& robot_id)>& forgotten) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   std::erase_if(robots_, [&](const auto& robot) { return forgotten(robot.first); });
 }
 

@@ -4,13 +4,14 @@
 // earliest such time, less a lead, is when the backbone's searches step aside
 // for it (foreground_gate.h): no search piece is then still running when the
 // frame arrives, nor while the robot extracts its lines, when the two share a
-// machine.
+// machine. Thread-safe.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <string>
 
 namespace lineloc {
@@ -44,6 +45,7 @@ class FrameCadence {
 
   const int64_t lead_ns_;
   const int64_t stale_after_ns_;
+  mutable std::mutex mutex_;
   std::map<std::string, Robot> robots_;
 };
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "common/parallel/parallel_for.h"
 #include "common/time/clock.h"
 
 namespace lineloc {
@@ -21,6 +22,18 @@ PoseFixData answerTo(const LineSetData& line_set) {
   fix.T_world_camera = line_set.predicted_T_world_camera;
   return fix;
 }
+
+// Counts a frame in hand while it lives.
+class FramesInHand {
+ public:
+  explicit FramesInHand(std::atomic<int>& count) : count_(count) { ++count_; }
+  ~FramesInHand() { --count_; }
+  FramesInHand(const FramesInHand&) = delete;
+  FramesInHand& operator=(const FramesInHand&) = delete;
+
+ private:
+  std::atomic<int>& count_;
+};
 
 }  // namespace
 
@@ -76,10 +89,11 @@ bool LineSetHandler::served(RobotRoster::Heard heard) {
 }
 
 void LineSetHandler::forgetSilentRobotsWhenDue(int64_t now_ns) {
-  if (now_ns < next_forgetting_ns_) {
+  int64_t due_ns = next_forgetting_ns_;
+  if (now_ns < due_ns ||
+      !next_forgetting_ns_.compare_exchange_strong(due_ns, now_ns + silence_ns_ / 2)) {
     return;
   }
-  next_forgetting_ns_ = now_ns + silence_ns_ / 2;
   forgetSilentRobots(now_ns);
 }
 
@@ -134,6 +148,9 @@ std::optional<Sunlight> sunlightAt(const PipelineOptions& options, int64_t stamp
 
 LocalizerOptions LineSetHandler::localizerOptions(const LineSetData& line_set) const {
   LocalizerOptions options = options_.localizer;
+  if (options.threads <= 0) {
+    options.threads = std::max(1, hardwareThreads() / std::max(frames_in_hand_.load(), 1));
+  }
   const std::lock_guard<std::mutex> lock(sun_mutex_);
   options.visibility.sunlight = sunlightAt(options_, line_set.stamp_ns);
   return options;
@@ -346,13 +363,16 @@ std::optional<LineSetData> LineSetHandler::accept(const lineloc_msg_LineSet& mes
   return fromMessage(message);
 }
 
-PoseFixData LineSetHandler::answerSuperseded(const LineSetData& line_set, int64_t taken_ns) {
-  busy_log_.log(taken_ns, fmt::format("LineSet of {} #{} answered busy: superseded by a newer "
-                                      "one before it was handled",
-                                      line_set.robot_id, line_set.sequence_number));
+PoseFixData LineSetHandler::answerBusy(const LineSetData& line_set, int64_t taken_ns,
+                                       FrameRefusal why) {
+  const bool superseded = why == FrameRefusal::kSuperseded;
+  busy_log_.log(taken_ns, fmt::format("LineSet of {} #{} answered busy: {}", line_set.robot_id,
+                                      line_set.sequence_number,
+                                      superseded ? "superseded by a newer one before it was handled"
+                                                 : "it would be answered after the robot's next"));
   {
     const std::lock_guard<std::mutex> lock(counters_mutex_);
-    ++counters_.superseded_frames;
+    ++(superseded ? counters_.superseded_frames : counters_.late_frames);
   }
   PoseFixData fix = answerTo(line_set);
   fix.status = lineloc_msg_FIX_BUSY;
@@ -361,6 +381,7 @@ PoseFixData LineSetHandler::answerSuperseded(const LineSetData& line_set, int64_
 
 PoseFixData LineSetHandler::answer(const LineSetData& line_set, int64_t taken_ns) {
   const ForegroundGate::Scope foreground(foreground_);
+  const FramesInHand in_hand(frames_in_hand_);
   const int64_t start_ns = steadyClockNs();
   PoseFixData fix = answerTo(line_set);
   if (!hearFrom(line_set.robot_id, taken_ns)) {

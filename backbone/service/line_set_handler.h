@@ -58,11 +58,18 @@
 // logged at most kLoggedPerSecond times a second each, the rest summarised
 // (rate_limited_log.h); the counters count every one.
 //
+// Threads. LineSets of different robots may be answered at once, on
+// threads of their own (frame_workers.h), each robot's one at a time; a
+// frame answered beside k - 1 others localizes on hardwareThreads() / k of
+// them (LocalizerOptions::threads 0; at least one), so that the frames in
+// hand share the cores.
+//
 // Background work. Searches and map preparation pause between pieces while
 // a LineSet is being handled and from quiet_before_frame_ms before a tracked
 // robot's next one is due (foreground_gate.h, frame_cadence.h).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -76,6 +83,7 @@
 
 #include "backbone/map/map_tile_cache.h"
 #include "backbone/matching/localizer.h"
+#include "backbone/service/fair_frame_queue.h"
 #include "backbone/service/frame_cadence.h"
 #include "backbone/service/prepared_maps.h"
 #include "backbone/service/robot_roster.h"
@@ -109,8 +117,9 @@ struct BackboneCounters {
   // (each search's frame answered FIX_BUSY).
   uint64_t refused_searches = 0;
   // Frames answered FIX_BUSY as a newer one of their robot came before they
-  // were handled.
+  // were handled, or as they would have been answered after it.
   uint64_t superseded_frames = 0;
+  uint64_t late_frames = 0;
   // The backbones alive on the domain, this one among them, and the frames
   // left to the others, whose robots they serve (backbone_peers.h).
   uint64_t backbones = 1;
@@ -184,17 +193,17 @@ class LineSetHandler {
   // The fix for an accepted LineSet taken at `taken_ns` (steady clock);
   // its total time counts from then.
   PoseFixData answer(const LineSetData& line_set, int64_t taken_ns);
-  // FIX_BUSY, counted, for an accepted LineSet a newer one of its robot
-  // superseded before it was answered (fair_frame_queue.h).
-  PoseFixData answerSuperseded(const LineSetData& line_set, int64_t taken_ns);
+  // FIX_BUSY, counted, for an accepted LineSet not localized: a newer one
+  // of its robot superseded it, or it would have been answered after that
+  // one (fair_frame_queue.h).
+  PoseFixData answerBusy(const LineSetData& line_set, int64_t taken_ns, FrameRefusal why);
 
   // A frame's exposure notice (see above); a malformed one is dropped and
   // counted. Safe to call beside handle().
   void handleExposure(const lineloc_msg_LineSet& message);
 
   // Forgets the robots not heard from for forget_robot_after_s before
-  // `now_ns` (steady clock). Call both from the thread that calls handle();
-  // handle() calls the second itself (see above).
+  // `now_ns` (steady clock); answer() calls the second itself (see above).
   void forgetSilentRobots(int64_t now_ns);
   // The same, unless a sweep ran within forget_robot_after_s / 2.
   void forgetSilentRobotsWhenDue(int64_t now_ns);
@@ -314,7 +323,7 @@ class LineSetHandler {
   RateLimitedLog map_failure_log_;
   // The robots served, and when silent ones are next looked for (see above).
   RobotRoster roster_;
-  int64_t next_forgetting_ns_ = 0;
+  std::atomic<int64_t> next_forgetting_ns_{0};
   // Each robot's session; a search that outlives its robot's keeps its own.
   std::mutex sessions_mutex_;
   std::map<std::string, std::shared_ptr<RobotSession>> sessions_;
@@ -329,6 +338,8 @@ class LineSetHandler {
   std::map<std::string, RobotNotices> notices_;
   // Open while a LineSet is handled; the workers below are its background.
   ForegroundGate foreground_;
+  // LineSets being answered now (see above: threads).
+  std::atomic<int> frames_in_hand_{0};
   FrameCadence cadence_;
   PreparedMaps maps_;
   // Last, so that it is destroyed first: its searches use the members above.

@@ -20,6 +20,7 @@ PoseFixPublisher::RobotWriter& PoseFixPublisher::writerFor(const std::string& pa
 }
 
 void PoseFixPublisher::follow(const std::vector<std::string>& line_set_partitions, int64_t now_ns) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   for (const std::string& partition : line_set_partitions) {
     if (partition.rfind(kRobotPartitionPrefix, 0) == 0 &&
         partition.size() > sizeof(kRobotPartitionPrefix) - 1) {
@@ -38,9 +39,15 @@ void PoseFixPublisher::follow(const std::vector<std::string>& line_set_partition
 }
 
 void PoseFixPublisher::publish(const PoseFixData& fix, int64_t now_ns) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   RobotWriter& robot = writerFor(robotPartition(fix.robot_id));
   robot.last_present_ns = now_ns;
   robot.writer->write(toMessage(fix));
+}
+
+size_t PoseFixPublisher::writers() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return writers_.size();
 }
 
 }  // namespace lineloc

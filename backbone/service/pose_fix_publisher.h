@@ -8,11 +8,14 @@
 // its first answer. A writer whose robot has no LineSet writer left is kept
 // for keep_after_robot_left_ns, long enough for answers to frames still on
 // their way, then deleted: the writers held are bounded by the robots present.
+// Thread-safe: fixes are published by the threads answering frames
+// (frame_workers.h) while the serving loop follows the robots.
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -33,7 +36,7 @@ class PoseFixPublisher {
   // follow() has not.
   void publish(const PoseFixData& fix, int64_t now_ns);
 
-  size_t writers() const { return writers_.size(); }
+  size_t writers() const;
 
  private:
   struct RobotWriter {
@@ -46,6 +49,7 @@ class PoseFixPublisher {
 
   const dds::Participant& participant_;
   int64_t keep_after_robot_left_ns_;
+  mutable std::mutex mutex_;
   std::map<std::string, RobotWriter> writers_;
 };
 

@@ -29,9 +29,10 @@
 // frame answered states the handover this backbone leaves.
 //
 // Threads: frames (hear, planFor, answer, awaitsHandover, handover,
-// positionAhead) come on one thread, and prior on that one or the exposure notices'; searches and
-// proofs on another, one at a time per robot; the tracking proof they share,
-// and the handover offered (from any thread), are locked.
+// positionAhead) come one at a time, in order (frame_workers.h), and prior
+// beside them from the exposure notices' thread; searches and proofs on
+// another, one at a time per robot; the tracking proof they share, and the
+// handover offered (from any thread), are locked.
 #pragma once
 
 #include <cstdint>

@@ -1,11 +1,12 @@
-// Robots served per backbone core at 30 Hz: N robots (1 to 8), each sending
-// a tracked frame every 33.3 ms, their phases spread over the period,
-// answered as lineloc-backbone answers them (one LineSetHandler, frames taken
-// in the fair order of fair_frame_queue.h, a frame whose robot sent a newer
-// one answered busy), with the whole process pinned to one CPU and its map
-// read from PostGIS: the bundled Delft model in database lineloc_bench_delft
-// of the deploy/pg.sh cluster (created and loaded on first run), or the
-// server LINELOC_BENCH_DB names.
+// Robots served by one backbone at 30 Hz: N robots (1 to 8 on one core, 4 to
+// 16 on two), each sending a tracked frame every 33.3 ms, their phases spread
+// over the period, answered as lineloc-backbone answers them (one
+// LineSetHandler; a FrameWorkers thread per core answering in the fair order
+// of fair_frame_queue.h, a frame superseded or late answered busy), with the
+// whole process pinned to that many CPUs and its map read from PostGIS: the
+// bundled Delft model in database lineloc_bench_delft of the deploy/pg.sh
+// cluster (created and loaded on first run), or the server LINELOC_BENCH_DB
+// names.
 //
 // Each robot drives the same simulated drive from its own place in it (robot
 // r from frame r * frames / N), predicted from the truth moved by tracking's
@@ -16,9 +17,9 @@
 // A frame's exposure -> fix is the robot's front end on it (measured here
 // beforehand, one thread), the wait for and the answer on the backbone
 // (measured here, in real time), and the DDS round trip (not included:
-// bench_dds_round_trip measures it, p99 about 0.3 ms). N robots fit a core
-// when the p99 of the first two is within the frame period and no frame is
-// superseded. The table at the end gives each N; no library a user would
+// bench_dds_round_trip measures it, p99 about 0.3 ms). N robots fit when the
+// p99 of the first two is within the frame period and no frame is answered
+// busy. The table at the end gives each N; no library a user would
 // pick serves robots' frames, so there is no baseline beside it.
 //
 // Run: build/bin/bench_robots_per_core (simulates and loads first, a minute).
@@ -29,12 +30,13 @@
 
 #include <algorithm>
 #include <map>
+#include <mutex>
 #include <random>
 #include <thread>
 #include <vector>
 
 #include "backbone/map/database_tile_fetcher.h"
-#include "backbone/service/fair_frame_queue.h"
+#include "backbone/service/frame_workers.h"
 #include "backbone/service/line_set_handler.h"
 #include "common/time/clock.h"
 #include "common/time/percentile.h"
@@ -96,12 +98,15 @@ std::optional<TrackingHandover> provenHandover(const std::string&) {
 struct Outcome {
   std::vector<int64_t> backbone_ns;
   std::vector<int64_t> exposure_to_fix_ns;
-  int superseded = 0;
   int ok = 0;
+  // Answered FIX_BUSY: superseded by the robot's next frame, or late.
+  int superseded = 0;
+  int late = 0;
 };
 
-// Serves `robots` robots for kRunSeconds in real time on the calling thread.
-Outcome serve(int robots) {
+// Serves `robots` robots for kRunSeconds in real time: the calling thread
+// takes their frames as they come, `threads` FrameWorkers threads answer them.
+Outcome serve(int robots, int threads) {
   const test::DelftFrames& drive = delftFrames();
   MapTileCache map([] { return makeDatabaseTileFetcher(delftDatabase(), kSite); }, 100.0, 256);
   PipelineOptions options;
@@ -134,44 +139,51 @@ Outcome serve(int robots) {
     }
   }
   Outcome outcome;
-  FairFrameQueue waiting;
-  std::map<std::string, int64_t> front_end_ns;
-  const int64_t start_ns = steadyClockNs() + period_ns;
-  const int64_t frames_each = static_cast<int64_t>(kRunSeconds / kFramePeriodS);
-  int64_t next = 0;  // the next arrival, over all robots in turn
-  const int64_t arrivals = frames_each * robots;
-  const auto arrivalNs = [&](int64_t arrival) {
-    return start_ns + (arrival / robots) * period_ns + (arrival % robots) * period_ns / robots;
+  std::mutex mutex;
+  // Each frame's arrival and front-end time, by robot and sequence number.
+  std::map<std::pair<std::string, uint32_t>, std::pair<int64_t, int64_t>> sent;
+  const auto publish = [&](const PoseFixData& fix) {
+    const int64_t answered_ns = steadyClockNs();
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (fix.status == lineloc_msg_FIX_BUSY) {
+      return;
+    }
+    const auto [arrival_ns, front_end_ns] = sent.at({fix.robot_id, fix.sequence_number});
+    outcome.backbone_ns.push_back(answered_ns - arrival_ns);
+    outcome.exposure_to_fix_ns.push_back(answered_ns - arrival_ns + front_end_ns);
+    outcome.ok += fix.status == lineloc_msg_FIX_OK ? 1 : 0;
   };
-  while (next < arrivals || !waiting.empty()) {
-    while (next < arrivals && steadyClockNs() >= arrivalNs(next)) {
-      auto [line_set, front_end] = lineSet(static_cast<int>(next % robots), next / robots);
-      front_end_ns[line_set.robot_id + "#" + std::to_string(line_set.sequence_number)] = front_end;
-      if (waiting.push(std::move(line_set), arrivalNs(next))) {
-        ++outcome.superseded;
-      }
-      ++next;
+  FrameWorkers workers(
+      threads,
+      {.answer = [&](const LineSetData& line_set,
+                     int64_t taken_ns) { return handler.answer(line_set, taken_ns); },
+       .busy = [&](const LineSetData& line_set, int64_t taken_ns,
+                   FrameRefusal why) { return handler.answerBusy(line_set, taken_ns, why); },
+       .publish = publish});
+  const int64_t start_ns = steadyClockNs() + period_ns;
+  const int64_t arrivals = static_cast<int64_t>(kRunSeconds / kFramePeriodS) * robots;
+  for (int64_t arrival = 0; arrival < arrivals; ++arrival) {
+    const int64_t arrival_ns =
+        start_ns + (arrival / robots) * period_ns + (arrival % robots) * period_ns / robots;
+    auto [line_set, front_end_ns] = lineSet(static_cast<int>(arrival % robots), arrival / robots);
+    std::this_thread::sleep_until(
+        std::chrono::steady_clock::time_point(std::chrono::nanoseconds(arrival_ns)));
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      sent[{line_set.robot_id, line_set.sequence_number}] = {arrival_ns, front_end_ns};
     }
-    const int64_t now_ns = steadyClockNs();
-    if (const std::optional<FairFrameQueue::Taken> taken = waiting.pop(now_ns)) {
-      const PoseFixData fix = handler.answer(taken->line_set, taken->taken_ns);
-      const int64_t end_ns = steadyClockNs();
-      waiting.charge(taken->line_set.robot_id, end_ns - now_ns, end_ns);
-      const int64_t backbone_ns = end_ns - taken->taken_ns;
-      outcome.backbone_ns.push_back(backbone_ns);
-      outcome.exposure_to_fix_ns.push_back(
-          backbone_ns + front_end_ns[taken->line_set.robot_id + "#" +
-                                     std::to_string(taken->line_set.sequence_number)]);
-      outcome.ok += fix.status == lineloc_msg_FIX_OK ? 1 : 0;
-    } else if (next < arrivals) {
-      std::this_thread::sleep_until(
-          std::chrono::steady_clock::time_point(std::chrono::nanoseconds(arrivalNs(next))));
-    }
+    workers.take(std::move(line_set), arrival_ns);
   }
+  workers.waitUntilIdle();
+  const BackboneCounters counters = handler.counters();
+  const std::lock_guard<std::mutex> lock(mutex);
+  outcome.superseded = static_cast<int>(counters.superseded_frames);
+  outcome.late = static_cast<int>(counters.late_frames);
   return outcome;
 }
 
 struct Row {
+  int cores = 0;
   int robots = 0;
   double backbone_median_ms = 0.0;
   double backbone_p99_ms = 0.0;
@@ -179,6 +191,7 @@ struct Row {
   int answered = 0;
   int ok = 0;
   int superseded = 0;
+  int late = 0;
 };
 
 std::vector<Row>& table() {
@@ -186,36 +199,73 @@ std::vector<Row>& table() {
   return rows;
 }
 
+// The CPUs the process may run on when it started.
+const cpu_set_t& startingCpus() {
+  static const cpu_set_t cpus = [] {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    sched_getaffinity(0, sizeof(allowed), &allowed);
+    return allowed;
+  }();
+  return cpus;
+}
+
+// Pins the process to the first `cores` of startingCpus(); false when it
+// has fewer.
+bool pinTo(int cores) {
+  cpu_set_t pinned;
+  CPU_ZERO(&pinned);
+  int taken = 0;
+  for (int cpu = 0; cpu < CPU_SETSIZE && taken < cores; ++cpu) {
+    if (CPU_ISSET(cpu, &startingCpus())) {
+      CPU_SET(cpu, &pinned);
+      ++taken;
+    }
+  }
+  return taken == cores && sched_setaffinity(0, sizeof(pinned), &pinned) == 0;
+}
+
+// range(0) robots on range(1) cores, as many FrameWorkers threads.
 void BM_RobotsPerCore(benchmark::State& state) {
-  cpu_set_t one_cpu;
-  CPU_ZERO(&one_cpu);
-  CPU_SET(0, &one_cpu);
-  // Every thread the handler starts from here on inherits the one CPU.
-  if (sched_setaffinity(0, sizeof(one_cpu), &one_cpu) != 0) {
-    state.SkipWithError("cannot pin the process to one CPU");
+  const int robots = static_cast<int>(state.range(0));
+  const int cores = static_cast<int>(state.range(1));
+  // Every thread the handler starts from here on inherits the CPUs.
+  if (!pinTo(cores)) {
+    state.SkipWithError("cannot pin the process to that many CPUs");
     return;
   }
-  const int robots = static_cast<int>(state.range(0));
   Outcome outcome;
   for (auto _ : state) {
-    outcome = serve(robots);
+    outcome = serve(robots, cores);
   }
-  Row row{robots,
+  Row row{cores,
+          robots,
           toMilliseconds(percentile(outcome.backbone_ns, 50)),
           toMilliseconds(percentile(outcome.backbone_ns, 99)),
           toMilliseconds(percentile(outcome.exposure_to_fix_ns, 99)),
           static_cast<int>(outcome.backbone_ns.size()),
           outcome.ok,
-          outcome.superseded};
+          outcome.superseded,
+          outcome.late};
   state.counters["backbone_p50_ms"] = row.backbone_median_ms;
   state.counters["backbone_p99_ms"] = row.backbone_p99_ms;
   state.counters["exposure_to_fix_p99_ms"] = row.exposure_to_fix_p99_ms;
   state.counters["superseded"] = row.superseded;
+  state.counters["late"] = row.late;
   table().push_back(row);
 }
 
+void robotsAndCores(benchmark::internal::Benchmark* benchmark) {
+  for (int robots = 1; robots <= 8; ++robots) {
+    benchmark->Args({robots, 1});
+  }
+  for (int robots = 4; robots <= 16; robots += 2) {
+    benchmark->Args({robots, 2});
+  }
+}
+
 BENCHMARK(BM_RobotsPerCore)
-    ->DenseRange(1, 8)
+    ->Apply(robotsAndCores)
     ->Iterations(1)
     ->Unit(benchmark::kSecond)
     ->UseRealTime();
@@ -230,20 +280,32 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   using lineloc::table;
-  fmt::print("\nrobots per core at 30 Hz (budget {:.1f} ms; DDS round trip not included)\n",
+  fmt::print("\nrobots per backbone at 30 Hz (budget {:.1f} ms; DDS round trip not included)\n",
              lineloc::kFramePeriodS * 1e3);
   fmt::print(
-      "| robots | backbone median ms | backbone p99 ms | exposure -> fix p99 ms | answered "
-      "| OK | superseded | fits |\n|---|---|---|---|---|---|---|---|\n");
-  int fitting = 0;
+      "| cores | robots | backbone median ms | backbone p99 ms | exposure -> fix p99 ms | "
+      "answered | OK | superseded | late | fits |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  // Per core count: the most robots such that they and every smaller count
+  // measured fit.
+  std::map<int, int> fitting;
+  std::map<int, bool> all_fit;
   for (const lineloc::Row& row : table()) {
-    const bool fits =
-        row.exposure_to_fix_p99_ms <= lineloc::kFramePeriodS * 1e3 && row.superseded == 0;
-    fitting = fits && row.robots == fitting + 1 ? row.robots : fitting;
-    fmt::print("| {} | {:.2f} | {:.2f} | {:.2f} | {} | {} | {} | {} |\n", row.robots,
-               row.backbone_median_ms, row.backbone_p99_ms, row.exposure_to_fix_p99_ms,
-               row.answered, row.ok, row.superseded, fits ? "yes" : "no");
+    const bool fits = row.exposure_to_fix_p99_ms <= lineloc::kFramePeriodS * 1e3 &&
+                      row.superseded == 0 && row.late == 0;
+    if (!all_fit.contains(row.cores)) {
+      all_fit[row.cores] = true;
+    }
+    all_fit[row.cores] = all_fit[row.cores] && fits;
+    if (all_fit[row.cores]) {
+      fitting[row.cores] = row.robots;
+    }
+    fmt::print("| {} | {} | {:.2f} | {:.2f} | {:.2f} | {} | {} | {} | {} | {} |\n", row.cores,
+               row.robots, row.backbone_median_ms, row.backbone_p99_ms, row.exposure_to_fix_p99_ms,
+               row.answered, row.ok, row.superseded, row.late, fits ? "yes" : "no");
   }
-  fmt::print("robots served per core: {}\n", fitting);
+  for (const auto& [cores, robots] : fitting) {
+    fmt::print("robots served on {} core(s): {} ({:.1f} per core)\n", cores, robots,
+               static_cast<double>(robots) / cores);
+  }
   return 0;
 }

@@ -15,6 +15,7 @@ namespace {
 
 constexpr int64_t kMillisecondNs = 1'000'000;
 
+// A frame with no stamp: its robot's frame period is unknown.
 LineSetData frame(const std::string& robot_id, uint32_t sequence_number) {
   LineSetData line_set;
   line_set.robot_id = robot_id;
@@ -22,11 +23,35 @@ LineSetData frame(const std::string& robot_id, uint32_t sequence_number) {
   return line_set;
 }
 
+constexpr int64_t kPeriodNs = 33 * kMillisecondNs;
+
+// Frame `k` of a robot at 30 Hz.
+LineSetData frameAt30Hz(const std::string& robot_id, uint32_t k) {
+  LineSetData line_set = frame(robot_id, k);
+  line_set.stamp_ns = 1'000'000'000 + k * kPeriodNs;
+  return line_set;
+}
+
+// Answers frames 0 and 1 of each robot alone, each in `frame_ns`: the queue
+// learns their frame period and time per frame. Returns the time after.
+int64_t learn(FairFrameQueue& queue, const std::vector<std::string>& robots, int64_t frame_ns) {
+  int64_t now_ns = 0;
+  for (uint32_t k = 0; k < 2; ++k) {
+    for (const std::string& robot : robots) {
+      EXPECT_FALSE(queue.push(frameAt30Hz(robot, k), now_ns).late);
+      EXPECT_TRUE(queue.pop(now_ns));
+      now_ns += frame_ns;
+      queue.done(robot, frame_ns, now_ns);
+    }
+  }
+  return now_ns;
+}
+
 TEST(FairFrameQueue, ANewerFrameSupersedesTheOneItsRobotHasWaiting) {
   FairFrameQueue queue;
-  EXPECT_FALSE(queue.push(frame("rover", 1), 0));
-  EXPECT_FALSE(queue.push(frame("other", 7), 1));
-  const std::optional<LineSetData> superseded = queue.push(frame("rover", 2), 2);
+  EXPECT_FALSE(queue.push(frame("rover", 1), 0).superseded);
+  EXPECT_FALSE(queue.push(frame("other", 7), 1).superseded);
+  const std::optional<LineSetData> superseded = queue.push(frame("rover", 2), 2).superseded;
   ASSERT_TRUE(superseded);
   EXPECT_EQ(superseded->sequence_number, 1u);
   EXPECT_EQ(queue.size(), 2u);
@@ -38,13 +63,73 @@ TEST(FairFrameQueue, ANewerFrameSupersedesTheOneItsRobotHasWaiting) {
   EXPECT_EQ(second->line_set.sequence_number, 2u);
   EXPECT_EQ(second->taken_ns, 2);
   EXPECT_FALSE(queue.pop(4));
-  EXPECT_TRUE(queue.empty());
+  EXPECT_EQ(queue.size(), 0u);
+}
+
+TEST(FairFrameQueue, ARobotsNextFrameWaitsWhileItsLastIsAnswered) {
+  FairFrameQueue queue(4);
+  queue.push(frame("rover", 1), 0);
+  ASSERT_TRUE(queue.pop(1));
+  queue.push(frame("rover", 2), 2);
+  queue.push(frame("other", 1), 3);
+  EXPECT_EQ(queue.pop(4)->line_set.robot_id, "other");
+  EXPECT_FALSE(queue.pop(5)) << "rover's frame 1 is still in hand";
+  queue.done("rover", 5, 6);
+  EXPECT_EQ(queue.pop(7)->line_set.sequence_number, 2u);
+  EXPECT_FALSE(queue.idle());
+  queue.done("rover", 1, 8);
+  queue.done("other", 1, 8);
+  EXPECT_TRUE(queue.idle());
+}
+
+// One thread, two robots at 30 Hz taking 20 ms a frame: while one's frame
+// is answered, the other's would wait 20 ms and be answered 40 ms after it
+// came, after its next frame: it is refused at once. With two threads it
+// would not wait.
+TEST(FairFrameQueue, AFrameThatWouldBeAnsweredAfterItsRobotsNextIsLate) {
+  for (const int workers : {1, 2}) {
+    FairFrameQueue queue(workers);
+    const int64_t now_ns = learn(queue, {"a", "b"}, 20 * kMillisecondNs);
+    EXPECT_FALSE(queue.push(frameAt30Hz("a", 2), now_ns).late);
+    ASSERT_TRUE(queue.pop(now_ns));
+    const FairFrameQueue::Pushed pushed = queue.push(frameAt30Hz("b", 2), now_ns + kMillisecondNs);
+    EXPECT_EQ(pushed.late.has_value(), workers == 1) << workers << " workers";
+    EXPECT_EQ(queue.size(), workers == 1 ? 0u : 1u);
+  }
+}
+
+// Frames that fit: a frame waits for the one in hand, 5 ms of its robot's
+// 33 ms period, and is queued.
+TEST(FairFrameQueue, AFrameAnsweredBeforeItsRobotsNextWaits) {
+  FairFrameQueue queue(1);
+  const int64_t now_ns = learn(queue, {"a", "b"}, 5 * kMillisecondNs);
+  queue.push(frameAt30Hz("a", 2), now_ns);
+  ASSERT_TRUE(queue.pop(now_ns));
+  EXPECT_FALSE(queue.push(frameAt30Hz("b", 2), now_ns).late);
+  EXPECT_EQ(queue.size(), 1u);
+}
+
+// A robot slower to answer than its frame period, alone: its frames never
+// wait, so each is answered, late or not; and a robot whose period is not
+// known yet is never refused.
+TEST(FairFrameQueue, RefusesOnlyAFrameThatWouldWait) {
+  FairFrameQueue queue(1);
+  int64_t now_ns = learn(queue, {"slow"}, 40 * kMillisecondNs);
+  for (uint32_t k = 2; k < 6; ++k) {
+    EXPECT_FALSE(queue.push(frameAt30Hz("slow", k), now_ns).late) << k;
+    ASSERT_TRUE(queue.pop(now_ns));
+    now_ns += 40 * kMillisecondNs;
+    queue.done("slow", 40 * kMillisecondNs, now_ns);
+  }
+  queue.push(frameAt30Hz("slow", 6), now_ns);
+  ASSERT_TRUE(queue.pop(now_ns));
+  EXPECT_FALSE(queue.push(frame("new", 1), now_ns).late) << "no period known";
 }
 
 TEST(FairFrameQueue, TheRobotWithTheLeastRecentServiceGoesFirst) {
-  FairFrameQueue queue(1.0);
-  queue.charge("flood", 50 * kMillisecondNs, 0);
-  queue.charge("rover", 1 * kMillisecondNs, 0);
+  FairFrameQueue queue(1, 1.0);
+  queue.done("flood", 50 * kMillisecondNs, 0);
+  queue.done("rover", 1 * kMillisecondNs, 0);
   queue.push(frame("flood", 1), 1);
   queue.push(frame("rover", 1), 2);
   EXPECT_EQ(queue.pop(3)->line_set.robot_id, "rover");
@@ -52,18 +137,19 @@ TEST(FairFrameQueue, TheRobotWithTheLeastRecentServiceGoesFirst) {
 }
 
 TEST(FairFrameQueue, ServiceDecaysWithItsHalfLife) {
-  FairFrameQueue queue(1.0);
+  FairFrameQueue queue(1, 1.0);
   // 40 ms two half-lives ago is 10 ms now, less than 12 ms just charged.
-  queue.charge("flood", 40 * kMillisecondNs, 0);
-  queue.charge("rover", 12 * kMillisecondNs, 2'000 * kMillisecondNs);
+  queue.done("flood", 40 * kMillisecondNs, 0);
+  queue.done("rover", 12 * kMillisecondNs, 2'000 * kMillisecondNs);
   queue.push(frame("rover", 1), 2'000 * kMillisecondNs);
   queue.push(frame("flood", 1), 2'000 * kMillisecondNs + 1);
   EXPECT_EQ(queue.pop(2'000 * kMillisecondNs + 2)->line_set.robot_id, "flood");
 }
 
 TEST(FairFrameQueue, RefusesANonPositiveHalfLife) {
-  EXPECT_THROW(FairFrameQueue(0.0), std::invalid_argument);
-  EXPECT_THROW(FairFrameQueue(-1.0), std::invalid_argument);
+  EXPECT_THROW(FairFrameQueue(1, 0.0), std::invalid_argument);
+  EXPECT_THROW(FairFrameQueue(1, -1.0), std::invalid_argument);
+  EXPECT_THROW(FairFrameQueue(0, 1.0), std::invalid_argument);
 }
 
 // One server, simulated time: a flooding robot sends a frame every 10 ms
@@ -88,7 +174,7 @@ TEST(FairFrameQueue, AFloodDelaysAnotherRobotByAtMostTheFrameInHand) {
     senders.push_back({"made-up-" + std::to_string(robot), 100 * kMillisecondNs,
                        robot * 7 * kMillisecondNs, 25 * kMillisecondNs});
   }
-  FairFrameQueue queue(1.0);
+  FairFrameQueue queue(1, 1.0);
   int64_t now_ns = 0;
   const int64_t warm_ns = 1'000 * kMillisecondNs;
   const int64_t end_ns = 20'000 * kMillisecondNs;
@@ -101,11 +187,12 @@ TEST(FairFrameQueue, AFloodDelaysAnotherRobotByAtMostTheFrameInHand) {
       while (sender.offset_ns + sender.sent * sender.period_ns <= until_ns) {
         const int64_t sent_ns = sender.offset_ns + sender.sent * sender.period_ns;
         rover_sent += sender.robot_id == "rover" && sent_ns >= warm_ns;
-        superseded += queue.push(frame(sender.robot_id, sender.sent++), sent_ns).has_value();
+        superseded +=
+            queue.push(frame(sender.robot_id, sender.sent++), sent_ns).superseded.has_value();
       }
     }
   };
-  while (now_ns < end_ns || !queue.empty()) {
+  while (now_ns < end_ns || !queue.idle()) {
     sendDue(std::min(now_ns, end_ns));
     const std::optional<FairFrameQueue::Taken> next = queue.pop(now_ns);
     if (!next) {
@@ -120,7 +207,7 @@ TEST(FairFrameQueue, AFloodDelaysAnotherRobotByAtMostTheFrameInHand) {
       ++rover_answered;
     }
     now_ns += sender.service_ns;
-    queue.charge(sender.robot_id, sender.service_ns, now_ns);
+    queue.done(sender.robot_id, sender.service_ns, now_ns);
   }
   EXPECT_EQ(rover_answered, rover_sent);
   EXPECT_EQ(rover_sent, 190);

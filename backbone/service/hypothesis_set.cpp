@@ -41,6 +41,14 @@ std::vector<Eigen::Isometry3d> HypothesisSet::carriedStarts(const OdometryPose& 
   return starts;
 }
 
+std::vector<Eigen::Isometry3d> HypothesisSet::latestPoses() const {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const Hypothesis& hypothesis : hypotheses_) {
+    poses.push_back(hypothesis.latest.T_world_camera.pose);
+  }
+  return poses;
+}
+
 bool HypothesisSet::startsView(const SearchedFrame& frame) const {
   if (keyframes_.empty()) {
     return true;

@@ -105,6 +105,15 @@ struct HypothesisSetOptions {
   double window_s = 10.0;
 };
 
+// The hypotheses a backbone hands over to one that takes its robot over
+// (tracking_handovers.h): each the camera pose relative to the predicted pose
+// of the frame searched at stamp_ns, T_prediction_camera =
+// T_world_prediction^-1 T_world_camera, likeliest first.
+struct HandedHypotheses {
+  int64_t stamp_ns = 0;
+  std::vector<Eigen::Isometry3d> T_prediction_camera;
+};
+
 // A searched frame of the robot: its id (the caller's key to the frame's
 // data), exposure stamp and odometry pose.
 struct SearchedFrame {
@@ -152,6 +161,8 @@ class HypothesisSet {
   // The keyframes of the window's views, oldest first: the frames whose data
   // a caller keeps for `rescore`.
   std::vector<uint64_t> windowFrames() const;
+  // Each hypothesis's pose in the latest frame, likeliest first.
+  std::vector<Eigen::Isometry3d> latestPoses() const;
   size_t size() const { return hypotheses_.size(); }
   void clear();
 

@@ -113,13 +113,23 @@ bool RobotSession::awaitsHandover() const {
 }
 
 void RobotSession::offerHandover(const TrackingHandover& handover) {
+  if (!handover.tracking && !handover.hypotheses.T_prediction_camera.empty()) {
+    acquisition_.adopt(handover.hypotheses);
+  }
   const std::lock_guard<std::mutex> lock(proof_mutex_);
   offered_handover_ = handover;
 }
 
 TrackingHandover RobotSession::handover(int64_t stamp_ns, const OdometryPose& odometry) const {
-  const std::lock_guard<std::mutex> lock(proof_mutex_);
-  return proof_.handover(stamp_ns, odometry);
+  TrackingHandover handover;
+  {
+    const std::lock_guard<std::mutex> lock(proof_mutex_);
+    handover = proof_.handover(stamp_ns, odometry);
+  }
+  if (!handover.tracking) {
+    handover.hypotheses = acquisition_.handed();
+  }
+  return handover;
 }
 
 AcquisitionSession::Searched RobotSession::search(const LineSetData& line_set,

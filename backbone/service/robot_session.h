@@ -25,8 +25,11 @@
 //
 // A robot taken over from another backbone is offered that backbone's
 // newest handover at each frame until its tracking is proven here; an OK fix
-// continues the proof from it when the rule of tracking_proof.h allows. Every
-// frame answered states the handover this backbone leaves.
+// continues the proof from it when the rule of tracking_proof.h allows, and
+// a robot that backbone was still searching for carries its hypotheses into
+// the search here (acquisition_session.h). Every frame answered states the
+// handover this backbone leaves: the proof, or while the robot is searched
+// for, the acquisition's hypotheses.
 //
 // Threads: frames (hear, planFor, answer, awaitsHandover, handover,
 // positionAhead) come one at a time, in order (frame_workers.h), and prior
@@ -148,7 +151,7 @@ class RobotSession {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
   };
   std::optional<StampedPosition> last_position_;
-  // The searches' own.
+  // The searches' own, but for its handed and adopted hypotheses.
   AcquisitionSession acquisition_;
   mutable std::mutex proof_mutex_;
   TrackingProof proof_;

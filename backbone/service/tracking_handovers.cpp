@@ -24,16 +24,29 @@ lineloc_msg_TrackingHandover toMessage(const std::string& robot_id, const std::s
   message.rival_position_m = handover.rival.position_m;
   message.rival_rotation_rad = handover.rival.rotation_rad;
   message.looked_around = handover.looked_around;
+  const std::vector<Eigen::Isometry3d>& hypotheses = handover.hypotheses.T_prediction_camera;
+  message.hypothesis_count =
+      static_cast<uint32_t>(std::min<size_t>(hypotheses.size(), lineloc_msg_MAX_HANDED_HYPOTHESES));
+  for (uint32_t i = 0; i < message.hypothesis_count; ++i) {
+    message.hypotheses_T_prediction_camera[i] = lineloc::toMessage(hypotheses[i]);
+  }
+  message.hypotheses_stamp_ns = handover.hypotheses.stamp_ns;
   return message;
 }
 
 TrackingHandover fromMessage(const lineloc_msg_TrackingHandover& message) {
-  return {.stamp_ns = message.stamp_ns,
-          .tracking = message.tracking,
-          .agreeing_proofs = static_cast<int>(message.agreeing_proofs),
-          .proof_due_in_m = message.proof_due_in_m,
-          .rival = {message.rival_position_m, message.rival_rotation_rad},
-          .looked_around = message.looked_around};
+  TrackingHandover handover{.stamp_ns = message.stamp_ns,
+                            .tracking = message.tracking,
+                            .agreeing_proofs = static_cast<int>(message.agreeing_proofs),
+                            .proof_due_in_m = message.proof_due_in_m,
+                            .rival = {message.rival_position_m, message.rival_rotation_rad},
+                            .looked_around = message.looked_around,
+                            .hypotheses = {message.hypotheses_stamp_ns, {}}};
+  for (uint32_t i = 0; i < message.hypothesis_count; ++i) {
+    handover.hypotheses.T_prediction_camera.push_back(
+        lineloc::fromMessage(message.hypotheses_T_prediction_camera[i]));
+  }
+  return handover;
 }
 
 }  // namespace

@@ -96,6 +96,9 @@ struct TrackingHandover {
   double proof_due_in_m = 0.0;
   PoseOffset rival = {};
   bool looked_around = false;
+  // The acquisition's hypotheses after its last search, at its frame's
+  // stamp, while the robot is searched for (AcquisitionSession::handed).
+  HandedHypotheses hypotheses = {};
 };
 
 // A proof search due at a tracked frame: `moved_m` from `origin`'s viewpoint.

@@ -37,15 +37,23 @@ Error checkCovariance2(const float (&c)[3], const std::string& where) {
   return std::nullopt;
 }
 
-Error checkPose(const lineloc_msg_PoseWithCovariance& pose, const std::string& where) {
-  if (!allFinite(pose.pose.translation) || !allFinite(pose.pose.rotation_xyzw) ||
-      !allFinite(pose.covariance)) {
+Error checkTransform(const lineloc_msg_Transform& transform, const std::string& where) {
+  if (!allFinite(transform.translation) || !allFinite(transform.rotation_xyzw)) {
     return where + ": not finite";
   }
-  const double* q = pose.pose.rotation_xyzw;
+  const double* q = transform.rotation_xyzw;
   const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   if (std::abs(norm - 1.0) > kQuaternionNormTolerance) {
     return fmt::format("{}: quaternion norm {:.6f} is not 1", where, norm);
+  }
+  return std::nullopt;
+}
+
+Error checkPose(const lineloc_msg_PoseWithCovariance& pose, const std::string& where) {
+  if (Error e = checkTransform(pose.pose, where))
+    return e;
+  if (!allFinite(pose.covariance)) {
+    return where + ": not finite";
   }
   for (int row = 0; row < 6; ++row) {
     if (pose.covariance[row * 6 + row] < 0.0) {
@@ -280,6 +288,15 @@ std::optional<std::string> findTrackingHandoverError(const lineloc_msg_TrackingH
         std::isfinite(message.rival_rotation_rad) && message.rival_rotation_rad >= 0.0)) {
     return fmt::format("rival {} m, {} rad must be finite and non-negative",
                        message.rival_position_m, message.rival_rotation_rad);
+  }
+  if (message.hypothesis_count > lineloc_msg_MAX_HANDED_HYPOTHESES) {
+    return fmt::format("hypothesis_count {} exceeds {}", message.hypothesis_count,
+                       lineloc_msg_MAX_HANDED_HYPOTHESES);
+  }
+  for (uint32_t i = 0; i < message.hypothesis_count; ++i) {
+    if (Error e = checkTransform(message.hypotheses_T_prediction_camera[i],
+                                 fmt::format("hypotheses_T_prediction_camera[{}]", i)))
+      return e;
   }
   return std::nullopt;
 }

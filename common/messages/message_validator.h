@@ -37,7 +37,8 @@ std::optional<std::string> findLineSetError(const lineloc_msg_LineSet& message,
 std::optional<std::string> findPoseFixError(const lineloc_msg_PoseFix& message);
 std::optional<std::string> findRobotStateError(const lineloc_msg_RobotState& message);
 // At most kMaxAgreeingProofs agreeing proofs; finite distances, the rival's
-// non-negative.
+// non-negative; at most MAX_HANDED_HYPOTHESES hypotheses, each finite with a
+// unit quaternion.
 std::optional<std::string> findTrackingHandoverError(const lineloc_msg_TrackingHandover& message);
 inline constexpr uint32_t kMaxAgreeingProofs = 1'000'000;
 

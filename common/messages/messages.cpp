@@ -129,21 +129,31 @@ void copyRobotId(const std::string& robot_id,
   std::memcpy(destination, robot_id.data(), robot_id.size());
 }
 
+lineloc_msg_Transform toMessage(const Eigen::Isometry3d& transform) {
+  lineloc_msg_Transform message{};
+  const Eigen::Vector3d t = transform.translation();
+  const Eigen::Quaterniond q(transform.linear());
+  std::copy(t.data(), t.data() + 3, message.translation);
+  std::copy(q.coeffs().data(), q.coeffs().data() + 4, message.rotation_xyzw);
+  return message;
+}
+
+Eigen::Isometry3d fromMessage(const lineloc_msg_Transform& message) {
+  const Eigen::Map<const Eigen::Vector3d> t(message.translation);
+  const Eigen::Map<const Eigen::Quaterniond> q(message.rotation_xyzw);
+  return makePose(t, q);
+}
+
 lineloc_msg_PoseWithCovariance toMessage(const PoseWithCovariance& pose) {
   lineloc_msg_PoseWithCovariance message{};
-  const Eigen::Vector3d t = pose.pose.translation();
-  const Eigen::Quaterniond q(pose.pose.linear());
-  std::copy(t.data(), t.data() + 3, message.pose.translation);
-  std::copy(q.coeffs().data(), q.coeffs().data() + 4, message.pose.rotation_xyzw);
+  message.pose = toMessage(pose.pose);
   Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(message.covariance) = pose.covariance;
   return message;
 }
 
 PoseWithCovariance fromMessage(const lineloc_msg_PoseWithCovariance& message) {
-  const Eigen::Map<const Eigen::Vector3d> t(message.pose.translation);
-  const Eigen::Map<const Eigen::Quaterniond> q(message.pose.rotation_xyzw);
   PoseWithCovariance pose;
-  pose.pose = makePose(t, q);
+  pose.pose = fromMessage(message.pose);
   pose.covariance =
       Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(message.covariance);
   return pose;

@@ -84,6 +84,8 @@ LineSetData fromMessage(const lineloc_msg_LineSet& message);
 PoseFixData fromMessage(const lineloc_msg_PoseFix& message);
 lineloc_msg_PoseFix toMessage(const PoseFixData& data);
 
+lineloc_msg_Transform toMessage(const Eigen::Isometry3d& transform);
+Eigen::Isometry3d fromMessage(const lineloc_msg_Transform& message);
 lineloc_msg_PoseWithCovariance toMessage(const PoseWithCovariance& pose);
 PoseWithCovariance fromMessage(const lineloc_msg_PoseWithCovariance& message);
 

@@ -2,6 +2,7 @@
 // synthetic street (street_drive.h): no database, no DDS.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 
@@ -59,6 +60,62 @@ TEST(AcquisitionSession, ARobotDrivingAlongAFeaturelessFacadeIsNeverTaken) {
     EXPECT_FALSE(drive.search(session, frame, kSpeedMS, truth).decision.has_value())
         << "frame " << frame;
   }
+}
+
+// The frames of the drive from `first` on searched by `session` until one is
+// taken or `frames` have been; returns the number searched.
+int searchUntilTaken(DriveOn& drive, AcquisitionSession& session, int first, int frames) {
+  for (int frame = first; frame < first + frames; ++frame) {
+    Eigen::Isometry3d truth;
+    if (drive.search(session, frame, kSpeedMS, truth).decision) {
+      return frame - first + 1;
+    }
+  }
+  return frames + 1;
+}
+
+// A backbone taking the robot over after another's first searched frame:
+// its first search aligns the other's hypotheses, moved to its frame by the
+// robot's predictions, among them the truth; it takes none on that one frame
+// (they bring no evidence), and takes the camera no later than a session
+// that starts afresh.
+TEST(AcquisitionSession, ASessionTakingTheRobotOverCarriesTheOthersHypothesesIn) {
+  DriveOn drive(makeStreet(), 7);
+  AcquisitionSession before;
+  Eigen::Isometry3d truth;
+  ASSERT_FALSE(drive.search(before, 0, kSpeedMS, truth).decision);
+  const HandedHypotheses handed = before.handed();
+  ASSERT_FALSE(handed.T_prediction_camera.empty());
+
+  AcquisitionSession after;
+  after.adopt(handed);
+  const AcquisitionSession::Searched first = drive.search(after, 1, kSpeedMS, truth);
+  EXPECT_FALSE(first.decision) << "handed hypotheses bring no evidence of their own";
+  const std::vector<ScoredHypothesis>& aligned = first.acquisition.summary.aligned_hypotheses;
+  EXPECT_TRUE(std::ranges::any_of(aligned, [&](const ScoredHypothesis& hypothesis) {
+    return hypothesis.carried_index >= 0 &&
+           (hypothesis.T_world_camera.pose.translation() - truth.translation()).norm() < 0.3;
+  })) << "the truth, carried from the other session";
+
+  AcquisitionSession afresh;
+  EXPECT_LE(searchUntilTaken(drive, after, 2, 8), searchUntilTaken(drive, afresh, 1, 8) - 1);
+}
+
+TEST(AcquisitionSession, HandedHypothesesOlderThanItsWindowAreNotCarried) {
+  DriveOn drive(makeStreet(), 7);
+  AcquisitionSession before;
+  Eigen::Isometry3d truth;
+  drive.search(before, 0, kSpeedMS, truth);
+  HandedHypotheses handed = before.handed();
+  handed.stamp_ns -= static_cast<int64_t>((HypothesisSetOptions{}.window_s + 1.0) * 1e9);
+  AcquisitionSession after;
+  after.adopt(handed);
+  const AcquisitionSession::Searched first = drive.search(after, 1, kSpeedMS, truth);
+  EXPECT_TRUE(std::ranges::none_of(
+      first.acquisition.summary.aligned_hypotheses,
+      [](const ScoredHypothesis& hypothesis) { return hypothesis.carried_index >= 0; }));
+  after.clear();
+  EXPECT_TRUE(after.handed().T_prediction_camera.empty()) << "cleared";
 }
 
 TEST(AcquisitionSession, StartsAfreshOnceCleared) {

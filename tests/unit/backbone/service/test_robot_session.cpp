@@ -2,7 +2,9 @@
 // synthetic street (street_drive.h): no database, no DDS.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
+#include <utility>
 
 #include "backbone/service/robot_session.h"
 #include "tests/unit/backbone/service/street_drive.h"
@@ -60,6 +62,38 @@ TEST(RobotSession, SearchesFromADgpsStartThenTracksAndProvesTheTakenPose) {
 
 // A frame whose prediction is narrow enough is tracked from it, and its first
 // OK answer starts tracking from the robot's own prediction.
+// A robot searched for on one backbone: the handover it leaves holds its
+// acquisition's hypotheses, and a session taking it over that is offered
+// that handover aligns them in its first search.
+TEST(RobotSession, ARobotTakenOverWhileSearchedForCarriesItsHypothesesIntoTheSearch) {
+  StreetDrive drive(makeStreet(), 7);
+  const LocalizerOptions localizer;
+  const auto searchFrame = [&](RobotSession& session, int frame, Eigen::Isometry3d& truth) {
+    const LineSetData line_set = drive.frame(frame, kSpeedMS, truth);
+    const OdometryPose odometry = session.hear(line_set);
+    const RobotSession::FramePlan plan = session.planFor(line_set, odometry, *drive.map());
+    EXPECT_EQ(plan.plan, RobotSession::Plan::kSearch) << "frame " << frame;
+    AcquisitionSession::Searched searched =
+        session.search(line_set, odometry, drive.map(), plan.prior, localizer);
+    return std::pair(searched, session.handover(line_set.stamp_ns, odometry));
+  };
+  RobotSession before(RobotSessionOptions{}, localizer);
+  Eigen::Isometry3d truth;
+  const TrackingHandover left = searchFrame(before, 0, truth).second;
+  EXPECT_FALSE(left.tracking);
+  ASSERT_FALSE(left.hypotheses.T_prediction_camera.empty());
+
+  RobotSession after(RobotSessionOptions{}, localizer);
+  ASSERT_TRUE(after.awaitsHandover());
+  after.offerHandover(left);
+  const AcquisitionSession::Searched first = searchFrame(after, 1, truth).first;
+  EXPECT_TRUE(std::ranges::any_of(
+      first.acquisition.summary.aligned_hypotheses, [&](const ScoredHypothesis& hypothesis) {
+        return hypothesis.carried_index >= 0 &&
+               (hypothesis.T_world_camera.pose.translation() - truth.translation()).norm() < 0.3;
+      }));
+}
+
 TEST(RobotSession, TracksANarrowPredictionAndStartsProvingIt) {
   StreetDrive drive(makeStreet(), 3);
   const LocalizerOptions localizer;

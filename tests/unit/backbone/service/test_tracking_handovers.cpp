@@ -69,6 +69,35 @@ TEST(TrackingHandovers, AHandoverReachesTheOtherBackbonesAndOneThatStartsLater) 
   EXPECT_EQ(west.latest("rover1")->stamp_ns, 3'500);
 }
 
+// A robot still searched for: its acquisition's hypotheses, at most
+// MAX_HANDED_HYPOTHESES of them, each read as written.
+TEST(TrackingHandovers, TheHypothesesOfARobotSearchedForReachTheOtherBackbone) {
+  dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  dds::Participant east_participant(domain);
+  dds::Participant west_participant(domain);
+  TrackingHandovers east(east_participant, "east", kKeepNs);
+  TrackingHandovers west(west_participant, "west", kKeepNs);
+  TrackingHandover searching{.stamp_ns = 7'000, .hypotheses = {6'500, {}}};
+  for (int i = 0; i < 10; ++i) {
+    searching.hypotheses.T_prediction_camera.push_back(
+        Eigen::Translation3d(0.5 * i, -1.0, 0.1) *
+        Eigen::AngleAxisd(0.01 * i, Eigen::Vector3d::UnitZ()));
+  }
+  ASSERT_TRUE(test::waitFor([&] {
+    east.publish("rover1", searching);
+    return west.latest("rover1").has_value();
+  }));
+  const TrackingHandover read = *west.latest("rover1");
+  EXPECT_FALSE(read.tracking);
+  EXPECT_EQ(read.hypotheses.stamp_ns, 6'500);
+  ASSERT_EQ(read.hypotheses.T_prediction_camera.size(), lineloc_msg_MAX_HANDED_HYPOTHESES);
+  for (size_t i = 0; i < read.hypotheses.T_prediction_camera.size(); ++i) {
+    EXPECT_TRUE(read.hypotheses.T_prediction_camera[i].isApprox(
+        searching.hypotheses.T_prediction_camera[i], 1e-12))
+        << i;
+  }
+}
+
 TEST(TrackingHandovers, ABackboneReadsNeitherItsOwnNorOnesReadLongerAgoThanItKeepsThem) {
   dds::Domain domain(test::testDomainId(), test::testDdsConfig());
   dds::Participant east_participant(domain);

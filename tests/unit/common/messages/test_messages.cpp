@@ -220,13 +220,21 @@ TEST(Validator, PoseFixAndRobotState) {
   EXPECT_EQ(findTrackingHandoverError(handover), std::nullopt);
   handover.proof_due_in_m = -0.5;
   EXPECT_EQ(findTrackingHandoverError(handover), std::nullopt) << "a proof search overdue";
+  handover.hypothesis_count = 2;
+  for (lineloc_msg_Transform& hypothesis : handover.hypotheses_T_prediction_camera) {
+    hypothesis.rotation_xyzw[3] = 1.0;
+  }
+  handover.hypotheses_T_prediction_camera[1].translation[0] = 3.5;
+  EXPECT_EQ(findTrackingHandoverError(handover), std::nullopt);
   for (const auto& spoil : std::vector<std::function<void(lineloc_msg_TrackingHandover&)>>{
-           [](auto& m) { m.robot_id[0] = '\0'; },
-           [](auto& m) { m.backbone[0] = '-'; },
+           [](auto& m) { m.robot_id[0] = '\0'; }, [](auto& m) { m.backbone[0] = '-'; },
            [](auto& m) { m.agreeing_proofs = kMaxAgreeingProofs + 1; },
            [](auto& m) { m.proof_due_in_m = std::nan(""); },
            [](auto& m) { m.rival_position_m = -0.1; },
-           [](auto& m) { m.rival_rotation_rad = std::numeric_limits<double>::infinity(); }}) {
+           [](auto& m) { m.rival_rotation_rad = std::numeric_limits<double>::infinity(); },
+           [](auto& m) { m.hypothesis_count = lineloc_msg_MAX_HANDED_HYPOTHESES + 1; },
+           [](auto& m) { m.hypotheses_T_prediction_camera[1].translation[2] = std::nan(""); },
+           [](auto& m) { m.hypotheses_T_prediction_camera[0].rotation_xyzw[3] = 0.5; }}) {
     lineloc_msg_TrackingHandover spoiled = handover;
     spoil(spoiled);
     EXPECT_TRUE(findTrackingHandoverError(spoiled).has_value());

@@ -4,7 +4,7 @@
 // ping/pong with the same payload size on the same machine.
 //
 // Run: build/bin/bench_dds_round_trip  (starts the private PostGIS cluster on
-// port 55434 with deploy/pg.sh, a backbone, and ddsperf from cyclonedds-tools).
+// port 25435 with deploy/pg.sh, a backbone, and ddsperf from cyclonedds-tools).
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -28,7 +28,7 @@ namespace lineloc {
 namespace {
 
 constexpr int kSegments = 300;
-constexpr const char* kPgPort = "55434";
+constexpr const char* kPgPort = "25435";
 constexpr int kDdsperfSeconds = 5;
 constexpr char kRobotId[] = "bench";
 

@@ -99,11 +99,15 @@ backbone_out() { if [ "$BACKBONES" -eq 1 ]; then echo "$OUT/backbone"; else echo
 # DDS Security (deploy/dds-security.sh): each backbone and robot with an
 # identity of the site's CA, kept in $LINELOC_DDS_SECURITY_DIR. The DDS
 # configuration of participant $1 ("backbone" or "robot") named $2, its
-# identity issued when there is none yet.
+# identity issued when there is none yet; fails when it cannot be issued.
+# Called in the foreground, one at a time: the CA issues one identity at once.
 dds_config_of() {
   if [ "$DDS_SECURITY" = 1 ]; then
-    echo "$DDS_CONFIG,$("$ROOT/deploy/dds-security.sh" config "$1-$2" 2>/dev/null ||
-      "$ROOT/deploy/dds-security.sh" issue "$1" "$2")"
+    local overlay
+    overlay="$("$ROOT/deploy/dds-security.sh" config "$1-$2" 2>/dev/null ||
+      "$ROOT/deploy/dds-security.sh" issue "$1" "$2")" ||
+      { echo "demo: no DDS Security identity for $1 $2" >&2; return 1; }
+    echo "$DDS_CONFIG,$overlay"
   else
     echo "$DDS_CONFIG"
   fi
@@ -145,8 +149,8 @@ done
 BACKBONE_PIDS=()
 trap 'kill "${BACKBONE_PIDS[@]}" 2>/dev/null || true' EXIT
 for backbone in $(seq 1 "$BACKBONES"); do
-  "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" \
-    --dds-config "$(dds_config_of backbone "$(backbone_name "$backbone")")" \
+  dds_config="$(dds_config_of backbone "$(backbone_name "$backbone")")"
+  "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$dds_config" \
     --backbone-name "$(backbone_name "$backbone")" --db "$READER_CONNINFO" --site "$SITE" \
     --sun-from-clock --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
     --stats-file "$(backbone_out "$backbone")-stats.json" >"$(backbone_out "$backbone").log" 2>&1 &
@@ -157,8 +161,8 @@ echo "demo: $ROBOTS robot(s) and $BACKBONES backbone(s) running in real time ove
 ROBOT_PIDS=()
 for robot in $(seq 1 "$ROBOTS"); do
   dir="$(robot_out "$robot")"
-  "$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" \
-    --dds-config "$(dds_config_of robot "$(robot_id "$robot")")" \
+  dds_config="$(dds_config_of robot "$(robot_id "$robot")")"
+  "$BIN/lineloc-robot" --domain-id "$DOMAIN_ID" --dds-config "$dds_config" \
     --robot-id "$(robot_id "$robot")" --images "$dir/dataset" \
     --camera-calibration "$dir/dataset/cam0/calibration.yaml" --site-crs "$SITE_CRS" \
     --camera-height-m "$CAMERA_HEIGHT_M" --realtime-priority "$REALTIME_PRIORITY" \

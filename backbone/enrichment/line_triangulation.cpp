@@ -97,7 +97,7 @@ struct PlaneLine {
 struct LocalView {
   Eigen::Matrix3d R;       // world (and local) from camera
   Eigen::Vector3d centre;  // local frame
-  Eigen::Matrix3d K_inverse_transposed;
+  Eigen::Matrix3d K;
   Eigen::Matrix3d K_inverse;
   Matrix6d pose_covariance;
   std::array<Eigen::Vector2d, 2> endpoints;
@@ -108,9 +108,8 @@ LocalView localView(const LineObservation& observation, const Eigen::Vector3d& o
   LocalView view;
   view.R = observation.T_world_camera.pose.linear();
   view.centre = observation.T_world_camera.pose.translation() - origin;
-  const Eigen::Matrix3d K = observation.camera.K();
-  view.K_inverse = K.inverse();
-  view.K_inverse_transposed = view.K_inverse.transpose();
+  view.K = observation.camera.K();
+  view.K_inverse = view.K.inverse();
   view.pose_covariance = observation.T_world_camera.covariance;
   view.endpoints = {observation.segment.start.cast<double>(),
                     observation.segment.end.cast<double>()};
@@ -119,11 +118,15 @@ LocalView localView(const LineObservation& observation, const Eigen::Vector3d& o
   return view;
 }
 
+// The image of `line` in the view: l = K^-T R^T (m - c x d).
+Eigen::Vector3d imageLine(const LocalView& view, const LocalLine& line) {
+  return view.K_inverse.transpose() *
+         (view.R.transpose() * (line.moment - view.centre.cross(line.direction)));
+}
+
 // The signed pixel distances of the view's endpoints from the image of `line`.
 Eigen::Vector2d endpointResiduals(const LocalView& view, const LocalLine& line) {
-  const Eigen::Vector3d moment_camera =
-      view.R.transpose() * (line.moment - view.centre.cross(line.direction));
-  const Eigen::Vector3d l = view.K_inverse_transposed * moment_camera;
+  const Eigen::Vector3d l = imageLine(view, line);
   const double scale = l.head<2>().norm();
   Eigen::Vector2d residuals;
   for (int j = 0; j < 2; ++j) {
@@ -135,10 +138,8 @@ Eigen::Vector2d endpointResiduals(const LocalView& view, const LocalLine& line) 
 // The variance of each residual: its endpoint's across the image line, and
 // the view's pose's, e = [dp; dtheta] with t' = t + dp, R' = Exp(dtheta) R.
 Eigen::Vector2d residualVariances(const LocalView& view, const LocalLine& line) {
-  const Eigen::Vector3d moment_camera =
-      view.R.transpose() * (line.moment - view.centre.cross(line.direction));
-  const Eigen::Vector3d l = view.K_inverse_transposed * moment_camera;
-  const Eigen::Vector2d normal = l.head<2>().normalized();
+  const Eigen::Vector2d normal = imageLine(view, line).head<2>().normalized();
+  const Eigen::Vector2d residuals = endpointResiduals(view, line);
   Eigen::Matrix<double, 2, 6> d_residual_d_pose;
   for (int k = 0; k < 6; ++k) {
     LocalView moved = view;
@@ -147,8 +148,7 @@ Eigen::Vector2d residualVariances(const LocalView& view, const LocalLine& line) 
     } else {
       moved.R = Eigen::AngleAxisd(kStep, Eigen::Vector3d::Unit(k - 3)).toRotationMatrix() * view.R;
     }
-    d_residual_d_pose.col(k) =
-        (endpointResiduals(moved, line) - endpointResiduals(view, line)) / kStep;
+    d_residual_d_pose.col(k) = (endpointResiduals(moved, line) - residuals) / kStep;
   }
   const Eigen::Matrix2d pose_part =
       d_residual_d_pose * view.pose_covariance * d_residual_d_pose.transpose();
@@ -162,7 +162,7 @@ Eigen::Vector2d residualVariances(const LocalView& view, const LocalLine& line) 
 // The plane through a view's camera and its segment, [n; -n . c].
 Eigen::Vector4d viewPlane(const LocalView& view) {
   const Eigen::Vector3d l = view.endpoints[0].homogeneous().cross(view.endpoints[1].homogeneous());
-  const Eigen::Vector3d normal = (view.R * (view.K_inverse_transposed.inverse() * l)).normalized();
+  const Eigen::Vector3d normal = (view.R * (view.K.transpose() * l)).normalized();
   Eigen::Vector4d plane;
   plane << normal, -normal.dot(view.centre);
   return plane;
@@ -234,11 +234,17 @@ std::vector<Eigen::Vector2d> variancesAt(const std::vector<LocalView>& views,
   return variances;
 }
 
-// Gauss-Newton from `state`, a step halved while it raises the cost; the
-// state and its covariance.
+// The refined state, its covariance and the residuals' variances there.
 template <typename State>
-std::pair<State, Eigen::MatrixXd> refine(const std::vector<LocalView>& views, State state,
-                                         int max_iterations) {
+struct Refined {
+  State state;
+  Eigen::MatrixXd covariance;
+  std::vector<Eigen::Vector2d> variances;
+};
+
+// Gauss-Newton from `state`, a step halved while it raises the cost.
+template <typename State>
+Refined<State> refine(const std::vector<LocalView>& views, State state, int max_iterations) {
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     const std::vector<Eigen::Vector2d> variances = variancesAt(views, state.line());
     const Eigen::VectorXd r = whitenedResiduals(views, state, variances);
@@ -259,7 +265,7 @@ std::pair<State, Eigen::MatrixXd> refine(const std::vector<LocalView>& views, St
   }
   const std::vector<Eigen::Vector2d> variances = variancesAt(views, state.line());
   const Eigen::MatrixXd J = jacobian(views, state, variances);
-  return {state, (J.transpose() * J).inverse()};
+  return {state, (J.transpose() * J).inverse(), variances};
 }
 
 // The position along `line` (from its closest point to the origin) where the
@@ -337,10 +343,9 @@ Eigen::Matrix3d pointCovariance(const State& state, const Eigen::MatrixXd& covar
 template <typename State>
 LineTriangulation finish(const std::vector<LocalView>& views, const State& start,
                          const Eigen::Vector3d& origin, const LineTriangulationOptions& options) {
-  const auto [state, covariance] = refine(views, start, options.max_iterations);
+  const auto [state, covariance, variances] = refine(views, start, options.max_iterations);
   const LocalLine line = state.line();
   TriangulatedLine result;
-  const std::vector<Eigen::Vector2d> variances = variancesAt(views, line);
   for (size_t i = 0; i < views.size(); ++i) {
     const Eigen::Vector2d r = endpointResiduals(views[i], line);
     const double chi2 = r.cwiseAbs2().cwiseQuotient(variances[i]).sum();

@@ -22,6 +22,7 @@
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
 #include "sim/world/city_mesh.h"
+#include "sim/world/facade_edges.h"
 #include "sim/world/occupancy_map.h"
 #include "sim/world/waypoint_file.h"
 
@@ -155,6 +156,20 @@ void writeWorldFile(const DriveSimulationConfig& config, const std::string& crs,
   }
 }
 
+// The façade detail near the drive, as ground truth for lines learnt from its
+// images.
+void writeFacadeEdgeFile(const DriveSimulationConfig& config, const CityMesh& city,
+                         const RouteTrajectory& trajectory) {
+  constexpr int64_t kSpacing_ns = 500'000'000;
+  std::vector<Eigen::Vector2d> positions;
+  for (int64_t stamp_ns = trajectory.startStamp_ns(); stamp_ns <= trajectory.endStamp_ns();
+       stamp_ns += kSpacing_ns) {
+    positions.push_back(trajectory.at(stamp_ns).p_world_body.head<2>());
+  }
+  writeFacadeEdges((std::filesystem::path(config.output) / "facade_edges.txt").string(),
+                   facadeDetailEdges(city, positions));
+}
+
 void writeSensors(const DriveSimulationConfig& config, const RouteTrajectory& trajectory,
                   const SiteProjection& projection, EurocWriter& writer,
                   DriveSimulationSummary& summary) {
@@ -252,6 +267,7 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
   const Sunlight sun = drivingSunlight(config, SiteSun(projection, config.ambient));
   EurocWriter writer(config.output, spec);
   writeWorldFile(config, crs, city, sun, route);
+  writeFacadeEdgeFile(config, city, trajectory);
   writeSensors(config, trajectory, projection, writer, summary);
 
   const CityRenderer renderer(scene, calibration, renderOptions(config, sun, city.ground_z_m));

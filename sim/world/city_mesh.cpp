@@ -79,6 +79,13 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
         city.mesh.addTriangle(ring[t[0]] - site_origin, ring[t[1]] - site_origin,
                               ring[t[2]] - site_origin, tag);
       }
+      if (tag.kind == SurfaceKind::kWall && !triangles.empty()) {
+        CityWall& rendered = city.walls.emplace_back(
+            CityWall{tag.object_id, tag.base_z, tag.top_z, std::vector<Eigen::Vector3d>()});
+        for (const Eigen::Vector3d& point : ring) {
+          rendered.ring.push_back(point - site_origin);
+        }
+      }
     }
   }
   if (base_heights.empty()) {

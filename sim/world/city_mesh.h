@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,8 +17,18 @@
 
 namespace lineloc {
 
+// A building's wall as rendered, in scene coordinates, with what the shader
+// paints on it (FacadeLayout of its object).
+struct CityWall {
+  uint32_t object_id = 0;
+  float base_z = 0.0f;
+  float top_z = 0.0f;
+  std::vector<Eigen::Vector3d> ring;
+};
+
 struct CityMesh {
   SceneMesh mesh;
+  std::vector<CityWall> walls;
   // World (model CRS) coordinates of the scene's origin.
   Eigen::Vector3d site_origin = Eigen::Vector3d::Zero();
   // Height of the ground plane in scene coordinates: the street level of a

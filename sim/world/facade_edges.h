@@ -1,0 +1,45 @@
+// The 3D edges of the façade detail the simulator paints on a city's walls
+// (FacadeLayout: window and door frames, mullions, signs): the ground truth
+// that lines learnt from its images are scored against.
+//
+// Each wall's element borders are clipped to the wall's polygon in wall
+// coordinates (u along the wall, v up from the building's base; a point
+// (u, v) lies at u t + s n_h + (base + v) z, with t and n_h the wall's
+// horizontal tangent and normal and s = (n . p0 - n_z (base + v)) / |n_xy| on
+// the wall's plane n . x = n . p0), then kept only where the painted albedo
+// steps across them by at least min_albedo_step, sampled every
+// sample_spacing_m. Walls farther than max_distance_m from every point of
+// `near` are left out (the cameras of a drive never resolve them).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/world/city_mesh.h"
+
+namespace lineloc {
+
+struct FacadeEdge {
+  uint32_t object_id = 0;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // scene (site) frame, m
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+};
+
+struct FacadeEdgeOptions {
+  double min_albedo_step = 0.05;
+  double sample_spacing_m = 0.01;
+  double max_distance_m = 100.0;
+};
+
+std::vector<FacadeEdge> facadeDetailEdges(const CityMesh& city,
+                                          const std::vector<Eigen::Vector2d>& near,
+                                          const FacadeEdgeOptions& options = {});
+
+// One edge per line: object_id x0 y0 z0 x1 y1 z1, after a '#' header.
+void writeFacadeEdges(const std::string& path, const std::vector<FacadeEdge>& edges);
+// Throws std::runtime_error naming the file and line of a malformed row.
+std::vector<FacadeEdge> readFacadeEdges(const std::string& path);
+
+}  // namespace lineloc

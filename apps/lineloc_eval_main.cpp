@@ -35,6 +35,11 @@ int main(int argc, char** argv) {
               "ground truth is not interpolated across longer gaps (s)");
   options.add("motion_distance_m", config.motion_distance_m,
               "the robot first moves when its ground truth first lies this far from its start (m)");
+  options.add("learnt_lines", config.learnt_lines,
+              "lines learnt from the drive (lineloc-enrich --out) to score against the façade "
+              "edges (empty: none)");
+  options.add("facade_edges", config.facade_edges,
+              "with --learnt-lines: the simulated drive's facade_edges.txt");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <ostream>
 
+#include "sim/eval/enrichment_score.h"
 #include "sim/eval/evaluation_plot.h"
 #include "sim/eval/fix_consistency.h"
 #include "sim/world/city_mesh.h"
@@ -60,6 +61,19 @@ void printFixReport(const EvaluationReportConfig& config,
                                evaluation_options);
 }
 
+void printEnrichmentScore(const EvaluationReportConfig& config, std::ostream& out) {
+  if (config.facade_edges.empty()) {
+    throw std::runtime_error("--learnt-lines needs --facade-edges, the drive's facade_edges.txt");
+  }
+  const EnrichmentScoreOptions options;
+  const EnrichmentScore score = scoreEnrichment(readLearntLines(config.learnt_lines),
+                                                readFacadeEdges(config.facade_edges), options);
+  out << fmt::format(
+      "learnt lines: {}; distance to the nearest façade edge median {:.3f} m, {:.1f} % within "
+      "{:.2f} m\n",
+      score.lines, score.median_distance_m, 100.0 * score.within_fraction, options.within_m);
+}
+
 }  // namespace
 
 EvaluationStatus runEvaluationReport(const EvaluationReportConfig& config, std::ostream& out) {
@@ -76,6 +90,9 @@ EvaluationStatus runEvaluationReport(const EvaluationReportConfig& config, std::
   out << formatEvaluationTable(evaluation, evaluation_options);
   if (!config.fix_log.empty()) {
     printFixReport(config, ground_truth, estimate, evaluation_options, out);
+  }
+  if (!config.learnt_lines.empty()) {
+    printEnrichmentScore(config, out);
   }
   const std::optional<SceneMesh> footprints = loadFootprints(config);
   const cv::Mat plot = drawEvaluationPlot(ground_truth, estimate, evaluation, evaluation_options,

@@ -32,6 +32,10 @@ struct EvaluationReportConfig {
   double max_ground_truth_gap_s = 0.5;
   // The robot first moves when its ground truth first lies this far from its start.
   double motion_distance_m = 0.05;
+  // Lines learnt from the drive (lineloc-enrich --out) scored against the
+  // dataset's façade edges (facade_edges.txt); empty: none.
+  std::string learnt_lines;
+  std::string facade_edges;
 };
 
 // Writes the report to `out` and the plot; returns the whole trajectory's

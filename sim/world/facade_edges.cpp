@@ -208,11 +208,8 @@ void writeFacadeEdges(const std::string& path, const std::vector<FacadeEdge>& ed
   }
 }
 
-std::vector<FacadeEdge> readFacadeEdges(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
-    throw std::runtime_error(fmt::format("cannot read façade edges from {}", path));
-  }
+std::vector<FacadeEdge> parseFacadeEdges(std::string_view text, const std::string& source) {
+  std::istringstream in{std::string(text)};
   std::vector<FacadeEdge> edges;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
@@ -227,11 +224,21 @@ std::vector<FacadeEdge> readFacadeEdges(const std::string& path) {
         (fields >> rest) || !edge.start.allFinite() || !edge.end.allFinite()) {
       throw std::runtime_error(
           fmt::format("{}:{}: expected 'object_id x0 y0 z0 x1 y1 z1' (finite numbers), got '{}'",
-                      path, number, line));
+                      source, number, line));
     }
     edges.push_back(edge);
   }
   return edges;
+}
+
+std::vector<FacadeEdge> readFacadeEdges(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw std::runtime_error(fmt::format("cannot read façade edges from {}", path));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseFacadeEdges(text.str(), path);
 }
 
 }  // namespace lineloc

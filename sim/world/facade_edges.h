@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/world/city_mesh.h"
@@ -39,7 +40,9 @@ std::vector<FacadeEdge> facadeDetailEdges(const CityMesh& city,
 
 // One edge per line: object_id x0 y0 z0 x1 y1 z1, after a '#' header.
 void writeFacadeEdges(const std::string& path, const std::vector<FacadeEdge>& edges);
-// Throws std::runtime_error naming the file and line of a malformed row.
+// Parses that text; `source` names it in errors. Throws std::runtime_error
+// naming the source and line of a malformed row.
+std::vector<FacadeEdge> parseFacadeEdges(std::string_view text, const std::string& source);
 std::vector<FacadeEdge> readFacadeEdges(const std::string& path);
 
 }  // namespace lineloc

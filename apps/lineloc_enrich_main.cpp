@@ -1,0 +1,45 @@
+// lineloc-enrich: lines learnt from a recorded drive for the city model,
+// offline (apps/offline_enrichment.h).
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+#include "apps/offline_enrichment.h"
+#include "common/config/program_options.h"
+
+int main(int argc, char** argv) {
+  lineloc::OfflineEnrichmentConfig config;
+  lineloc::ProgramOptions options(
+      "lineloc-enrich", "Lines learnt for a city model from a recorded drive and its fix log");
+  options.add("city_model", config.city_model,
+              "city model file (CityJSON, CityJSON Lines, OBJ, GeoJSON)");
+  options.add("city_model_crs", config.city_model_crs,
+              "CRS of a city model file that names none (EPSG:N)");
+  options.addFixedSize("site_origin", config.site_origin, 3,
+                       "model coordinates x y z of the site origin, subtracted from the model "
+                       "(default: the model's lowest corner)");
+  options.add("images", config.images, "image folder or EuRoC/ASL camera folder");
+  options.add("camera_calibration", config.camera_calibration,
+              "camera calibration (OpenCV YAML layout)");
+  options.add("fix_log", config.fix_log, "the robot's log of the backbone's answers (fixes.txt)");
+  options.addFixedSize("sun", config.sun_deg, 2,
+                       "sun azimuth clockwise from grid north and elevation (deg) (default: sun "
+                       "unknown)");
+  options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
+  options.add("out", config.out, "learnt lines written");
+  options.add("max_placement_sigma_m", config.observation.max_placement_sigma_m,
+              "segments the fix places on a wall less precisely than this are not learnt from "
+              "(m, across the line)");
+  options.add("min_views", config.tracks.triangulation.min_views,
+              "views a line needs before it is triangulated");
+  if (const auto exit_code = options.parse(argc, argv)) {
+    return *exit_code;
+  }
+  try {
+    lineloc::runOfflineEnrichment(config, std::cout);
+    return 0;
+  } catch (const std::exception& error) {
+    spdlog::error("{}", error.what());
+    return 1;
+  }
+}

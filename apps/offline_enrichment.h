@@ -1,0 +1,68 @@
+// What lineloc-enrich does: enrichment of a city model from a recorded drive
+// (paper §3.1: the database "enriched with more lines, which are extracted
+// from camera images ... before the database is used"). For each frame the
+// robot's fix log answered OK, the robot's front end
+// (robot/vision/features) extracts the image's segments, the model lines
+// visible from the fix are found (backbone/visibility), and the segments they
+// do not explain are placed on the model's faces and associated across frames
+// into 3D lines (backbone/enrichment). Those that triangulate are written, one
+// per line (lineloc-eval --learnt-lines scores them against a simulated
+// drive's façade edges).
+//
+// It composes the robot's and the backbone's libraries, so it belongs to
+// neither: backbone/ never includes robot/.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "backbone/enrichment/surface_line_tracks.h"
+#include "robot/vision/features/feature_extractor.h"
+
+namespace lineloc {
+
+struct OfflineEnrichmentConfig {
+  // CityJSON, CityJSON Lines, OBJ or GeoJSON footprints.
+  std::string city_model;
+  // "EPSG:N" for a model file that names no CRS.
+  std::string city_model_crs;
+  // Model coordinates x y z of the site origin (see lineloc-track).
+  std::vector<double> site_origin;
+  // Image folder or EuRoC/ASL camera folder, with stamps matching the fixes.
+  std::string images;
+  // OpenCV YAML layout.
+  std::string camera_calibration;
+  // The robot's log of the backbone's answers (common/trajectory/fix_log.h).
+  std::string fix_log;
+  // Sun azimuth clockwise from grid north and elevation (deg); empty: unknown.
+  std::vector<double> sun_deg;
+  double ambient = 0.35;
+  // Learnt lines written: x0 y0 z0 x1 y1 z1 building views robots and the
+  // endpoints' standard deviations across the line.
+  std::string out = "enrichment.txt";
+  FeatureExtractorOptions extractor = trackingFrontEndOptions();
+  SurfaceObservationOptions observation;
+  SurfaceLineTrackOptions tracks;
+};
+
+struct OfflineEnrichmentSummary {
+  int frames = 0;
+  int fixed_frames = 0;
+  // Frames whose OK fix placed at least one segment precisely enough.
+  int precise_frames = 0;
+  int segments = 0;
+  int explained = 0;
+  int off_surface = 0;
+  int imprecise = 0;
+  int on_surface = 0;
+  size_t tracks = 0;
+  std::vector<LineCandidate> lines;
+};
+
+// Throws std::runtime_error naming the option or file that is malformed or
+// unreadable. Writes what it did, and the score, to `out`.
+OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& config,
+                                              std::ostream& out);
+
+}  // namespace lineloc

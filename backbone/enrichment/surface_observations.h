@@ -1,0 +1,91 @@
+// What a well-localised frame offers the map (paper §3.1): the image segments
+// that no visible model line explains, each placed on the model face it lies
+// on, the raw material of enrichment.
+//
+// A segment contributes only where the frame's pose places it on the wall to
+// within max_placement_sigma_m across the line: a pose error e = [dp; dtheta]
+// moves the point X where a pixel's ray meets the wall by J e, J = [I, -[X -
+// t]x] (t the camera's centre), so sigma^2 = u^T J Sigma J^T u at the
+// segment's middle, u the unit direction in the wall across the line. A fix that leaves the
+// position along a façade open still places the façade's horizontal edges, and a window edge placed
+// from a pose a decimetre off would land a decimetre off.
+//
+// A segment is explained when a visible model line, projected, runs within
+// explained_angle_rad of it, both its endpoints lie within
+// explained_distance_px of that line, and the two overlap along it: the
+// matcher has (or could have) used it.
+//
+// An unexplained segment is placed by casting the rays through two points a
+// tenth of its length in from its ends: both must meet a face of one building
+// in one plane (normals within plane_angle_rad, the points within
+// plane_offset_m of the plane through either), else the segment is not on the
+// model's surface (a lamp post, a tree, a car's roof line seen against a wall
+// at another depth) and is left out. Its ends are where their own rays meet
+// that plane. Rays through a pixel either side of its middle find the side
+// its polarity says is brighter, as a direction in the plane, so that a
+// window frame's outer and inner edges, a few centimetres apart, are told
+// apart by which side is bright.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backbone/enrichment/line_triangulation.h"
+#include "backbone/visibility/occlusion_scene.h"
+#include "backbone/visibility/visible_lines.h"
+
+namespace lineloc {
+
+// One frame as the backbone answered it: its segments (undistorted pixels),
+// the pose it answered with, and the model lines visible from there.
+struct EnrichmentFrame {
+  std::string robot_id;
+  int64_t stamp_ns = 0;
+  PinholeCamera camera;
+  PoseWithCovariance T_world_camera;
+  std::vector<ImageSegment> segments;
+  std::vector<VisibleSegment> visible;
+};
+
+// An unexplained segment on a model face.
+struct SurfaceSegment {
+  std::string robot_id;
+  int64_t stamp_ns = 0;
+  LineObservation view;
+  int64_t building_id = 0;
+  Plane plane;
+  Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  // Unit direction in the plane, across the segment, towards its brighter
+  // side; zero when its polarity is unknown.
+  Eigen::Vector3d brighter_side = Eigen::Vector3d::Zero();
+  // Distance from the camera to the segment's middle (m).
+  double depth_m = 0.0;
+  // Standard deviation of its place across the line that the pose causes (m).
+  double placement_sigma_m = 0.0;
+};
+
+struct SurfaceObservationOptions {
+  double max_placement_sigma_m = 0.03;
+  double min_length_px = 15.0;
+  double explained_distance_px = 3.0;
+  double explained_angle_rad = 2.0 * M_PI / 180.0;
+  double plane_angle_rad = 5.0 * M_PI / 180.0;
+  double plane_offset_m = 0.05;
+};
+
+struct SurfaceObservations {
+  std::vector<SurfaceSegment> segments;
+  int explained = 0;
+  int too_short = 0;
+  int off_surface = 0;
+  int imprecise = 0;
+};
+
+SurfaceObservations observeSurfaceSegments(const EnrichmentFrame& frame,
+                                           const OcclusionScene& scene,
+                                           const SurfaceObservationOptions& options);
+
+}  // namespace lineloc

@@ -1,0 +1,141 @@
+#include "sim/eval/enrichment_score.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace lineloc {
+namespace {
+
+constexpr int kSamples = 5;
+
+double distanceToSegment(const Eigen::Vector3d& point, const Eigen::Vector3d& a,
+                         const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - point).norm();
+}
+
+// The edges by the cells of a grid of reach_m that their boxes touch.
+class EdgeGrid {
+ public:
+  EdgeGrid(const std::vector<FacadeEdge>& edges, double cell_m) : cell_m_(cell_m) {
+    for (size_t i = 0; i < edges.size(); ++i) {
+      forCells(edges[i].start.cwiseMin(edges[i].end), edges[i].start.cwiseMax(edges[i].end),
+               [&](const Key& key) { cells_[key].push_back(static_cast<int>(i)); });
+    }
+  }
+
+  // The edges whose cells touch the box, each once.
+  std::vector<int> near(const Eigen::Vector3d& low, const Eigen::Vector3d& high) const {
+    std::vector<int> found;
+    forCells(low, high, [&](const Key& key) {
+      if (const auto it = cells_.find(key); it != cells_.end()) {
+        found.insert(found.end(), it->second.begin(), it->second.end());
+      }
+    });
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+  }
+
+ private:
+  using Key = std::array<long long, 3>;
+  struct KeyHash {
+    size_t operator()(const Key& key) const {
+      return static_cast<size_t>(key[0] * 73856093LL ^ key[1] * 19349663LL ^ key[2] * 83492791LL);
+    }
+  };
+
+  template <typename Visit>
+  void forCells(const Eigen::Vector3d& low, const Eigen::Vector3d& high, Visit visit) const {
+    const auto index = [&](double value) { return std::llround(std::floor(value / cell_m_)); };
+    for (long long x = index(low.x()); x <= index(high.x()); ++x) {
+      for (long long y = index(low.y()); y <= index(high.y()); ++y) {
+        for (long long z = index(low.z()); z <= index(high.z()); ++z) {
+          visit(Key{x, y, z});
+        }
+      }
+    }
+  }
+
+  double cell_m_;
+  std::unordered_map<Key, std::vector<int>, KeyHash> cells_;
+};
+
+}  // namespace
+
+std::vector<LearntLine> parseLearntLines(std::string_view text, const std::string& source) {
+  std::istringstream in{std::string(text)};
+  std::vector<LearntLine> lines;
+  std::string row;
+  for (int number = 1; std::getline(in, row); ++number) {
+    if (row.empty() || row.front() == '#') {
+      continue;
+    }
+    std::istringstream fields(row);
+    LearntLine line;
+    if (!(fields >> line.start.x() >> line.start.y() >> line.start.z() >> line.end.x() >>
+          line.end.y() >> line.end.z()) ||
+        !line.start.allFinite() || !line.end.allFinite()) {
+      throw std::runtime_error(
+          fmt::format("{}:{}: expected 'x0 y0 z0 x1 y1 z1 ...' (finite numbers), got '{}'", source,
+                      number, row));
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::vector<LearntLine> readLearntLines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw std::runtime_error(fmt::format("cannot read learnt lines from {}", path));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseLearntLines(text.str(), path);
+}
+
+EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
+                                const std::vector<FacadeEdge>& truth,
+                                const EnrichmentScoreOptions& options) {
+  EnrichmentScore score;
+  score.lines = static_cast<int>(lines.size());
+  const EdgeGrid grid(truth, options.reach_m);
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(options.reach_m);
+  for (const LearntLine& line : lines) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const int i :
+         grid.near(line.start.cwiseMin(line.end) - reach, line.start.cwiseMax(line.end) + reach)) {
+      double sum = 0.0;
+      for (int k = 0; k < kSamples; ++k) {
+        const double t = (k + 0.5) / kSamples;
+        sum += distanceToSegment(line.start + t * (line.end - line.start), truth[i].start,
+                                 truth[i].end);
+      }
+      best = std::min(best, sum / kSamples);
+    }
+    score.distances_m.push_back(best);
+  }
+  if (!lines.empty()) {
+    std::vector<double> sorted = score.distances_m;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    score.median_distance_m = sorted[sorted.size() / 2];
+    score.within_fraction =
+        static_cast<double>(std::count_if(sorted.begin(), sorted.end(),
+                                          [&](double d) { return d <= options.within_m; })) /
+        static_cast<double>(sorted.size());
+  }
+  return score;
+}
+
+}  // namespace lineloc

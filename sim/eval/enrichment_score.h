@@ -1,0 +1,48 @@
+// How well lines learnt from images (enrichment) match the façade detail the
+// simulator painted (sim/world/facade_edges.h).
+//
+// A learnt line's distance is to its nearest detail edge: the mean, over
+// kSamples points spread evenly along it, of their distances to that edge,
+// minimised over the edges. The score gives the median and the fraction within
+// within_m.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/world/facade_edges.h"
+
+namespace lineloc {
+
+struct LearntLine {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+};
+
+struct EnrichmentScore {
+  int lines = 0;
+  double median_distance_m = 0.0;
+  double within_fraction = 0.0;
+  // Per line, in the order given (m; infinity when no edge is within reach_m).
+  std::vector<double> distances_m;
+};
+
+struct EnrichmentScoreOptions {
+  double within_m = 0.10;
+  // Edges farther than this from a line are not looked at.
+  double reach_m = 1.0;
+};
+
+// Reads lineloc-enrich's output: the first six fields of each line that is
+// not a '#' comment are x0 y0 z0 x1 y1 z1. Throws std::runtime_error naming
+// the source (the file) and line of a malformed row.
+std::vector<LearntLine> parseLearntLines(std::string_view text, const std::string& source);
+std::vector<LearntLine> readLearntLines(const std::string& path);
+
+EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
+                                const std::vector<FacadeEdge>& truth,
+                                const EnrichmentScoreOptions& options = {});
+
+}  // namespace lineloc

@@ -11,6 +11,8 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "backbone/enrichment/known_lines.h"
+#include "backbone/enrichment/repeated_lines.h"
 #include "backbone/tracker/model_file.h"
 #include "common/camera/camera_calibration.h"
 #include "common/config/option_values.h"
@@ -86,6 +88,9 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
     frame.stamp_ns = *frame_ref.stamp_ns;
     frame.camera = calibration.camera;
     frame.T_world_camera = fix->second.T_world_camera;
+    if (visibility.sunlight) {
+      frame.towards_sun_world = visibility.sunlight->direction_world;
+    }
     const cv::Mat image = readImageFile(frame_ref.path, cv::IMREAD_GRAYSCALE);
     frame.segments = extractor.extract(image).segments;
     frame.visible = visibleSegments(local.model.lines, scene, frame.T_world_camera,
@@ -96,21 +101,28 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
     summary.explained += observed.explained;
     summary.off_surface += observed.off_surface;
     summary.imprecise += observed.imprecise;
+    summary.shadow_edges += observed.shadow_edges;
     summary.on_surface += static_cast<int>(observed.segments.size());
     for (const SurfaceSegment& segment : observed.segments) {
       tracks.add(segment);
     }
   }
   summary.tracks = tracks.trackCount();
-  summary.lines = tracks.candidates();
+  const std::vector<LineCandidate> candidates = tracks.candidates();
+  const std::vector<LineCandidate> distinct = withoutRepeatedLines(candidates);
+  summary.repeated_lines = static_cast<int>(candidates.size() - distinct.size());
+  summary.lines = withoutModelLines(distinct, local.model.lines);
+  summary.model_lines_seen = static_cast<int>(distinct.size() - summary.lines.size());
   writeLines(config.out, summary.lines);
   out << fmt::format(
       "lineloc-enrich: {} frames, {} with an OK fix, {} of them placing segments precisely; {} "
-      "segments: {} explained by model lines, {} off the model's surface, {} placed too "
-      "imprecisely by the fix, {} learnt from in {} tracks; {} lines -> {}\n",
+      "segments: {} explained by model lines, {} off the model's surface, {} on its cast "
+      "shadows' edges, {} placed too imprecisely by the fix, {} learnt from in {} tracks; {} "
+      "lines ({} more were model lines, {} of a repeating pattern) -> {}\n",
       summary.frames, summary.fixed_frames, summary.precise_frames, summary.segments,
-      summary.explained, summary.off_surface, summary.imprecise, summary.on_surface, summary.tracks,
-      summary.lines.size(), config.out);
+      summary.explained, summary.off_surface, summary.shadow_edges, summary.imprecise,
+      summary.on_surface, summary.tracks, summary.lines.size(), summary.model_lines_seen,
+      summary.repeated_lines, config.out);
   return summary;
 }
 

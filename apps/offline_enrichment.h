@@ -5,7 +5,8 @@
 // (robot/vision/features) extracts the image's segments, the model lines
 // visible from the fix are found (backbone/visibility), and the segments they
 // do not explain are placed on the model's faces and associated across frames
-// into 3D lines (backbone/enrichment). Those that triangulate are written, one
+// into 3D lines (backbone/enrichment). Those that triangulate, are not part
+// of a repeating pattern and are not model lines seen again are written, one
 // per line (lineloc-eval --learnt-lines scores them against a simulated
 // drive's façade edges).
 //
@@ -54,9 +55,14 @@ struct OfflineEnrichmentSummary {
   int segments = 0;
   int explained = 0;
   int off_surface = 0;
+  int shadow_edges = 0;
   int imprecise = 0;
   int on_surface = 0;
   size_t tracks = 0;
+  // Triangulated lines that were model lines seen again, or of a repeating
+  // pattern.
+  int model_lines_seen = 0;
+  int repeated_lines = 0;
   std::vector<LineCandidate> lines;
 };
 

@@ -33,6 +33,11 @@ bool explains(const Eigen::Vector2d& line_a, const Eigen::Vector2d& line_b,
   return std::max(s0, s1) > 0.0 && std::min(s0, s1) < length;
 }
 
+// A ray towards the sun this long leaves every building of a map view behind;
+// shadow probes start this far off the wall.
+constexpr double kSunRayLength_m = 2000.0;
+constexpr double kProbeLift_m = 0.02;
+
 class SurfacePlacer {
  public:
   SurfacePlacer(const EnrichmentFrame& frame, const OcclusionScene& scene,
@@ -55,6 +60,31 @@ class SurfacePlacer {
     return std::any_of(projected_.begin(), projected_.end(), [&](const auto& line) {
       return explains(line.first, line.second, start, end, options_);
     });
+  }
+
+  // Whether one side of the placed segment is lit and the other in a shadow
+  // the model casts (see the header).
+  bool onCastShadowBoundary(const SurfaceSegment& placed) const {
+    if (!frame_.towards_sun_world) {
+      return false;
+    }
+    const Eigen::Vector3d& sun = *frame_.towards_sun_world;
+    const Eigen::Vector3d middle = 0.5 * (placed.start_world + placed.end_world);
+    const Eigen::Vector3d camera = frame_.T_world_camera.pose.translation();
+    const Eigen::Vector3d seen_normal = placed.plane.normal.dot(camera - middle) > 0.0
+                                            ? placed.plane.normal
+                                            : Eigen::Vector3d(-placed.plane.normal);
+    if (seen_normal.dot(sun) <= 0.0) {
+      return false;  // the whole wall faces away from the sun
+    }
+    const Eigen::Vector3d across =
+        placed.plane.normal.cross(placed.end_world - placed.start_world).normalized();
+    const auto lit = [&](double side) {
+      const Eigen::Vector3d point =
+          middle + side * options_.shadow_probe_m * across + kProbeLift_m * seen_normal;
+      return !scene_.blocked(point + kSunRayLength_m * sun, point, 0.5 * kProbeLift_m);
+    };
+    return lit(1.0) != lit(-1.0);
   }
 
   std::optional<SurfaceSegment> place(const ImageSegment& segment) const {
@@ -168,6 +198,10 @@ SurfaceObservations observeSurfaceSegments(const EnrichmentFrame& frame,
     std::optional<SurfaceSegment> placed = placer.place(segment);
     if (!placed) {
       ++observations.off_surface;
+      continue;
+    }
+    if (placer.onCastShadowBoundary(*placed)) {
+      ++observations.shadow_edges;
       continue;
     }
     if (placed->placement_sigma_m > options.max_placement_sigma_m) {

@@ -15,6 +15,11 @@
 // explained_distance_px of that line, and the two overlap along it: the
 // matcher has (or could have) used it.
 //
+// Under a known sun, a segment that the model's cast shadow explains is left
+// out too: of two points shadow_probe_m either side of it on the wall, one is
+// lit and the other in a shadow the model casts (a ray towards the sun meets
+// a face). Light is not structure: the boundary moves with the hour.
+//
 // An unexplained segment is placed by casting the rays through two points a
 // tenth of its length in from its ends: both must meet a face of one building
 // in one plane (normals within plane_angle_rad, the points within
@@ -29,6 +34,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +53,8 @@ struct EnrichmentFrame {
   PoseWithCovariance T_world_camera;
   std::vector<ImageSegment> segments;
   std::vector<VisibleSegment> visible;
+  // Unit vector towards the sun, when known.
+  std::optional<Eigen::Vector3d> towards_sun_world;
 };
 
 // An unexplained segment on a model face.
@@ -74,6 +82,7 @@ struct SurfaceObservationOptions {
   double explained_angle_rad = 2.0 * M_PI / 180.0;
   double plane_angle_rad = 5.0 * M_PI / 180.0;
   double plane_offset_m = 0.05;
+  double shadow_probe_m = 0.05;
 };
 
 struct SurfaceObservations {
@@ -81,6 +90,7 @@ struct SurfaceObservations {
   int explained = 0;
   int too_short = 0;
   int off_surface = 0;
+  int shadow_edges = 0;
   int imprecise = 0;
 };
 

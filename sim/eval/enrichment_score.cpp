@@ -14,7 +14,7 @@
 namespace lineloc {
 namespace {
 
-constexpr int kSamples = 5;
+constexpr int kMinSamples = 5;
 
 double distanceToSegment(const Eigen::Vector3d& point, const Eigen::Vector3d& a,
                          const Eigen::Vector3d& b) {
@@ -113,18 +113,18 @@ EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
   const EdgeGrid grid(truth, options.reach_m);
   const Eigen::Vector3d reach = Eigen::Vector3d::Constant(options.reach_m);
   for (const LearntLine& line : lines) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const int i :
-         grid.near(line.start.cwiseMin(line.end) - reach, line.start.cwiseMax(line.end) + reach)) {
-      double sum = 0.0;
-      for (int k = 0; k < kSamples; ++k) {
-        const double t = (k + 0.5) / kSamples;
-        sum += distanceToSegment(line.start + t * (line.end - line.start), truth[i].start,
-                                 truth[i].end);
+    const int samples = std::max(
+        kMinSamples, static_cast<int>((line.end - line.start).norm() / options.sample_spacing_m));
+    double sum = 0.0;
+    for (int k = 0; k < samples; ++k) {
+      const Eigen::Vector3d point = line.start + (k + 0.5) / samples * (line.end - line.start);
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const int i : grid.near(point - reach, point + reach)) {
+        nearest = std::min(nearest, distanceToSegment(point, truth[i].start, truth[i].end));
       }
-      best = std::min(best, sum / kSamples);
+      sum += nearest;
     }
-    score.distances_m.push_back(best);
+    score.distances_m.push_back(sum / samples);
   }
   if (!lines.empty()) {
     std::vector<double> sorted = score.distances_m;

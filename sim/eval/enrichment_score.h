@@ -1,10 +1,11 @@
 // How well lines learnt from images (enrichment) match the façade detail the
 // simulator painted (sim/world/facade_edges.h).
 //
-// A learnt line's distance is to its nearest detail edge: the mean, over
-// kSamples points spread evenly along it, of their distances to that edge,
-// minimised over the edges. The score gives the median and the fraction within
-// within_m.
+// A learnt line's distance is the mean, over points spread evenly along it
+// (one per sample_spacing_m, at least five), of each point's distance to the
+// nearest façade edge: a line along a row of signs is on their edges though
+// each sign's edge is a piece of its own. The score gives the median and the
+// fraction within within_m.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,13 +26,15 @@ struct EnrichmentScore {
   int lines = 0;
   double median_distance_m = 0.0;
   double within_fraction = 0.0;
-  // Per line, in the order given (m; infinity when no edge is within reach_m).
+  // Per line, in the order given (m; infinity when a point has no edge
+  // within reach_m).
   std::vector<double> distances_m;
 };
 
 struct EnrichmentScoreOptions {
   double within_m = 0.10;
-  // Edges farther than this from a line are not looked at.
+  double sample_spacing_m = 0.1;
+  // Edges farther than this from a point are not looked at.
   double reach_m = 1.0;
 };
 

@@ -126,8 +126,51 @@ class WallFrame {
 // Walls steeper than this (|n_z| at most 0.9) get façade detail in the export.
 constexpr double kMinWallHorizontal = 0.1;
 
-void addWallEdges(const CityWall& wall, const std::vector<Eigen::Vector2d>& near,
-                  const FacadeEdgeOptions& options, std::vector<FacadeEdge>& edges) {
+// Where the wall meets the rendered ground (terrain or plane): sampled every
+// kFootSpacing_m along the wall where the wall is there, straight runs merged
+// while every sample stays within kFootStraightness_m of the run's chord.
+constexpr double kFootSpacing_m = 0.25;
+constexpr double kFootStraightness_m = 0.01;
+
+void addWallFoot(const CityWall& wall, const CityMesh& city, const WallFrame& frame,
+                 const Polygon2d& polygon, double u_min, double u_max,
+                 std::vector<FacadeEdge>& edges) {
+  std::vector<Eigen::Vector3d> run;
+  const auto flush = [&] {
+    if (run.size() >= 2 && (run.back() - run.front()).norm() >= kFootSpacing_m) {
+      edges.push_back({wall.object_id, run.front(), run.back()});
+    }
+    run.clear();
+  };
+  const auto straight = [&](const Eigen::Vector3d& next) {
+    const Eigen::Vector3d chord = (next - run.front()).normalized();
+    return std::all_of(run.begin(), run.end(), [&](const Eigen::Vector3d& point) {
+      const Eigen::Vector3d offset = point - run.front();
+      return (offset - offset.dot(chord) * chord).norm() <= kFootStraightness_m;
+    });
+  };
+  for (double u = u_min; u <= u_max; u += kFootSpacing_m) {
+    const Eigen::Vector3d at_base = frame.point({u, 0.0});
+    const double ground_v = groundHeightAt(city, at_base.head<2>()) - wall.base_z;
+    // Just above the ground: the wall must stand there.
+    if (!inside(polygon, {u, ground_v + 0.5 * kFootSpacing_m})) {
+      flush();
+      continue;
+    }
+    const Eigen::Vector3d foot = frame.point({u, ground_v});
+    if (run.size() >= 2 && !straight(foot)) {
+      const Eigen::Vector3d last = run.back();
+      flush();
+      run.push_back(last);
+    }
+    run.push_back(foot);
+  }
+  flush();
+}
+
+void addWallEdges(const CityWall& wall, const CityMesh& city,
+                  const std::vector<Eigen::Vector2d>& near, const FacadeEdgeOptions& options,
+                  std::vector<FacadeEdge>& edges) {
   if (wall.ring.size() < 3 || !nearAny(wall.ring, near, options.max_distance_m)) {
     return;
   }
@@ -144,6 +187,7 @@ void addWallEdges(const CityWall& wall, const std::vector<Eigen::Vector2d>& near
     u_max = std::max(u_max, polygon.back().x());
     v_max = std::max(v_max, polygon.back().y());
   }
+  addWallFoot(wall, city, frame, polygon, u_min, u_max, edges);
   const FacadeLayout layout(wall.object_id, wall.base_z, wall.top_z);
   const auto paint = [&](const Eigen::Vector2d& uv) {
     return layout.at(static_cast<float>(uv.x()), static_cast<float>(uv.y())).albedo;
@@ -190,7 +234,7 @@ std::vector<FacadeEdge> facadeDetailEdges(const CityMesh& city,
   }
   std::vector<FacadeEdge> edges;
   for (const CityWall& wall : city.walls) {
-    addWallEdges(wall, near, options, edges);
+    addWallEdges(wall, city, near, options, edges);
   }
   return edges;
 }

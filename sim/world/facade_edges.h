@@ -1,6 +1,9 @@
-// The 3D edges of the façade detail the simulator paints on a city's walls
-// (FacadeLayout: window and door frames, mullions, signs): the ground truth
-// that lines learnt from its images are scored against.
+// The 3D edges the simulator's images show on a city's walls that its model
+// lacks: the façade detail it paints (FacadeLayout: window and door frames,
+// mullions, signs) and the wall's foot where it meets the rendered ground
+// (the terrain, or the ground plane), which the model's ground line only
+// approximates. The ground truth that lines learnt from its images are scored
+// against.
 //
 // Each wall's element borders are clipped to the wall's polygon in wall
 // coordinates (u along the wall, v up from the building's base; a point
@@ -8,8 +11,9 @@
 // horizontal tangent and normal and s = (n . p0 - n_z (base + v)) / |n_xy| on
 // the wall's plane n . x = n . p0), then kept only where the painted albedo
 // steps across them by at least min_albedo_step, sampled every
-// sample_spacing_m. Walls farther than max_distance_m from every point of
-// `near` are left out (the cameras of a drive never resolve them).
+// sample_spacing_m. A wall's foot is sampled every 0.25 m and merged into
+// straight runs (every sample within 1 cm of the run's chord). Walls farther than max_distance_m
+// from every point of `near` are left out (the cameras of a drive never resolve them).
 #pragma once
 
 #include <Eigen/Core>

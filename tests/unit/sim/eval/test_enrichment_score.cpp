@@ -13,7 +13,7 @@ namespace {
 const std::vector<FacadeEdge> kWindow = {{1, {10.0, 5.0, 2.0}, {10.0, 5.0, 3.5}},
                                          {1, {10.0, 6.2, 2.0}, {10.0, 6.2, 3.5}}};
 
-TEST(EnrichmentScore, ALineScoresItsMeanDistanceToTheNearestEdge) {
+TEST(EnrichmentScore, ALineScoresItsPointsMeanDistanceToTheNearestEdges) {
   const std::vector<LearntLine> lines = {
       {{10.0, 5.03, 2.1}, {10.0, 5.03, 3.4}},  // 3 cm off the left side
       {{10.0, 6.2, 2.5}, {10.0, 6.3, 3.0}},    // 0 to 10 cm off the right: 5 cm on average
@@ -22,12 +22,21 @@ TEST(EnrichmentScore, ALineScoresItsMeanDistanceToTheNearestEdge) {
   const EnrichmentScore score = scoreEnrichment(lines, kWindow);
   ASSERT_EQ(score.distances_m.size(), 4u);
   EXPECT_NEAR(score.distances_m[0], 0.03, 1e-9);
-  EXPECT_NEAR(score.distances_m[1], 0.05, 1e-9);
+  EXPECT_NEAR(score.distances_m[1], 0.05, 1e-3);
   EXPECT_NEAR(score.distances_m[2], 0.6, 1e-9);
   EXPECT_TRUE(std::isinf(score.distances_m[3]));
   EXPECT_EQ(score.lines, 4);
   EXPECT_NEAR(score.median_distance_m, 0.6, 1e-9);
   EXPECT_DOUBLE_EQ(score.within_fraction, 0.5);
+}
+
+TEST(EnrichmentScore, ALineAlongARowOfPiecesIsOnThem) {
+  // A sign's top edge in three pieces, one per bay.
+  const std::vector<FacadeEdge> pieces = {{1, {10.0, 0.0, 2.8}, {10.0, 3.0, 2.8}},
+                                          {1, {10.0, 3.0, 2.8}, {10.0, 6.0, 2.8}},
+                                          {1, {10.0, 6.0, 2.8}, {10.0, 9.0, 2.8}}};
+  const EnrichmentScore score = scoreEnrichment({{{10.0, 0.5, 2.82}, {10.0, 8.5, 2.82}}}, pieces);
+  EXPECT_NEAR(score.median_distance_m, 0.02, 1e-9);
 }
 
 TEST(EnrichmentScore, LearntLinesAreReadAndAMalformedRowIsNamed) {

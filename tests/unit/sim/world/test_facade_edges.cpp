@@ -70,6 +70,31 @@ TEST(FacadeEdges, EachEdgeLiesOnAWallWhereThePaintSteps) {
   }
 }
 
+TEST(FacadeEdges, AWallsFootIsWhereItMeetsTheGround) {
+  CityMesh city = oneBuilding();
+  city.ground_z_m = 1.5;  // above the model's base at 1 m
+  std::array<int, 4> feet{};
+  for (const FacadeEdge& edge : facadeDetailEdges(city, {{25.0, 20.0}})) {
+    if (std::abs(edge.start.z() - 1.5) > 1e-9 || std::abs(edge.end.z() - 1.5) > 1e-9) {
+      continue;
+    }
+    for (size_t w = 0; w < 4; ++w) {
+      const CityWall& wall = city.walls[w];
+      const Eigen::Vector3d n = wallNormal(wall);
+      if (std::abs(n.dot(edge.start - wall.ring[0])) < 1e-6 &&
+          std::abs(n.dot(edge.end - wall.ring[0])) < 1e-6) {
+        ++feet[w];
+        // One straight run along the wall, to within a sample of its corners.
+        const double length = (wall.ring[1] - wall.ring[0]).norm();
+        EXPECT_GT((edge.end - edge.start).norm(), length - 0.5);
+      }
+    }
+  }
+  for (const int count : feet) {
+    EXPECT_EQ(count, 1);
+  }
+}
+
 TEST(FacadeEdges, WallsFarFromTheDriveAreLeftOut) {
   EXPECT_TRUE(facadeDetailEdges(oneBuilding(), {{25.0, 500.0}}).empty());
   EXPECT_TRUE(facadeDetailEdges(oneBuilding(), {}).empty());

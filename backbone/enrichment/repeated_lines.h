@@ -1,0 +1,26 @@
+// Learnt lines of a repeating pattern (brick courses, tiles, railings, slats)
+// are no landmarks: a matcher cannot tell one from its neighbour. A learnt
+// line is dropped when another on the same building and plane runs within
+// max_angle_rad of it, with the same side bright, overlapping it along its
+// length, and within min_separation_m across it: the width of a tracking
+// gate. Lines that alternate in brightness a few centimetres apart (a window
+// frame's outer and inner edges) stay apart by their bright sides.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "backbone/enrichment/surface_line_tracks.h"
+
+namespace lineloc {
+
+struct RepeatedLineOptions {
+  double max_angle_rad = 3.0 * M_PI / 180.0;
+  double min_separation_m = 0.25;
+};
+
+// The candidates that no other candidate repeats, in their order.
+std::vector<LineCandidate> withoutRepeatedLines(const std::vector<LineCandidate>& candidates,
+                                                const RepeatedLineOptions& options = {});
+
+}  // namespace lineloc

@@ -27,6 +27,13 @@ int main(int argc, char** argv) {
                        "unknown)");
   options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
   options.add("out", config.out, "learnt lines written");
+  options.add("robot", config.robot, "the robot that drove, named in the sightings");
+  options.add("db", config.db,
+              "libpq connection string of the database to store the lines in, as "
+              "lineloc_enricher (empty: not stored)");
+  options.add("site", config.site, "with --db: the site the city model is");
+  options.add("pass", config.pass,
+              "with --db: the drive or day the lines were seen on; a second pass confirms them");
   options.add("max_placement_sigma_m", config.observation.max_placement_sigma_m,
               "segments the fix places on a wall less precisely than this are not learnt from "
               "(m, across the line)");

@@ -3,14 +3,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <ostream>
 #include <stdexcept>
 
+#include "apps/learnt_line_file.h"
 #include "backbone/enrichment/known_lines.h"
 #include "backbone/enrichment/repeated_lines.h"
 #include "backbone/tracker/model_file.h"
@@ -19,6 +18,8 @@
 #include "common/image/image_file.h"
 #include "common/trajectory/fix_log.h"
 #include "db/citymodel/city_model.h"
+#include "db/enrichment_store.h"
+#include "db/site.h"
 #include "robot/input/image_sequence.h"
 
 namespace lineloc {
@@ -27,26 +28,53 @@ namespace {
 // A fix belongs to the frame exposed within this of its stamp.
 constexpr int64_t kStampTolerance_ns = 1'000'000;
 
-double sigmaAcross(const Eigen::Matrix3d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
+LearntLineRow rowOf(const LineCandidate& candidate) {
+  return {candidate.line.start_world,
+          candidate.line.end_world,
+          candidate.building_id,
+          candidate.views,
+          candidate.robots,
+          candidate.line.start_covariance,
+          candidate.line.end_covariance};
 }
 
-void writeLines(const std::string& path, const std::vector<LineCandidate>& lines) {
-  std::ofstream file(path);
-  if (!file) {
-    throw std::runtime_error(fmt::format("cannot write the learnt lines to {}", path));
+db::EnrichmentSighting sightingOf(const LineCandidate& candidate, const std::string& robot) {
+  db::EnrichmentSighting sighting;
+  sighting.start_world = candidate.line.start_world;
+  sighting.end_world = candidate.line.end_world;
+  sighting.start_covariance = candidate.line.start_covariance;
+  sighting.end_covariance = candidate.line.end_covariance;
+  sighting.plane_normal = candidate.plane.normal;
+  sighting.plane_offset = candidate.plane.offset;
+  sighting.robot = robot;
+  sighting.views = candidate.views;
+  sighting.first_seen_ns = candidate.first_stamp_ns;
+  sighting.last_seen_ns = candidate.last_stamp_ns;
+  return sighting;
+}
+
+// The learnt lines as one pass of the site's enrichment. The model file's
+// site frame must be the site's: the lines are stored in its CRS.
+db::EnrichmentWriteReport storePass(const OfflineEnrichmentConfig& config,
+                                    const Eigen::Vector3d& model_origin,
+                                    const std::vector<LineCandidate>& lines) {
+  if (config.site.empty() || config.pass.empty()) {
+    throw std::runtime_error("--db needs --site and --pass (the drive or day the lines are from)");
   }
-  file << "# x0 y0 z0 x1 y1 z1 (m, site frame) building views robots sigma0_m sigma1_m "
-          "(largest standard deviation of each end across the line)\n";
-  for (const LineCandidate& candidate : lines) {
-    const TriangulatedLine& line = candidate.line;
-    file << fmt::format("{:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {} {} {} {:.4f} {:.4f}\n",
-                        line.start_world.x(), line.start_world.y(), line.start_world.z(),
-                        line.end_world.x(), line.end_world.y(), line.end_world.z(),
-                        candidate.building_id, candidate.views, candidate.robots,
-                        sigmaAcross(line.start_covariance), sigmaAcross(line.end_covariance));
+  db::Connection connection(config.db);
+  const db::Site site = db::requireSite(connection, config.site);
+  if ((site.origin - model_origin).norm() > 1e-6) {
+    throw std::runtime_error(fmt::format(
+        "site '{}' has its origin at ({:.3f}, {:.3f}, {:.3f}), the model's frame at ({:.3f}, "
+        "{:.3f}, {:.3f}): give --site-origin as the site's",
+        site.name, site.origin.x(), site.origin.y(), site.origin.z(), model_origin.x(),
+        model_origin.y(), model_origin.z()));
   }
+  std::vector<db::EnrichmentSighting> sightings;
+  for (const LineCandidate& line : lines) {
+    sightings.push_back(sightingOf(line, config.robot));
+  }
+  return db::writeEnrichmentPass(connection, site, config.pass, sightings);
 }
 
 }  // namespace
@@ -84,7 +112,7 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
     }
     ++summary.fixed_frames;
     EnrichmentFrame frame;
-    frame.robot_id = "recorded";
+    frame.robot_id = config.robot;
     frame.stamp_ns = *frame_ref.stamp_ns;
     frame.camera = calibration.camera;
     frame.T_world_camera = fix->second.T_world_camera;
@@ -113,7 +141,11 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
   summary.repeated_lines = static_cast<int>(candidates.size() - distinct.size());
   summary.lines = withoutModelLines(distinct, local.model.lines);
   summary.model_lines_seen = static_cast<int>(distinct.size() - summary.lines.size());
-  writeLines(config.out, summary.lines);
+  std::vector<LearntLineRow> rows;
+  for (const LineCandidate& line : summary.lines) {
+    rows.push_back(rowOf(line));
+  }
+  writeLearntLineFile(config.out, rows);
   out << fmt::format(
       "lineloc-enrich: {} frames, {} with an OK fix, {} of them placing segments precisely; {} "
       "segments: {} explained by model lines, {} off the model's surface, {} on its cast "
@@ -123,6 +155,14 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
       summary.explained, summary.off_surface, summary.shadow_edges, summary.imprecise,
       summary.on_surface, summary.tracks, summary.lines.size(), summary.model_lines_seen,
       summary.repeated_lines, config.out);
+  if (!config.db.empty()) {
+    const db::EnrichmentWriteReport stored = storePass(config, local.origin, summary.lines);
+    out << fmt::format(
+        "lineloc-enrich: pass '{}' in site '{}': {} new candidates, {} lines seen again ({} "
+        "confirmed by it), {} written before\n",
+        config.pass, config.site, stored.added, stored.joined, stored.confirmed,
+        stored.already_written);
+  }
   return summary;
 }
 

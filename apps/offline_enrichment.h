@@ -8,7 +8,8 @@
 // into 3D lines (backbone/enrichment). Those that triangulate, are not part
 // of a repeating pattern and are not model lines seen again are written, one
 // per line (lineloc-eval --learnt-lines scores them against a simulated
-// drive's façade edges).
+// drive's façade edges), and stored as one pass of the site's enrichment when
+// a database is given.
 //
 // It composes the robot's and the backbone's libraries, so it belongs to
 // neither: backbone/ never includes robot/.
@@ -39,9 +40,16 @@ struct OfflineEnrichmentConfig {
   // Sun azimuth clockwise from grid north and elevation (deg); empty: unknown.
   std::vector<double> sun_deg;
   double ambient = 0.35;
-  // Learnt lines written: x0 y0 z0 x1 y1 z1 building views robots and the
-  // endpoints' standard deviations across the line.
+  // Learnt lines written (apps/learnt_line_file.h).
   std::string out = "enrichment.txt";
+  // The robot that drove (names its sightings).
+  std::string robot = "robot";
+  // With a database (the enricher role's connection string): the site the
+  // model is, and the pass (a drive or a day) whose sightings the lines are,
+  // stored in the site's enrichment (db/enrichment_store.h). Empty: not stored.
+  std::string db;
+  std::string site;
+  std::string pass;
   FeatureExtractorOptions extractor = trackingFrontEndOptions();
   SurfaceObservationOptions observation;
   SurfaceLineTrackOptions tracks;

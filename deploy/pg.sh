@@ -8,8 +8,9 @@
 #   deploy/pg.sh status            exit 0 when running
 #   deploy/pg.sh conninfo [ROLE]   print the libpq connection string of database
 #                                  'lineloc' for ROLE: lineloc_owner (default;
-#                                  lineloc-migrate), lineloc_writer (lineloc-load)
-#                                  or lineloc_reader (lineloc-backbone)
+#                                  lineloc-migrate), lineloc_writer (lineloc-load),
+#                                  lineloc_reader (lineloc-backbone) or
+#                                  lineloc_enricher (lineloc-enrich)
 #   deploy/pg.sh rotate-passwords  give every role a new password
 #   deploy/pg.sh destroy           stop and delete the data directory
 #   deploy/pg.sh replicate PORT    make this port's cluster a read-only streaming
@@ -52,6 +53,7 @@ SUPERUSER="lineloc"
 OWNER="lineloc_owner"
 WRITER="lineloc_writer"
 READER="lineloc_reader"
+ENRICHER="lineloc_enricher"
 REPLICATION="lineloc_replication"
 DB_NAME="lineloc"
 
@@ -132,7 +134,7 @@ new_password() { head -c 24 /dev/urandom | base64 | tr -d '+/='; }
 # primary's, and one connection string may name both.
 new_pgpass() {
   local role
-  for role in "$SUPERUSER" "$OWNER" "$WRITER" "$READER" "$REPLICATION"; do
+  for role in "$SUPERUSER" "$OWNER" "$WRITER" "$READER" "$ENRICHER" "$REPLICATION"; do
     echo "*:*:*:$role:$(new_password)"
   done
 }
@@ -149,7 +151,7 @@ completed_pgpass() {
     pgpass="$(sed "s/^\*:$PORT:/*:*:/" <<<"$pgpass")"
     complete=false
   fi
-  for role in "$OWNER" "$WRITER" "$READER" "$REPLICATION"; do
+  for role in "$OWNER" "$WRITER" "$READER" "$ENRICHER" "$REPLICATION"; do
     if [ -z "$(password_in "$pgpass" "$role")" ]; then
       pgpass+=$'\n'"*:*:*:$role:$(new_password)"
       complete=false
@@ -226,11 +228,12 @@ secure_trusting_cluster() {
 apply_roles() {
   psql_superuser -d postgres <<SQL
 SELECT format('CREATE ROLE %I', role)
-  FROM unnest(ARRAY['$OWNER', '$WRITER', '$READER', '$REPLICATION']) AS role
+  FROM unnest(ARRAY['$OWNER', '$WRITER', '$READER', '$ENRICHER', '$REPLICATION']) AS role
   WHERE NOT EXISTS (SELECT FROM pg_roles WHERE rolname = role) \gexec
 ALTER ROLE $OWNER LOGIN NOSUPERUSER CREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$OWNER")';
 ALTER ROLE $WRITER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$WRITER")';
 ALTER ROLE $READER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$READER")';
+ALTER ROLE $ENRICHER LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE PASSWORD '$(password_in "$1" "$ENRICHER")';
 ALTER ROLE $REPLICATION LOGIN REPLICATION NOSUPERUSER NOCREATEDB NOCREATEROLE
   PASSWORD '$(password_in "$1" "$REPLICATION")';
 ALTER ROLE $SUPERUSER PASSWORD '$(password_in "$1" "$SUPERUSER")';
@@ -324,8 +327,8 @@ rotate_passwords() {
 conninfo() {
   local role="${1:-$OWNER}"
   case "$role" in
-    "$OWNER" | "$WRITER" | "$READER") ;;
-    *) die "conninfo: no role $role (one of $OWNER, $WRITER, $READER)" ;;
+    "$OWNER" | "$WRITER" | "$READER" | "$ENRICHER") ;;
+    *) die "conninfo: no role $role (one of $OWNER, $WRITER, $READER, $ENRICHER)" ;;
   esac
   echo "host=127.0.0.1 port=$PORT user=$role dbname=$DB_NAME passfile='$PGPASS'"
 }

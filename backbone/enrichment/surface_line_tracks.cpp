@@ -10,10 +10,7 @@ namespace lineloc {
 namespace {
 
 double gateOf(const SurfaceSegment& segment, const SurfaceLineTrackOptions& options) {
-  const double focal_px = 0.5 * (segment.view.camera.fx + segment.view.camera.fy);
-  const double sigma_m =
-      segment.depth_m * options.pixel_sigma_px / focal_px + segment.placement_sigma_m;
-  return std::max(options.min_gate_m, options.gate_sigma * sigma_m);
+  return std::max(options.min_gate_m, options.gate_sigma * segment.placement_sigma_m);
 }
 
 }  // namespace
@@ -113,6 +110,24 @@ void SurfaceLineTracks::add(const SurfaceSegment& segment) {
   fit(track);
 }
 
+bool SurfaceLineTracks::offPlane(const std::vector<LineObservation>& views,
+                                 const Plane& plane) const {
+  const LineTriangulation free = triangulateLine(views, options_.triangulation);
+  if (!free.line) {
+    return false;  // the views alone do not fix it: nothing to refute the plane with
+  }
+  const auto beyond = [&](const Eigen::Vector3d& point, const Eigen::Matrix3d& covariance) {
+    const double variance = plane.normal.dot(covariance * plane.normal);
+    if (variance > options_.max_plane_test_sigma_m * options_.max_plane_test_sigma_m) {
+      return false;
+    }
+    const double offset = plane.normal.dot(point) - plane.offset;
+    return offset * offset > options_.off_plane_sigma * options_.off_plane_sigma * variance;
+  };
+  return beyond(free.line->start_world, free.line->start_covariance) ||
+         beyond(free.line->end_world, free.line->end_covariance);
+}
+
 std::vector<LineCandidate> SurfaceLineTracks::candidates() const {
   std::vector<LineCandidate> candidates;
   for (const auto& [building_id, tracks] : tracks_by_building_) {
@@ -127,7 +142,7 @@ std::vector<LineCandidate> SurfaceLineTracks::candidates() const {
         robots.insert(view.robot_id);
       }
       LineTriangulation triangulated = triangulateLine(views, options_.triangulation, track.plane);
-      if (!triangulated.line) {
+      if (!triangulated.line || offPlane(views, track.plane)) {
         continue;
       }
       candidates.push_back({std::move(*triangulated.line), building_id, track.plane,

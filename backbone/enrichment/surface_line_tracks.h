@@ -6,9 +6,9 @@
 // a 3D place: a segment joins a track of the same building and plane (normals
 // within plane_angle_rad, offsets within plane_offset_m) whose line runs
 // within max_angle_rad of it, when both its ends lie within the gate
-//   g = max(min_gate_m, gate_sigma * (depth * pixel_sigma_px / f + sigma_p))
-// of the track's line (depth the segment's distance, sigma_p its placement's
-// standard deviation from the pose), it reaches within max_gap_m of the
+//   g = max(min_gate_m, gate_sigma * sigma_p)
+// of the track's line (sigma_p its placement's standard deviation, from its
+// pixels and the pose), it reaches within max_gap_m of the
 // track's extent, and its brighter side agrees with the track's. It joins the
 // nearest such track, else starts one. A track's line is the principal axis
 // of its views' endpoints, in its plane.
@@ -17,7 +17,14 @@
 // constrained to the plane), which refuses a line whose views do not all see
 // it within their uncertainty: something in front of the wall (a van's side,
 // a sign on a pole) lands on the wall at a place that moves with the viewpoint
-// and does not pass.
+// and does not pass. Where the views fix the line without the plane too (a
+// line not parallel to the path), that free line must lie in the plane: a
+// line whose free triangulation puts an end off the plane by more than
+// off_plane_sigma standard deviations (n^T Sigma n of that end) is something
+// in front of the wall (a tree's trunk beside it), not on it. Only an end
+// known to max_plane_test_sigma_m across the plane can refute it: beyond
+// that the linearised covariance of a nearly degenerate line (one almost
+// parallel to the path) understates its error.
 //
 // Each track keeps at most max_views views: the first max_views - 1 and the
 // latest, so that its baseline only grows.
@@ -38,9 +45,10 @@ struct SurfaceLineTrackOptions {
   double max_angle_rad = 3.0 * M_PI / 180.0;
   double gate_sigma = 3.0;
   double min_gate_m = 0.02;
-  double pixel_sigma_px = 1.0;
   double max_gap_m = 0.5;
   int max_views = 30;
+  double off_plane_sigma = 3.0;
+  double max_plane_test_sigma_m = 0.05;
   LineTriangulationOptions triangulation;
 };
 
@@ -62,7 +70,8 @@ class SurfaceLineTracks {
 
   void add(const SurfaceSegment& segment);
 
-  // Every track with enough views that triangulates.
+  // Every track with enough views that triangulates in its plane and that
+  // the views do not place off it.
   std::vector<LineCandidate> candidates() const;
 
   size_t trackCount() const;
@@ -86,6 +95,8 @@ class SurfaceLineTracks {
   // when it does not pass the gate.
   double distanceInGate(const Track& track, const SurfaceSegment& segment) const;
   static void fit(Track& track);
+  // Whether the views, without the plane, place the line off it (see above).
+  bool offPlane(const std::vector<LineObservation>& views, const Plane& plane) const;
 
   SurfaceLineTrackOptions options_;
   std::unordered_map<int64_t, std::vector<Track>> tracks_by_building_;

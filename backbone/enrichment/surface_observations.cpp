@@ -62,6 +62,43 @@ class SurfacePlacer {
     });
   }
 
+  // The standard deviations of the placed segment's place across the line, in
+  // its plane, that the pose causes and that pose and pixels cause together
+  // (see the header).
+  struct PlacementSigmas {
+    double pose_m = 0.0;
+    double total_m = 0.0;
+  };
+  PlacementSigmas placementSigmas(const SurfaceSegment& placed, const Eigen::Vector3d& middle,
+                                  const ImageSegment& segment) const {
+    const Eigen::Vector3d& n = placed.plane.normal;
+    const Eigen::Vector3d across_line = n.cross(placed.end_world - placed.start_world).normalized();
+    const Eigen::Vector3d ray = (middle - frame_.T_world_camera.pose.translation()).normalized();
+    // A ray moved by d meets the plane moved by P d, P = I - r n^T / (n . r).
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - ray * n.transpose() / n.dot(ray);
+    // A pose error e = [dp; dtheta] moves the ray at X by J e, J = [I, -[X - t]x].
+    Eigen::Matrix<double, 3, 6> J;
+    J << Eigen::Matrix3d::Identity(), -skew(middle - frame_.T_world_camera.pose.translation());
+    const Eigen::Matrix<double, 1, 6> pose_moves = across_line.transpose() * P * J;
+    // A pixel across the segment moves the ray at depth d by d / f that way.
+    const Eigen::Vector2f image_direction = (segment.end - segment.start).normalized();
+    const Eigen::Vector2f image_normal(-image_direction.y(), image_direction.x());
+    const double pixel_variance =
+        0.5 * static_cast<double>(image_normal.dot(segment.start_covariance * image_normal) +
+                                  image_normal.dot(segment.end_covariance * image_normal));
+    const double depth = (middle - frame_.T_world_camera.pose.translation()).norm();
+    const Eigen::Vector3d pixel_ray_move =
+        frame_.T_world_camera.pose.linear() *
+        Eigen::Vector3d(image_normal.x() / frame_.camera.fx, image_normal.y() / frame_.camera.fy,
+                        0.0) *
+        depth;
+    const double pixel_moves = across_line.dot(P * pixel_ray_move);
+    const double pose_variance =
+        (pose_moves * frame_.T_world_camera.covariance * pose_moves.transpose())(0, 0);
+    return {std::sqrt(pose_variance),
+            std::sqrt(pose_variance + pixel_moves * pixel_moves * pixel_variance)};
+  }
+
   // Whether one side of the placed segment is lit and the other in a shadow
   // the model casts (see the header).
   bool onCastShadowBoundary(const SurfaceSegment& placed) const {
@@ -114,15 +151,9 @@ class SurfacePlacer {
     placed.start_world = *start_world;
     placed.end_world = *end_world;
     placed.depth_m = (*middle - frame_.T_world_camera.pose.translation()).norm();
-    const Eigen::Vector3d across_line =
-        placed.plane.normal.cross(placed.end_world - placed.start_world).normalized();
-    // A pose error e = [dp; dtheta] moves the point a pixel's ray meets by
-    // dp + dtheta x (X - t) = J e, J = [I, -[X - t]x].
-    Eigen::Matrix<double, 3, 6> J;
-    J << Eigen::Matrix3d::Identity(), -skew(*middle - frame_.T_world_camera.pose.translation());
-    const Eigen::Matrix<double, 1, 6> moves = across_line.transpose() * J;
-    placed.placement_sigma_m =
-        std::sqrt((moves * frame_.T_world_camera.covariance * moves.transpose())(0, 0));
+    const PlacementSigmas sigmas = placementSigmas(placed, *middle, segment);
+    placed.placement_sigma_m = sigmas.total_m;
+    placed.pose_placement_sigma_m = sigmas.pose_m;
     if (segment.polarity != 0) {
       // Left of start -> end in an image with y down is (d.y, -d.x).
       const Eigen::Vector2d direction = (end - start).normalized();
@@ -204,7 +235,7 @@ SurfaceObservations observeSurfaceSegments(const EnrichmentFrame& frame,
       ++observations.shadow_edges;
       continue;
     }
-    if (placed->placement_sigma_m > options.max_placement_sigma_m) {
+    if (placed->pose_placement_sigma_m > options.max_placement_sigma_m) {
       ++observations.imprecise;
       continue;
     }

@@ -3,12 +3,19 @@
 // on, the raw material of enrichment.
 //
 // A segment contributes only where the frame's pose places it on the wall to
-// within max_placement_sigma_m across the line: a pose error e = [dp; dtheta]
-// moves the point X where a pixel's ray meets the wall by J e, J = [I, -[X -
-// t]x] (t the camera's centre), so sigma^2 = u^T J Sigma J^T u at the
-// segment's middle, u the unit direction in the wall across the line. A fix that leaves the
-// position along a façade open still places the façade's horizontal edges, and a window edge placed
-// from a pose a decimetre off would land a decimetre off.
+// within max_placement_sigma_m across the line: the pose's error is shared by
+// every segment of the frame and by the frames around it, so triangulation
+// does not average it out as it does the pixels'. A ray moved by d meets the
+// wall moved by P d, P = I - r n^T / (n . r) (r the ray, n the wall's normal:
+// a ray that grazes the wall moves far along it); a pose error e = [dp;
+// dtheta] moves the ray at the segment's middle X by J e, J = [I, -[X - t]x]
+// (t the camera's centre). With u the unit direction in the wall across the
+// line, the pose's part is sigma_p^2 = u^T P J Sigma J^T P^T u. The pixels'
+// error across the segment (the mean of its ends' variances across it) moves
+// the ray by d / f per pixel at distance d: m, adding (u^T P m)^2 sigma_px^2
+// to the placement's whole variance. A fix that leaves the position along a
+// façade open still places the façade's horizontal edges, and a wall seen at
+// a grazing angle places nothing well.
 //
 // A segment is explained when a visible model line, projected, runs within
 // explained_angle_rad of it, both its endpoints lie within
@@ -71,8 +78,10 @@ struct SurfaceSegment {
   Eigen::Vector3d brighter_side = Eigen::Vector3d::Zero();
   // Distance from the camera to the segment's middle (m).
   double depth_m = 0.0;
-  // Standard deviation of its place across the line that the pose causes (m).
+  // Standard deviations of its place across the line, from pose and pixels,
+  // and from the pose alone (m; see above).
   double placement_sigma_m = 0.0;
+  double pose_placement_sigma_m = 0.0;
 };
 
 struct SurfaceObservationOptions {

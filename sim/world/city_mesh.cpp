@@ -75,16 +75,15 @@ CityMesh buildCityMesh(const citymodel::CityModel& model, const Eigen::Vector3d&
       city.skipped_faces += triangles.empty();
       SurfaceTag tag = wall;
       tag.kind = sceneKind(face.kind);
+      CityWall rendered{tag.object_id, tag.base_z, tag.top_z, {}};
       for (const auto& t : triangles) {
-        city.mesh.addTriangle(ring[t[0]] - site_origin, ring[t[1]] - site_origin,
-                              ring[t[2]] - site_origin, tag);
+        const std::array<Eigen::Vector3d, 3> corners = {
+            ring[t[0]] - site_origin, ring[t[1]] - site_origin, ring[t[2]] - site_origin};
+        city.mesh.addTriangle(corners[0], corners[1], corners[2], tag);
+        rendered.triangles.push_back(corners);
       }
-      if (tag.kind == SurfaceKind::kWall && !triangles.empty()) {
-        CityWall& rendered = city.walls.emplace_back(
-            CityWall{tag.object_id, tag.base_z, tag.top_z, std::vector<Eigen::Vector3d>()});
-        for (const Eigen::Vector3d& point : ring) {
-          rendered.ring.push_back(point - site_origin);
-        }
+      if (tag.kind == SurfaceKind::kWall && !rendered.triangles.empty()) {
+        city.walls.push_back(std::move(rendered));
       }
     }
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,13 +18,15 @@
 
 namespace lineloc {
 
-// A building's wall as rendered, in scene coordinates, with what the shader
-// paints on it (FacadeLayout of its object).
+// A building's wall as rendered: its triangles in scene coordinates, each
+// wound as the mesh holds it (the shader lays the façade out along each
+// triangle's own normal), and what the shader paints on it (FacadeLayout of
+// its object).
 struct CityWall {
   uint32_t object_id = 0;
   float base_z = 0.0f;
   float top_z = 0.0f;
-  std::vector<Eigen::Vector3d> ring;
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles;
 };
 
 struct CityMesh {

@@ -73,35 +73,31 @@ double distanceToSegment(const Eigen::Vector2d& point, const Eigen::Vector2d& a,
   return (a + t * ab - point).norm();
 }
 
-bool nearAny(const std::vector<Eigen::Vector3d>& ring, const std::vector<Eigen::Vector2d>& near,
+bool nearAny(const CityWall& wall, const std::vector<Eigen::Vector2d>& near,
              double max_distance_m) {
-  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    for (const Eigen::Vector2d& point : near) {
-      if (distanceToSegment(point, ring[i].head<2>(), ring[j].head<2>()) <= max_distance_m) {
-        return true;
+  for (const auto& triangle : wall.triangles) {
+    for (int i = 0, j = 2; i < 3; j = i++) {
+      for (const Eigen::Vector2d& point : near) {
+        if (distanceToSegment(point, triangle[i].head<2>(), triangle[j].head<2>()) <=
+            max_distance_m) {
+          return true;
+        }
       }
     }
   }
   return false;
 }
 
-Eigen::Vector3d newellNormal(const std::vector<Eigen::Vector3d>& ring) {
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    normal += ring[j].cross(ring[i]);
-  }
-  return normal.normalized();
-}
-
-// A wall's coordinates (see the header) and the way back to the scene.
+// A wall triangle's coordinates (see the header) and the way back to the
+// scene.
 class WallFrame {
  public:
-  WallFrame(const CityWall& wall, const Eigen::Vector3d& normal)
+  WallFrame(const CityWall& wall, const Eigen::Vector3d& normal, const Eigen::Vector3d& on_plane)
       : normal_(normal),
         horizontal_(normal.head<2>().norm()),
         tangent_(-normal.y() / horizontal_, normal.x() / horizontal_, 0.0),
         outward_(normal.x() / horizontal_, normal.y() / horizontal_, 0.0),
-        offset_(normal.dot(wall.ring.front())),
+        offset_(normal.dot(on_plane)),
         base_z_(wall.base_z) {}
 
   Eigen::Vector2d uv(const Eigen::Vector3d& point) const {
@@ -132,9 +128,29 @@ constexpr double kMinWallHorizontal = 0.1;
 constexpr double kFootSpacing_m = 0.25;
 constexpr double kFootStraightness_m = 0.01;
 
-void addWallFoot(const CityWall& wall, const CityMesh& city, const WallFrame& frame,
-                 const Polygon2d& polygon, double u_min, double u_max,
-                 std::vector<FacadeEdge>& edges) {
+void addWallFoot(const CityWall& wall, const CityMesh& city, std::vector<FacadeEdge>& edges) {
+  // The wall's frame is its first triangle's; its triangles are coplanar but
+  // for a model's small warps.
+  const auto& first = wall.triangles.front();
+  const Eigen::Vector3d normal = (first[1] - first[0]).cross(first[2] - first[0]).normalized();
+  if (!normal.allFinite() || normal.head<2>().norm() < kMinWallHorizontal) {
+    return;
+  }
+  const WallFrame frame(wall, normal, first[0]);
+  std::vector<Polygon2d> polygons;
+  double u_min = std::numeric_limits<double>::infinity(), u_max = -u_min;
+  for (const auto& triangle : wall.triangles) {
+    Polygon2d& polygon = polygons.emplace_back();
+    for (const Eigen::Vector3d& point : triangle) {
+      polygon.push_back(frame.uv(point));
+      u_min = std::min(u_min, polygon.back().x());
+      u_max = std::max(u_max, polygon.back().x());
+    }
+  }
+  const auto on_wall = [&](const Eigen::Vector2d& uv) {
+    return std::any_of(polygons.begin(), polygons.end(),
+                       [&](const Polygon2d& polygon) { return inside(polygon, uv); });
+  };
   std::vector<Eigen::Vector3d> run;
   const auto flush = [&] {
     if (run.size() >= 2 && (run.back() - run.front()).norm() >= kFootSpacing_m) {
@@ -153,7 +169,7 @@ void addWallFoot(const CityWall& wall, const CityMesh& city, const WallFrame& fr
     const Eigen::Vector3d at_base = frame.point({u, 0.0});
     const double ground_v = groundHeightAt(city, at_base.head<2>()) - wall.base_z;
     // Just above the ground: the wall must stand there.
-    if (!inside(polygon, {u, ground_v + 0.5 * kFootSpacing_m})) {
+    if (!on_wall({u, ground_v + 0.5 * kFootSpacing_m})) {
       flush();
       continue;
     }
@@ -168,26 +184,27 @@ void addWallFoot(const CityWall& wall, const CityMesh& city, const WallFrame& fr
   flush();
 }
 
-void addWallEdges(const CityWall& wall, const CityMesh& city,
-                  const std::vector<Eigen::Vector2d>& near, const FacadeEdgeOptions& options,
-                  std::vector<FacadeEdge>& edges) {
-  if (wall.ring.size() < 3 || !nearAny(wall.ring, near, options.max_distance_m)) {
+// The edges on one of the wall's triangles, laid out along its own normal as
+// the shader lays them.
+void addTriangleEdges(const CityWall& wall, const std::array<Eigen::Vector3d, 3>& triangle,
+                      const FacadeEdgeOptions& options, std::vector<FacadeEdge>& edges) {
+  const Eigen::Vector3d cross = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]);
+  if (!(cross.norm() > 0.0)) {
+    return;  // no area: not rendered
+  }
+  const Eigen::Vector3d normal = cross.normalized();
+  if (normal.head<2>().norm() < kMinWallHorizontal) {
     return;
   }
-  const Eigen::Vector3d normal = newellNormal(wall.ring);
-  if (!normal.allFinite() || normal.head<2>().norm() < kMinWallHorizontal) {
-    return;
-  }
-  const WallFrame frame(wall, normal);
+  const WallFrame frame(wall, normal, triangle[0]);
   Polygon2d polygon;
   double u_min = std::numeric_limits<double>::infinity(), u_max = -u_min, v_max = -u_min;
-  for (const Eigen::Vector3d& point : wall.ring) {
+  for (const Eigen::Vector3d& point : triangle) {
     polygon.push_back(frame.uv(point));
     u_min = std::min(u_min, polygon.back().x());
     u_max = std::max(u_max, polygon.back().x());
     v_max = std::max(v_max, polygon.back().y());
   }
-  addWallFoot(wall, city, frame, polygon, u_min, u_max, edges);
   const FacadeLayout layout(wall.object_id, wall.base_z, wall.top_z);
   const auto paint = [&](const Eigen::Vector2d& uv) {
     return layout.at(static_cast<float>(uv.x()), static_cast<float>(uv.y())).albedo;
@@ -221,6 +238,18 @@ void addWallEdges(const CityWall& wall, const CityMesh& city,
         }
       }
     }
+  }
+}
+
+void addWallEdges(const CityWall& wall, const CityMesh& city,
+                  const std::vector<Eigen::Vector2d>& near, const FacadeEdgeOptions& options,
+                  std::vector<FacadeEdge>& edges) {
+  if (!nearAny(wall, near, options.max_distance_m)) {
+    return;
+  }
+  addWallFoot(wall, city, edges);
+  for (const auto& triangle : wall.triangles) {
+    addTriangleEdges(wall, triangle, options, edges);
   }
 }
 

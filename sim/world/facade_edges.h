@@ -5,15 +5,16 @@
 // approximates. The ground truth that lines learnt from its images are scored
 // against.
 //
-// Each wall's element borders are clipped to the wall's polygon in wall
-// coordinates (u along the wall, v up from the building's base; a point
-// (u, v) lies at u t + s n_h + (base + v) z, with t and n_h the wall's
-// horizontal tangent and normal and s = (n . p0 - n_z (base + v)) / |n_xy| on
-// the wall's plane n . x = n . p0), then kept only where the painted albedo
-// steps across them by at least min_albedo_step, sampled every
-// sample_spacing_m. A wall's foot is sampled every 0.25 m and merged into
-// straight runs (every sample within 1 cm of the run's chord). Walls farther than max_distance_m
-// from every point of `near` are left out (the cameras of a drive never resolve them).
+// Each wall triangle's element borders are clipped to the triangle in wall
+// coordinates laid out along its own normal, as the shader lays them: u along
+// the wall, v up from the building's base; a point (u, v) lies at
+// u t + s n_h + (base + v) z, with t and n_h the triangle's horizontal tangent
+// and normal and s = (n . p0 - n_z (base + v)) / |n_xy| on its plane
+// n . x = n . p0. A piece is kept where the painted albedo steps across it by
+// at least min_albedo_step, sampled every sample_spacing_m. A wall's foot is
+// sampled every 0.25 m and merged into straight runs (every sample within 1 cm
+// of the run's chord). Walls farther than max_distance_m from every point of
+// `near` are left out (the cameras of a drive never resolve them).
 #pragma once
 
 #include <Eigen/Core>

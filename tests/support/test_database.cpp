@@ -25,6 +25,8 @@ const char* roleName(DatabaseRole role) {
       return "lineloc_writer";
     case DatabaseRole::kReader:
       return "lineloc_reader";
+    case DatabaseRole::kEnricher:
+      return "lineloc_enricher";
   }
   throw std::invalid_argument("unknown database role");
 }

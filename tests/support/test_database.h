@@ -11,7 +11,7 @@ namespace lineloc::test {
 // The roles deploy/pg.sh makes for lineloc's programs (docs/production.md):
 // the owner runs migrations (and, on the test cluster, creates databases),
 // the writer loads rows (lineloc-load), the reader reads (lineloc-backbone).
-enum class DatabaseRole { kOwner, kWriter, kReader };
+enum class DatabaseRole { kOwner, kWriter, kReader, kEnricher };
 
 // `deploy/pg.sh conninfo ROLE` for the cluster on `port`: the libpq
 // connection string of its database lineloc, password file included.

@@ -10,8 +10,8 @@
 namespace lineloc {
 namespace {
 
-// One box building, 10 x 6 m, 12 m high from z = 1: four walls, their rings
-// counter-clockwise seen from outside.
+// One box building, 10 x 6 m, 12 m high from z = 1: four walls of two
+// triangles each, counter-clockwise seen from outside.
 CityMesh oneBuilding() {
   CityMesh city;
   const double x0 = 20.0, y0 = 30.0, x1 = 30.0, y1 = 36.0, z0 = 1.0, z1 = 13.0;
@@ -20,17 +20,18 @@ CityMesh oneBuilding() {
                                                                {{{x1, y1}, {x0, y1}}},
                                                                {{{x0, y1}, {x0, y0}}}};
   for (const auto& [a, b] : bottoms) {
-    city.walls.push_back(
-        {5,
-         static_cast<float>(z0),
-         static_cast<float>(z1),
-         {{a.x(), a.y(), z0}, {b.x(), b.y(), z0}, {b.x(), b.y(), z1}, {a.x(), a.y(), z1}}});
+    const Eigen::Vector3d p0(a.x(), a.y(), z0), p1(b.x(), b.y(), z0), p2(b.x(), b.y(), z1),
+        p3(a.x(), a.y(), z1);
+    CityWall wall{5, static_cast<float>(z0), static_cast<float>(z1), {}};
+    wall.triangles = {{p0, p1, p2}, {p0, p2, p3}};
+    city.walls.push_back(wall);
   }
   return city;
 }
 
 Eigen::Vector3d wallNormal(const CityWall& wall) {
-  return (wall.ring[1] - wall.ring[0]).cross(wall.ring[3] - wall.ring[0]).normalized();
+  const auto& triangle = wall.triangles.front();
+  return (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
 }
 
 TEST(FacadeEdges, EachEdgeLiesOnAWallWhereThePaintSteps) {
@@ -44,8 +45,8 @@ TEST(FacadeEdges, EachEdgeLiesOnAWallWhereThePaintSteps) {
     for (int w = 0; w < 4; ++w) {
       const CityWall& wall = city.walls[static_cast<size_t>(w)];
       const Eigen::Vector3d n = wallNormal(wall);
-      if (std::abs(n.dot(edge.start - wall.ring[0])) < 1e-6 &&
-          std::abs(n.dot(edge.end - wall.ring[0])) < 1e-6) {
+      if (std::abs(n.dot(edge.start - wall.triangles.front()[0])) < 1e-6 &&
+          std::abs(n.dot(edge.end - wall.triangles.front()[0])) < 1e-6) {
         on = w;
       }
     }
@@ -81,11 +82,11 @@ TEST(FacadeEdges, AWallsFootIsWhereItMeetsTheGround) {
     for (size_t w = 0; w < 4; ++w) {
       const CityWall& wall = city.walls[w];
       const Eigen::Vector3d n = wallNormal(wall);
-      if (std::abs(n.dot(edge.start - wall.ring[0])) < 1e-6 &&
-          std::abs(n.dot(edge.end - wall.ring[0])) < 1e-6) {
+      if (std::abs(n.dot(edge.start - wall.triangles.front()[0])) < 1e-6 &&
+          std::abs(n.dot(edge.end - wall.triangles.front()[0])) < 1e-6) {
         ++feet[w];
         // One straight run along the wall, to within a sample of its corners.
-        const double length = (wall.ring[1] - wall.ring[0]).norm();
+        const double length = (wall.triangles.front()[1] - wall.triangles.front()[0]).norm();
         EXPECT_GT((edge.end - edge.start).norm(), length - 0.5);
       }
     }

@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
 #include <ostream>
 #include <stdexcept>
 
 #include "apps/learnt_line_file.h"
+#include "common/geometry/pose.h"
 #include "common/time/utc_time.h"
 #include "db/connection.h"
 #include "db/enrichment_store.h"
@@ -45,11 +45,6 @@ db::EnrichmentFilter filterOf(const EnrichmentAdminConfig& config) {
 bool filters(const db::EnrichmentFilter& filter) {
   return filter.status || filter.area_world || filter.seen_before_ns || filter.seen_after_ns ||
          filter.pass || filter.robot;
-}
-
-double largestSigma(const Eigen::Matrix3d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
 }
 
 void list(const std::vector<db::StoredEnrichmentLine>& lines, std::ostream& out) {

@@ -2,21 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
+#include "common/geometry/pose.h"
+
 namespace lineloc {
-namespace {
-
-double largestSigma(const Eigen::Matrix3d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
-}
-
-}  // namespace
 
 void writeLearntLineFile(const std::string& path, const std::vector<LearntLineRow>& rows) {
   std::ofstream file(path);

@@ -11,21 +11,8 @@ int main(int argc, char** argv) {
   lineloc::OfflineEnrichmentConfig config;
   lineloc::ProgramOptions options(
       "lineloc-enrich", "Lines learnt for a city model from a recorded drive and its fix log");
-  options.add("city_model", config.city_model,
-              "city model file (CityJSON, CityJSON Lines, OBJ, GeoJSON)");
-  options.add("city_model_crs", config.city_model_crs,
-              "CRS of a city model file that names none (EPSG:N)");
-  options.addFixedSize("site_origin", config.site_origin, 3,
-                       "model coordinates x y z of the site origin, subtracted from the model "
-                       "(default: the model's lowest corner)");
-  options.add("images", config.images, "image folder or EuRoC/ASL camera folder");
-  options.add("camera_calibration", config.camera_calibration,
-              "camera calibration (OpenCV YAML layout)");
+  lineloc::addRecordedDriveOptions(options, config.drive);
   options.add("fix_log", config.fix_log, "the robot's log of the backbone's answers (fixes.txt)");
-  options.addFixedSize("sun", config.sun_deg, 2,
-                       "sun azimuth clockwise from grid north and elevation (deg) (default: sun "
-                       "unknown)");
-  options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
   options.add("out", config.out, "learnt lines written");
   options.add("robot", config.robot, "the robot that drove, named in the sightings");
   options.add("db", config.db,

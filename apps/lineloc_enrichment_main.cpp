@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   options.add("seen_after", config.seen_after, "only lines first seen after this UTC time");
   options.add("pass", config.pass, "only lines a sighting of this pass supports");
   options.add("robot", config.robot, "only lines a sighting of this robot supports");
-  options.add("all", config.all, "purge: every learnt line of the site, no filter needed");
+  options.addFlag("all", config.all, "purge: every learnt line of the site, no filter needed");
   options.add("out", config.out, "export: the learnt line file written");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;

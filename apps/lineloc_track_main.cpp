@@ -11,16 +11,7 @@ int main(int argc, char** argv) {
   lineloc::OfflineTrackingConfig config;
   lineloc::ProgramOptions options("lineloc-track",
                                   "Model-based camera tracking in a city model, offline");
-  options.add("city_model", config.city_model,
-              "city model file (CityJSON, CityJSON Lines, OBJ, GeoJSON)");
-  options.add("city_model_crs", config.city_model_crs,
-              "CRS of a city model file that names none (EPSG:N)");
-  options.addFixedSize("site_origin", config.site_origin, 3,
-                       "model coordinates x y z of the site origin, subtracted from the model "
-                       "(default: the model's lowest corner)");
-  options.add("images", config.images, "image folder or EuRoC/ASL camera folder");
-  options.add("camera_calibration", config.camera_calibration,
-              "camera calibration (OpenCV YAML layout)");
+  lineloc::addRecordedDriveOptions(options, config.drive);
   options.addFixedSize("predicted_pose", config.predicted_pose, 7,
                        "first frame's predicted T_world_camera: tx ty tz qx qy qz qw");
   options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,
@@ -29,10 +20,6 @@ int main(int argc, char** argv) {
               "standard deviation of the predicted rotation (degrees)");
   options.add("out", config.out, "TUM trajectory file written");
   options.add("overlay_dir", config.overlay_dir, "folder for overlay PNGs (empty: none)");
-  options.addFixedSize("sun", config.sun_deg, 2,
-                       "sun azimuth clockwise from grid north and elevation (deg): corners "
-                       "between walls it lights alike are no edges (default: sun unknown)");
-  options.add("ambient", config.ambient, "with --sun: fraction of the light in the shade, 0..1");
   options.add("min_edge_gradient", config.extractor.edges.min_gradient,
               "edge threshold of the line extraction (grey levels per pixel)");
   options.add("min_segment_contrast", config.extractor.lines.min_contrast,

@@ -81,16 +81,11 @@ db::EnrichmentWriteReport storePass(const OfflineEnrichmentConfig& config,
 
 OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& config,
                                               std::ostream& out) {
-  const std::optional<int> file_epsg =
-      config.city_model_crs.empty()
-          ? std::nullopt
-          : std::optional<int>(citymodel::parseEpsgCode(config.city_model_crs));
-  const LocalModel local =
-      readLocalModel(config.city_model, pointOption(config.site_origin, "site_origin"), file_epsg);
+  const LocalModel local = readDriveModel(config.drive);
   const OcclusionScene scene(local.model.faces, local.model.face_building_ids);
-  const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
+  const CameraCalibration calibration = readCameraCalibration(config.drive.camera_calibration);
   VisibilityOptions visibility;
-  visibility.sunlight = sunOption(config.sun_deg, config.ambient, "sun");
+  visibility.sunlight = driveSun(config.drive);
   std::map<int64_t, LoggedFix> fixes;
   for (LoggedFix& fix : readFixLog(config.fix_log)) {
     if (fix.status == "ok") {
@@ -100,7 +95,7 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
   FeatureExtractor extractor(calibration, config.extractor);
   SurfaceLineTracks tracks(config.tracks);
   OfflineEnrichmentSummary summary;
-  for (const FrameRef& frame_ref : listImageSequence(config.images)) {
+  for (const FrameRef& frame_ref : listImageSequence(config.drive.images)) {
     ++summary.frames;
     if (!frame_ref.stamp_ns) {
       throw std::runtime_error(

@@ -19,27 +19,17 @@
 #include <string>
 #include <vector>
 
+#include "apps/recorded_drive.h"
 #include "backbone/enrichment/surface_line_tracks.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
 
 struct OfflineEnrichmentConfig {
-  // CityJSON, CityJSON Lines, OBJ or GeoJSON footprints.
-  std::string city_model;
-  // "EPSG:N" for a model file that names no CRS.
-  std::string city_model_crs;
-  // Model coordinates x y z of the site origin (see lineloc-track).
-  std::vector<double> site_origin;
-  // Image folder or EuRoC/ASL camera folder, with stamps matching the fixes.
-  std::string images;
-  // OpenCV YAML layout.
-  std::string camera_calibration;
+  // The drive's images, with stamps matching the fixes.
+  RecordedDrive drive;
   // The robot's log of the backbone's answers (common/trajectory/fix_log.h).
   std::string fix_log;
-  // Sun azimuth clockwise from grid north and elevation (deg); empty: unknown.
-  std::vector<double> sun_deg;
-  double ambient = 0.35;
   // Learnt lines written (apps/learnt_line_file.h).
   std::string out = "enrichment.txt";
   // The robot that drove (names its sightings).

@@ -22,25 +22,20 @@ namespace {
 
 TrackerOptions trackerOptionsOf(const OfflineTrackingConfig& config) {
   TrackerOptions options;
-  options.localizer.visibility.sunlight = sunOption(config.sun_deg, config.ambient, "sun");
+  options.localizer.visibility.sunlight = driveSun(config.drive);
   return options;
 }
 
 }  // namespace
 
 OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, std::ostream& out) {
-  const std::optional<int> file_epsg =
-      config.city_model_crs.empty()
-          ? std::nullopt
-          : std::optional<int>(citymodel::parseEpsgCode(config.city_model_crs));
-  const LocalModel local =
-      readLocalModel(config.city_model, pointOption(config.site_origin, "site_origin"), file_epsg);
+  const LocalModel local = readDriveModel(config.drive);
   out << fmt::format(
       "lineloc-track: {} buildings, {} lines, {} faces; frame = model CRS minus site origin "
       "({:.3f}, {:.3f}, {:.3f})\n",
       local.buildings, local.model.lines.size(), local.model.faces.size(), local.origin.x(),
       local.origin.y(), local.origin.z());
-  const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
+  const CameraCalibration calibration = readCameraCalibration(config.drive.camera_calibration);
   ModelTracker tracker(local.model, calibration.camera,
                        poseOption(config.predicted_pose, config.predicted_position_sigma_m,
                                   config.predicted_rotation_sigma_deg, "predicted_pose"),
@@ -51,7 +46,7 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
     std::filesystem::create_directories(config.overlay_dir);
   }
   OfflineTrackingSummary summary;
-  const std::vector<FrameRef> frames = listImageSequence(config.images);
+  const std::vector<FrameRef> frames = listImageSequence(config.drive.images);
   for (const FrameRef& frame_ref : frames) {
     const cv::Mat image = readImageFile(frame_ref.path, cv::IMREAD_COLOR);
     const FrameFeatures& features = extractor.extract(image);

@@ -15,21 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "apps/recorded_drive.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
 
 struct OfflineTrackingConfig {
-  // CityJSON, CityJSON Lines, OBJ or GeoJSON footprints.
-  std::string city_model;
-  // "EPSG:N" for a model file that names no CRS.
-  std::string city_model_crs;
-  // Model coordinates x y z of the site origin: poses are in the model's CRS
-  // minus it. Empty: the model's lowest corner, rounded down.
-  std::vector<double> site_origin;
-  std::string images;
-  // OpenCV YAML layout.
-  std::string camera_calibration;
+  RecordedDrive drive;
   // The first frame's T_world_camera: tx ty tz qx qy qz qw.
   std::vector<double> predicted_pose = {0, 0, 1.5, 0, 0, 0, 1};
   double predicted_position_sigma_m = 0.5;
@@ -38,10 +30,6 @@ struct OfflineTrackingConfig {
   std::string out = "poses.tum";
   // Folder of overlay PNGs; empty: none.
   std::string overlay_dir;
-  // Sun azimuth clockwise from grid north and elevation (deg); empty: unknown.
-  std::vector<double> sun_deg;
-  // With a sun: fraction of the light in the shade, 0..1.
-  double ambient = 0.35;
   FeatureExtractorOptions extractor = trackingFrontEndOptions();
 };
 

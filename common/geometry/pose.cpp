@@ -88,10 +88,13 @@ Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b) {
   return 0.5 * (covering + covering.transpose());
 }
 
-double largestPositionSigma(const Matrix6d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance.topLeftCorner<3, 3>(),
-                                                             Eigen::EigenvaluesOnly);
+double largestSigma(const Eigen::Matrix3d& covariance) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance, Eigen::EigenvaluesOnly);
   return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
+}
+
+double largestPositionSigma(const Matrix6d& covariance) {
+  return largestSigma(covariance.topLeftCorner<3, 3>());
 }
 
 double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::Isometry3d& truth) {

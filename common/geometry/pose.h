@@ -59,6 +59,9 @@ Matrix6d scatterAboutMean(const std::vector<Eigen::Matrix<double, 6, 1>>& sample
 // Infinite when a is not positive definite (it bounds nothing).
 Matrix6d coveringCovariance(const Matrix6d& a, const Matrix6d& b);
 
+// Standard deviation along a 3 x 3 covariance's largest principal axis.
+double largestSigma(const Eigen::Matrix3d& covariance);
+
 // Standard deviation along the position covariance's largest principal axis.
 double largestPositionSigma(const Matrix6d& covariance);
 

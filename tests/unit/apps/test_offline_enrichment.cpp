@@ -59,13 +59,13 @@ class OfflineEnrichment : public ::testing::Test {
 
   static OfflineEnrichmentConfig config() {
     OfflineEnrichmentConfig config;
-    config.city_model = test::delftCityModel().string();
+    config.drive.city_model = test::delftCityModel().string();
     const Eigen::Vector3d origin = test::delftSiteOrigin();
-    config.site_origin = {origin.x(), origin.y(), origin.z()};
-    config.images = (folder_ / "dataset" / "cam0").string();
-    config.camera_calibration = (folder_ / "dataset" / "cam0" / "calibration.yaml").string();
+    config.drive.site_origin = {origin.x(), origin.y(), origin.z()};
+    config.drive.images = (folder_ / "dataset" / "cam0").string();
+    config.drive.camera_calibration = (folder_ / "dataset" / "cam0" / "calibration.yaml").string();
     config.fix_log = (folder_ / "fixes.txt").string();
-    config.sun_deg = {sunlight_.azimuth_deg(), sunlight_.elevation_deg()};
+    config.drive.sun_deg = {sunlight_.azimuth_deg(), sunlight_.elevation_deg()};
     config.out = (folder_ / "learnt.txt").string();
     return config;
   }

@@ -45,11 +45,11 @@ class OfflineTracking : public ::testing::Test {
   // Tracking from the first frame's true pose, told the drive's sun.
   static OfflineTrackingConfig configFromTruth() {
     OfflineTrackingConfig config;
-    config.city_model = test::delftCityModel().string();
+    config.drive.city_model = test::delftCityModel().string();
     const Eigen::Vector3d origin = test::delftSiteOrigin();
-    config.site_origin = {origin.x(), origin.y(), origin.z()};
-    config.images = (folder_ / "dataset" / "cam0").string();
-    config.camera_calibration = (folder_ / "dataset" / "cam0" / "calibration.yaml").string();
+    config.drive.site_origin = {origin.x(), origin.y(), origin.z()};
+    config.drive.images = (folder_ / "dataset" / "cam0").string();
+    config.drive.camera_calibration = (folder_ / "dataset" / "cam0" / "calibration.yaml").string();
     const Eigen::Isometry3d& first = frames_->truth.front();
     const Eigen::Quaterniond rotation(first.linear());
     config.predicted_pose = {first.translation().x(),
@@ -61,7 +61,7 @@ class OfflineTracking : public ::testing::Test {
                              rotation.w()};
     config.predicted_position_sigma_m = 0.05;
     config.predicted_rotation_sigma_deg = 0.5;
-    config.sun_deg = {sunlight_.azimuth_deg(), sunlight_.elevation_deg()};
+    config.drive.sun_deg = {sunlight_.azimuth_deg(), sunlight_.elevation_deg()};
     config.out = (folder_ / "poses.tum").string();
     return config;
   }
@@ -115,7 +115,7 @@ TEST_F(OfflineTracking, RefusesAPredictedPoseThatIsNoPose) {
 
 TEST_F(OfflineTracking, NamesAnImageFolderThatIsMissing) {
   OfflineTrackingConfig config = configFromTruth();
-  config.images = (folder_ / "no_such_folder").string();
+  config.drive.images = (folder_ / "no_such_folder").string();
   std::ostringstream out;
   try {
     runOfflineTracking(config, out);

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 
 #include "apps/learnt_line_file.h"
+#include "backbone/enrichment/expected_lines.h"
 #include "backbone/enrichment/known_lines.h"
 #include "backbone/enrichment/repeated_lines.h"
 #include "backbone/tracker/model_file.h"
@@ -53,29 +55,51 @@ db::EnrichmentSighting sightingOf(const LineCandidate& candidate, const std::str
   return sighting;
 }
 
-// The learnt lines as one pass of the site's enrichment. The model file's
-// site frame must be the site's: the lines are stored in its CRS.
-db::EnrichmentWriteReport storePass(const OfflineEnrichmentConfig& config,
-                                    const Eigen::Vector3d& model_origin,
-                                    const std::vector<LineCandidate>& lines) {
-  if (config.site.empty() || config.pass.empty()) {
-    throw std::runtime_error("--db needs --site and --pass (the drive or day the lines are from)");
+// The site's enrichment the pass is stored in: its site, whose frame must be
+// the model file's (the lines are stored in its CRS), and the learnt lines
+// stored there before, which the pass may be expected to see again.
+class PassStore {
+ public:
+  PassStore(const OfflineEnrichmentConfig& config, const Eigen::Vector3d& model_origin)
+      : config_(config), connection_(config.db), site_(db::requireSite(connection_, config.site)) {
+    if ((site_.origin - model_origin).norm() > 1e-6) {
+      throw std::runtime_error(fmt::format(
+          "site '{}' has its origin at ({:.3f}, {:.3f}, {:.3f}), the model's frame at ({:.3f}, "
+          "{:.3f}, {:.3f}): give --site-origin as the site's",
+          site_.name, site_.origin.x(), site_.origin.y(), site_.origin.z(), model_origin.x(),
+          model_origin.y(), model_origin.z()));
+    }
   }
-  db::Connection connection(config.db);
-  const db::Site site = db::requireSite(connection, config.site);
-  if ((site.origin - model_origin).norm() > 1e-6) {
-    throw std::runtime_error(fmt::format(
-        "site '{}' has its origin at ({:.3f}, {:.3f}, {:.3f}), the model's frame at ({:.3f}, "
-        "{:.3f}, {:.3f}): give --site-origin as the site's",
-        site.name, site.origin.x(), site.origin.y(), site.origin.z(), model_origin.x(),
-        model_origin.y(), model_origin.z()));
+
+  std::vector<KnownLearntLine> knownLines() {
+    std::vector<KnownLearntLine> known;
+    for (const db::StoredEnrichmentLine& line : db::readEnrichment(connection_, site_)) {
+      if (line.status != db::EnrichmentStatus::kRetired) {
+        known.push_back(
+            {line.id, line.start_world, line.end_world, {line.plane_normal, line.plane_offset}});
+      }
+    }
+    return known;
   }
-  std::vector<db::EnrichmentSighting> sightings;
-  for (const LineCandidate& line : lines) {
-    sightings.push_back(sightingOf(line, config.robot));
+
+  db::EnrichmentWriteReport write(const std::vector<LineCandidate>& lines,
+                                  const std::vector<ExpectedLine>& expected) {
+    std::vector<db::EnrichmentSighting> sightings;
+    for (const LineCandidate& line : lines) {
+      sightings.push_back(sightingOf(line, config_.robot));
+    }
+    std::vector<db::EnrichmentExpectation> expectations;
+    for (const ExpectedLine& line : expected) {
+      expectations.push_back({line.id, line.expected_at_ns});
+    }
+    return db::writeEnrichmentPass(connection_, site_, config_.pass, sightings, expectations);
   }
-  return db::writeEnrichmentPass(connection, site, config.pass, sightings);
-}
+
+ private:
+  const OfflineEnrichmentConfig& config_;
+  db::Connection connection_;
+  db::Site site_;
+};
 
 }  // namespace
 
@@ -92,6 +116,16 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
       fixes.emplace(fix.stamp_ns, std::move(fix));
     }
   }
+  std::optional<PassStore> store;
+  if (!config.db.empty()) {
+    if (config.site.empty() || config.pass.empty()) {
+      throw std::runtime_error(
+          "--db needs --site and --pass (the drive or day the lines are from)");
+    }
+    store.emplace(config, local.origin);
+  }
+  ExpectedLines expected(store ? store->knownLines() : std::vector<KnownLearntLine>(),
+                         config.expected);
   FeatureExtractor extractor(calibration, config.extractor);
   SurfaceLineTracks tracks(config.tracks);
   OfflineEnrichmentSummary summary;
@@ -118,6 +152,7 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
     frame.segments = extractor.extract(image).segments;
     frame.visible = visibleSegments(local.model.lines, scene, frame.T_world_camera,
                                     calibration.camera, visibility);
+    expected.observe(frame, scene);
     const SurfaceObservations observed = observeSurfaceSegments(frame, scene, config.observation);
     summary.precise_frames += observed.segments.empty() ? 0 : 1;
     summary.segments += static_cast<int>(frame.segments.size());
@@ -150,13 +185,13 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
       summary.explained, summary.off_surface, summary.shadow_edges, summary.imprecise,
       summary.on_surface, summary.tracks, summary.lines.size(), summary.model_lines_seen,
       summary.repeated_lines, config.out);
-  if (!config.db.empty()) {
-    const db::EnrichmentWriteReport stored = storePass(config, local.origin, summary.lines);
+  if (store) {
+    const db::EnrichmentWriteReport stored = store->write(summary.lines, expected.expected());
     out << fmt::format(
         "lineloc-enrich: pass '{}' in site '{}': {} new candidates, {} lines seen again ({} "
-        "confirmed by it), {} written before\n",
+        "confirmed by it), {} written before; {} expected lines missed ({} retired)\n",
         config.pass, config.site, stored.added, stored.joined, stored.confirmed,
-        stored.already_written);
+        stored.already_written, stored.missed, stored.retired);
   }
   return summary;
 }

@@ -9,7 +9,9 @@
 // of a repeating pattern and are not model lines seen again are written, one
 // per line (lineloc-eval --learnt-lines scores them against a simulated
 // drive's façade edges), and stored as one pass of the site's enrichment when
-// a database is given.
+// a database is given, with the stored lines the pass should have seen and
+// did not (backbone/enrichment/expected_lines.h), which retire a line missed
+// on enough passes.
 //
 // It composes the robot's and the backbone's libraries, so it belongs to
 // neither: backbone/ never includes robot/.
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "apps/recorded_drive.h"
+#include "backbone/enrichment/expected_lines.h"
 #include "backbone/enrichment/surface_line_tracks.h"
 #include "robot/vision/features/feature_extractor.h"
 
@@ -43,6 +46,8 @@ struct OfflineEnrichmentConfig {
   FeatureExtractorOptions extractor = trackingFrontEndOptions();
   SurfaceObservationOptions observation;
   SurfaceLineTrackOptions tracks;
+  // With a database: when the pass should have seen a stored line.
+  ExpectedLineOptions expected;
 };
 
 struct OfflineEnrichmentSummary {

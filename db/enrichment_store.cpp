@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <set>
 #include <stdexcept>
 
 namespace lineloc::db {
@@ -134,6 +135,7 @@ class PassWriter {
   void write(const EnrichmentSighting& sighting, EnrichmentWriteReport& report) {
     const std::optional<NearLine> stored = nearestJoined(sighting);
     const int64_t line_id = stored ? stored->id : insertLine(sighting);
+    seen_.insert(line_id);
     const bool recorded = insertSighting(line_id, sighting);
     if (!stored) {
       ++report.added;
@@ -146,6 +148,30 @@ class PassWriter {
     ++report.joined;
     updateLine(*stored, sighting);
     report.confirmed += confirmIfSeenOnEnoughPasses(line_id) ? 1 : 0;
+  }
+
+  // Records the miss of an expected line no sighting of the pass joined, and
+  // retires the line when enough passes since it was last seen missed it.
+  void miss(const EnrichmentExpectation& expected, EnrichmentWriteReport& report) {
+    if (seen_.count(expected.line_id) > 0) {
+      return;
+    }
+    const Result missed = connection_.execParams(
+        "INSERT INTO enrichment_miss (line_id, pass, missed_at) SELECT id, $2, to_timestamp($3) "
+        "FROM enrichment_line WHERE id = $1 AND site_id = $4 AND status <> 2 "
+        "ON CONFLICT (line_id, pass) DO NOTHING RETURNING line_id",
+        {std::to_string(expected.line_id), pass_, timestamp(expected.expected_at_ns),
+         std::to_string(site_.id)});
+    if (missed.rows() == 0) {
+      return;
+    }
+    ++report.missed;
+    const Result retired = connection_.execParams(
+        "UPDATE enrichment_line l SET status = 2 WHERE id = $1 AND status <> 2 AND "
+        "(SELECT count(*) FROM enrichment_miss m WHERE m.line_id = l.id AND m.missed_at > "
+        "l.last_seen) >= $2 RETURNING id",
+        {std::to_string(expected.line_id), std::to_string(options_.retire_after_passes)});
+    report.retired += retired.rows();
   }
 
  private:
@@ -277,6 +303,8 @@ class PassWriter {
   const Site& site_;
   const std::string& pass_;
   const EnrichmentMergeOptions& options_;
+  // The lines the pass's sightings joined or added.
+  std::set<int64_t> seen_;
 };
 
 // The WHERE clause of a filter over enrichment_line l, and its parameters
@@ -355,6 +383,7 @@ EnrichmentStatus parseEnrichmentStatus(const std::string& name) {
 EnrichmentWriteReport writeEnrichmentPass(Connection& connection, const Site& site,
                                           const std::string& pass,
                                           const std::vector<EnrichmentSighting>& sightings,
+                                          const std::vector<EnrichmentExpectation>& expected,
                                           const EnrichmentMergeOptions& options) {
   if (pass.empty()) {
     throw std::invalid_argument("an enrichment pass needs a name (a drive or a day)");
@@ -371,6 +400,9 @@ EnrichmentWriteReport writeEnrichmentPass(Connection& connection, const Site& si
     PassWriter writer(connection, site, pass, options);
     for (const EnrichmentSighting& sighting : sightings) {
       writer.write(sighting, report);
+    }
+    for (const EnrichmentExpectation& expectation : expected) {
+      writer.miss(expectation, report);
     }
   });
   return report;

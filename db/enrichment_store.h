@@ -13,6 +13,12 @@
 // union of the sightings' extents. A line seen on min_passes separate passes
 // is confirmed.
 //
+// The caller also names the stored lines the pass should have seen (in view,
+// near and unoccluded from enough of its frames). One that no sighting of the
+// pass joined is missed by the pass, once per pass; a line missed on
+// retire_after_passes separate passes since it was last seen is retired, and
+// no sighting joins it again (a line seen there anew is a new candidate).
+//
 // Coordinates are the site frame (the site's CRS minus its origin); times are
 // nanoseconds since the Unix epoch (stored to the microsecond).
 #pragma once
@@ -54,10 +60,17 @@ struct EnrichmentSighting {
   int64_t last_seen_ns = 0;
 };
 
+// A stored line a pass should have seen, and when.
+struct EnrichmentExpectation {
+  int64_t line_id = 0;
+  int64_t expected_at_ns = 0;
+};
+
 struct EnrichmentMergeOptions {
   double max_angle_rad = 3.0 * M_PI / 180.0;
   double max_distance_m = 0.05;
   int min_passes = 2;
+  int retire_after_passes = 3;
 };
 
 struct EnrichmentWriteReport {
@@ -65,6 +78,8 @@ struct EnrichmentWriteReport {
   int joined = 0;           // sightings of stored lines
   int already_written = 0;  // this pass's sightings that were stored before
   int confirmed = 0;        // lines this pass confirmed
+  int missed = 0;           // expected lines the pass did not see
+  int retired = 0;          // lines this pass retired
 };
 
 // Throws std::invalid_argument naming the sighting that is malformed (no
@@ -73,6 +88,7 @@ struct EnrichmentWriteReport {
 EnrichmentWriteReport writeEnrichmentPass(Connection& connection, const Site& site,
                                           const std::string& pass,
                                           const std::vector<EnrichmentSighting>& sightings,
+                                          const std::vector<EnrichmentExpectation>& expected = {},
                                           const EnrichmentMergeOptions& options = {});
 
 struct StoredEnrichmentLine {

@@ -33,6 +33,22 @@ bool explains(const Eigen::Vector2d& line_a, const Eigen::Vector2d& line_b,
   return std::max(s0, s1) > 0.0 && std::min(s0, s1) < length;
 }
 
+// The unit direction in the plane across a line through `point` along
+// `direction`, and P = I - r n^T / (n . r): a ray from `camera` through the
+// point, moved by d, meets the plane moved by P d.
+struct WallProjection {
+  Eigen::Vector3d across_line;
+  Eigen::Matrix3d P;
+};
+
+WallProjection wallProjection(const Eigen::Vector3d& camera, const Plane& plane,
+                              const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d& n = plane.normal;
+  const Eigen::Vector3d ray = (point - camera).normalized();
+  return {n.cross(direction).normalized(),
+          Eigen::Matrix3d::Identity() - ray * n.transpose() / n.dot(ray)};
+}
+
 // A ray towards the sun this long leaves every building of a map view behind;
 // shadow probes start this far off the wall.
 constexpr double kSunRayLength_m = 2000.0;
@@ -71,15 +87,9 @@ class SurfacePlacer {
   };
   PlacementSigmas placementSigmas(const SurfaceSegment& placed, const Eigen::Vector3d& middle,
                                   const ImageSegment& segment) const {
-    const Eigen::Vector3d& n = placed.plane.normal;
-    const Eigen::Vector3d across_line = n.cross(placed.end_world - placed.start_world).normalized();
-    const Eigen::Vector3d ray = (middle - frame_.T_world_camera.pose.translation()).normalized();
-    // A ray moved by d meets the plane moved by P d, P = I - r n^T / (n . r).
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - ray * n.transpose() / n.dot(ray);
-    // A pose error e = [dp; dtheta] moves the ray at X by J e, J = [I, -[X - t]x].
-    Eigen::Matrix<double, 3, 6> J;
-    J << Eigen::Matrix3d::Identity(), -skew(middle - frame_.T_world_camera.pose.translation());
-    const Eigen::Matrix<double, 1, 6> pose_moves = across_line.transpose() * P * J;
+    const Eigen::Vector3d direction = placed.end_world - placed.start_world;
+    const WallProjection wall =
+        wallProjection(frame_.T_world_camera.pose.translation(), placed.plane, middle, direction);
     // A pixel across the segment moves the ray at depth d by d / f that way.
     const Eigen::Vector2f image_direction = (segment.end - segment.start).normalized();
     const Eigen::Vector2f image_normal(-image_direction.y(), image_direction.x());
@@ -92,11 +102,11 @@ class SurfacePlacer {
         Eigen::Vector3d(image_normal.x() / frame_.camera.fx, image_normal.y() / frame_.camera.fy,
                         0.0) *
         depth;
-    const double pixel_moves = across_line.dot(P * pixel_ray_move);
-    const double pose_variance =
-        (pose_moves * frame_.T_world_camera.covariance * pose_moves.transpose())(0, 0);
-    return {std::sqrt(pose_variance),
-            std::sqrt(pose_variance + pixel_moves * pixel_moves * pixel_variance)};
+    const double pixel_moves = wall.across_line.dot(wall.P * pixel_ray_move);
+    const double pose_sigma =
+        posePlacementSigma(frame_.T_world_camera, placed.plane, middle, direction);
+    return {pose_sigma,
+            std::sqrt(pose_sigma * pose_sigma + pixel_moves * pixel_moves * pixel_variance)};
   }
 
   // Whether one side of the placed segment is lit and the other in a shadow
@@ -209,6 +219,17 @@ class SurfacePlacer {
 };
 
 }  // namespace
+
+double posePlacementSigma(const PoseWithCovariance& T_world_camera, const Plane& plane,
+                          const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d camera = T_world_camera.pose.translation();
+  const WallProjection wall = wallProjection(camera, plane, point, direction);
+  // A pose error e = [dp; dtheta] moves the ray at X by J e, J = [I, -[X - t]x].
+  Eigen::Matrix<double, 3, 6> J;
+  J << Eigen::Matrix3d::Identity(), -skew(point - camera);
+  const Eigen::Matrix<double, 1, 6> moves = wall.across_line.transpose() * wall.P * J;
+  return std::sqrt((moves * T_world_camera.covariance * moves.transpose())(0, 0));
+}
 
 SurfaceObservations observeSurfaceSegments(const EnrichmentFrame& frame,
                                            const OcclusionScene& scene,

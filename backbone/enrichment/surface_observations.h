@@ -103,6 +103,12 @@ struct SurfaceObservations {
   int imprecise = 0;
 };
 
+// sigma_p above: the standard deviation, across a line through `point` along
+// `direction` in `plane`, of where the camera's ray through the point meets
+// the plane, that the pose's error causes.
+double posePlacementSigma(const PoseWithCovariance& T_world_camera, const Plane& plane,
+                          const Eigen::Vector3d& point, const Eigen::Vector3d& direction);
+
 SurfaceObservations observeSurfaceSegments(const EnrichmentFrame& frame,
                                            const OcclusionScene& scene,
                                            const SurfaceObservationOptions& options);

@@ -34,7 +34,7 @@ TEST(Migrations, LayTheTablesInSchemaLinelocOwnedByTheOwnerRole) {
                 .exec("SELECT string_agg(DISTINCT tableowner, ',') || ' ' || count(*) FROM "
                       "pg_tables WHERE schemaname = 'lineloc'")
                 .text(0, 0),
-            "lineloc_owner 14");
+            "lineloc_owner 15");
   // Every role finds the tables by the database's search_path.
   Connection reader(database.conninfo(test::DatabaseRole::kReader));
   EXPECT_EQ(reader.exec("SELECT current_schemas(false)::text").text(0, 0), "{lineloc,public}");

@@ -2,6 +2,7 @@
 // candidates, a second pass confirms them, writing a pass again changes
 // nothing, reads and purges take what their filter names, and only the
 // enricher role writes them.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "db/connection.h"
@@ -120,6 +121,51 @@ TEST_F(EnrichmentStoreTest, ASecondPassConfirmsAndTheMorePreciseSightingShapesTh
   EXPECT_EQ(readEnrichment(enricher_, site_).size(), 2u);
 }
 
+TEST_F(EnrichmentStoreTest, ALineMissedOnThreePassesSinceLastSeenIsRetired) {
+  writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
+  const int64_t id = readEnrichment(enricher_, site_).front().id;
+  // Tuesday saw it; Wednesday to Friday expected it and did not.
+  EnrichmentWriteReport report =
+      writeEnrichmentPass(enricher_, site_, "tuesday", {windowTop(3.5, "r2", kMonday_ns + kDay_ns)},
+                          {{id, kMonday_ns + kDay_ns}});
+  EXPECT_EQ(report.missed, 0);
+  for (int day = 2; day <= 4; ++day) {
+    const std::string pass = fmt::format("day {}", day);
+    report = writeEnrichmentPass(enricher_, site_, pass, {}, {{id, kMonday_ns + day * kDay_ns}});
+    EXPECT_EQ(report.missed, 1) << pass;
+    EXPECT_EQ(report.retired, day == 4 ? 1 : 0) << pass;
+    // Written again, a pass misses nothing more.
+    EXPECT_EQ(
+        writeEnrichmentPass(enricher_, site_, pass, {}, {{id, kMonday_ns + day * kDay_ns}}).missed,
+        0);
+  }
+  const std::vector<StoredEnrichmentLine> lines = readEnrichment(enricher_, site_);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].status, EnrichmentStatus::kRetired);
+  // Seen there again, it is a new candidate; the retired line stays retired.
+  report = writeEnrichmentPass(enricher_, site_, "saturday",
+                               {windowTop(3.5, "r1", kMonday_ns + 5 * kDay_ns)});
+  EXPECT_EQ(report.added, 1);
+  EnrichmentFilter retired;
+  retired.status = EnrichmentStatus::kRetired;
+  EXPECT_EQ(readEnrichment(enricher_, site_, retired).size(), 1u);
+}
+
+TEST_F(EnrichmentStoreTest, MissesBeforeTheLastSightingDoNotRetire) {
+  writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
+  const int64_t id = readEnrichment(enricher_, site_).front().id;
+  for (int day = 1; day <= 2; ++day) {
+    writeEnrichmentPass(enricher_, site_, fmt::format("day {}", day), {},
+                        {{id, kMonday_ns + day * kDay_ns}});
+  }
+  writeEnrichmentPass(enricher_, site_, "day 3", {windowTop(3.5, "r1", kMonday_ns + 3 * kDay_ns)});
+  const EnrichmentWriteReport report =
+      writeEnrichmentPass(enricher_, site_, "day 4", {}, {{id, kMonday_ns + 4 * kDay_ns}});
+  EXPECT_EQ(report.missed, 1);
+  EXPECT_EQ(report.retired, 0);
+  EXPECT_EQ(readEnrichment(enricher_, site_).front().status, EnrichmentStatus::kConfirmed);
+}
+
 TEST_F(EnrichmentStoreTest, ReadsAndPurgesTakeWhatTheFilterNames) {
   writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
   EnrichmentSighting far = windowTop(3.5, "r2", kMonday_ns + kDay_ns);
@@ -168,6 +214,9 @@ TEST_F(EnrichmentStoreTest, OnlyTheEnricherWritesAndTheReaderReads) {
   writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
   Connection writer(database_.conninfo(test::DatabaseRole::kWriter));
   EXPECT_THROW(writeEnrichmentPass(writer, site_, "tuesday", {windowTop(6.4, "r1", kMonday_ns)}),
+               DatabaseError);
+  const int64_t id = readEnrichment(enricher_, site_).front().id;
+  EXPECT_THROW(writeEnrichmentPass(writer, site_, "tuesday", {}, {{id, kMonday_ns}}),
                DatabaseError);
   Connection reader(database_.conninfo(test::DatabaseRole::kReader));
   EXPECT_EQ(readEnrichment(reader, site_).size(), 1u);

@@ -40,6 +40,9 @@ int main(int argc, char** argv) {
               "edges (empty: none)");
   options.add("facade_edges", config.facade_edges,
               "with --learnt-lines: the simulated drive's facade_edges.txt");
+  options.add("clutter", config.clutter,
+              "with --learnt-lines: the simulated drive's clutter.txt, to count the learnt lines "
+              "on parked cars, trees, poles and people (empty: not counted)");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;
   }

@@ -22,6 +22,7 @@
 #include "sim/render/city_renderer.h"
 #include "sim/render/sample_camera.h"
 #include "sim/world/city_mesh.h"
+#include "sim/world/clutter_boxes.h"
 #include "sim/world/facade_edges.h"
 #include "sim/world/occupancy_map.h"
 #include "sim/world/waypoint_file.h"
@@ -268,6 +269,8 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
   EurocWriter writer(config.output, spec);
   writeWorldFile(config, crs, city, sun, route);
   writeFacadeEdgeFile(config, city, trajectory);
+  writeClutterBoxes((std::filesystem::path(config.output) / "clutter.txt").string(),
+                    clutterBoxes(scene, kFirstClutterObjectId));
   writeSensors(config, trajectory, projection, writer, summary);
 
   const CityRenderer renderer(scene, calibration, renderOptions(config, sun, city.ground_z_m));

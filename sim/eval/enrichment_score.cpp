@@ -107,6 +107,7 @@ std::vector<LearntLine> readLearntLines(const std::string& path) {
 
 EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
                                 const std::vector<FacadeEdge>& truth,
+                                const std::vector<ClutterBox>& clutter,
                                 const EnrichmentScoreOptions& options) {
   EnrichmentScore score;
   score.lines = static_cast<int>(lines.size());
@@ -116,6 +117,7 @@ EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
     const int samples = std::max(
         kMinSamples, static_cast<int>((line.end - line.start).norm() / options.sample_spacing_m));
     double sum = 0.0;
+    double clutter_sum = 0.0;
     for (int k = 0; k < samples; ++k) {
       const Eigen::Vector3d point = line.start + (k + 0.5) / samples * (line.end - line.start);
       double nearest = std::numeric_limits<double>::infinity();
@@ -123,7 +125,14 @@ EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
         nearest = std::min(nearest, distanceToSegment(point, truth[i].start, truth[i].end));
       }
       sum += nearest;
+      double nearest_clutter = std::numeric_limits<double>::infinity();
+      for (const ClutterBox& box : clutter) {
+        nearest_clutter = std::min(nearest_clutter, box.box_world.exteriorDistance(point));
+      }
+      clutter_sum += nearest_clutter;
     }
+    score.on_clutter +=
+        clutter_sum / samples <= options.clutter_margin_m && clutter_sum < sum ? 1 : 0;
     score.distances_m.push_back(sum / samples);
   }
   if (!lines.empty()) {

@@ -5,7 +5,10 @@
 // (one per sample_spacing_m, at least five), of each point's distance to the
 // nearest façade edge: a line along a row of signs is on their edges though
 // each sign's edge is a piece of its own. The score gives the median and the
-// fraction within within_m.
+// fraction within within_m, and how many lines lie on the street's clutter
+// (their points' mean distance to the nearest clutter box at most
+// clutter_margin_m, and less than to the façade edges): lines a parked car, a
+// tree, a pole or a person made.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/world/clutter_boxes.h"
 #include "sim/world/facade_edges.h"
 
 namespace lineloc {
@@ -29,11 +33,13 @@ struct EnrichmentScore {
   // Per line, in the order given (m; infinity when a point has no edge
   // within reach_m).
   std::vector<double> distances_m;
+  int on_clutter = 0;
 };
 
 struct EnrichmentScoreOptions {
   double within_m = 0.10;
   double sample_spacing_m = 0.1;
+  double clutter_margin_m = 0.1;
   // Edges farther than this from a point are not looked at.
   double reach_m = 1.0;
 };
@@ -46,6 +52,7 @@ std::vector<LearntLine> readLearntLines(const std::string& path);
 
 EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,
                                 const std::vector<FacadeEdge>& truth,
+                                const std::vector<ClutterBox>& clutter = {},
                                 const EnrichmentScoreOptions& options = {});
 
 }  // namespace lineloc

@@ -66,12 +66,16 @@ void printEnrichmentScore(const EvaluationReportConfig& config, std::ostream& ou
     throw std::runtime_error("--learnt-lines needs --facade-edges, the drive's facade_edges.txt");
   }
   const EnrichmentScoreOptions options;
-  const EnrichmentScore score = scoreEnrichment(readLearntLines(config.learnt_lines),
-                                                readFacadeEdges(config.facade_edges), options);
+  const std::vector<ClutterBox> clutter =
+      config.clutter.empty() ? std::vector<ClutterBox>() : readClutterBoxes(config.clutter);
+  const EnrichmentScore score = scoreEnrichment(
+      readLearntLines(config.learnt_lines), readFacadeEdges(config.facade_edges), clutter, options);
   out << fmt::format(
       "learnt lines: {}; distance to the nearest façade edge median {:.3f} m, {:.1f} % within "
-      "{:.2f} m\n",
-      score.lines, score.median_distance_m, 100.0 * score.within_fraction, options.within_m);
+      "{:.2f} m{}\n",
+      score.lines, score.median_distance_m, 100.0 * score.within_fraction, options.within_m,
+      config.clutter.empty() ? std::string()
+                             : fmt::format("; {} on the street's clutter", score.on_clutter));
 }
 
 }  // namespace

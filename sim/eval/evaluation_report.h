@@ -36,6 +36,8 @@ struct EvaluationReportConfig {
   // dataset's façade edges (facade_edges.txt); empty: none.
   std::string learnt_lines;
   std::string facade_edges;
+  // ... and the lines on the street's clutter counted (clutter.txt); empty: not.
+  std::string clutter;
 };
 
 // Writes the report to `out` and the plot; returns the whole trajectory's

@@ -39,6 +39,18 @@ TEST(EnrichmentScore, ALineAlongARowOfPiecesIsOnThem) {
   EXPECT_NEAR(score.median_distance_m, 0.02, 1e-9);
 }
 
+TEST(EnrichmentScore, LinesOnTheStreetsClutterAreCounted) {
+  // A parked car 1.5 m in front of the wall; a line along its roof edge and
+  // the window's side on the wall.
+  const std::vector<ClutterBox> clutter = {
+      {1'000'000, "car",
+       Eigen::AlignedBox3d(Eigen::Vector3d(7.0, 3.0, 0.0), Eigen::Vector3d(8.5, 7.5, 1.5))}};
+  const EnrichmentScore score = scoreEnrichment(
+      {{{8.5, 3.5, 1.5}, {8.5, 7.0, 1.5}}, {{10.0, 5.0, 2.0}, {10.0, 5.0, 3.5}}}, kWindow, clutter);
+  EXPECT_EQ(score.on_clutter, 1);
+  EXPECT_NEAR(score.distances_m[1], 0.0, 1e-9);
+}
+
 TEST(EnrichmentScore, LearntLinesAreReadAndAMalformedRowIsNamed) {
   const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                      ("learnt_lines_" + std::to_string(getpid()) + ".txt");

@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
   program.addFlag("dry_run", config.dry_run, "validate and report without writing");
   program.add("export_lines", config.export_lines,
               "after loading, write the site's lines to this .obj or .geojson file");
+  program.add("export_enrichment", config.export_enrichment,
+              "with --export-lines: the site's learnt lines of this status follow the model's "
+              "(candidate, confirmed, retired or all; empty: none)");
   program.addFixedSize("obj_offset", config.obj_offset, 3,
                        "x y z added to OBJ vertices (OBJ files carry no georeference)");
   program.add("height_attribute", config.footprints.height_attribute,

@@ -10,12 +10,17 @@ namespace lineloc::db {
 namespace {
 
 constexpr const char* kKindNames[] = {"other", "vertical", "eave", "ridge", "ground"};
+// Learnt lines follow the model's kinds in the export.
+constexpr int kLearntKind = static_cast<int>(std::size(kKindNames));
 
 struct StoredLine {
-  std::string building_id;
+  std::string building_id = {};
   int kind = 0;
-  Eigen::Vector3d start;
-  Eigen::Vector3d end;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  // Learnt lines only.
+  std::string status = {};
+  int passes = 0;
 };
 
 std::vector<StoredLine> storedLines(Connection& connection, const Site& site) {
@@ -35,8 +40,23 @@ std::vector<StoredLine> storedLines(Connection& connection, const Site& site) {
   return lines;
 }
 
+// The learnt lines the filter takes, in the site's CRS.
+std::vector<StoredLine> learntLines(Connection& connection, const Site& site,
+                                    const EnrichmentFilter& filter) {
+  std::vector<StoredLine> lines;
+  for (const StoredEnrichmentLine& line : readEnrichment(connection, site, filter)) {
+    lines.push_back({line.building_id ? std::to_string(*line.building_id) : std::string(),
+                     kLearntKind, line.start_world + site.origin, line.end_world + site.origin,
+                     toString(line.status), line.passes});
+  }
+  return lines;
+}
+
 std::string kindName(int kind) {
-  return kind >= 0 && kind < static_cast<int>(std::size(kKindNames)) ? kKindNames[kind] : "other";
+  if (kind == kLearntKind) {
+    return "learnt";
+  }
+  return kind >= 0 && kind < kLearntKind ? kKindNames[kind] : "other";
 }
 
 void writeObj(std::ofstream& out, const Site& site, const std::vector<StoredLine>& lines) {
@@ -60,14 +80,18 @@ void writeObj(std::ofstream& out, const Site& site, const std::vector<StoredLine
 void writeGeoJson(std::ofstream& out, const Site& site, const std::vector<StoredLine>& lines) {
   nlohmann::json features = nlohmann::json::array();
   for (const StoredLine& line : lines) {
-    features.push_back(
-        {{"type", "Feature"},
-         {"properties", {{"kind", kindName(line.kind)}, {"building_id", line.building_id}}},
-         {"geometry",
-          {{"type", "LineString"},
-           {"coordinates",
-            {{line.start.x(), line.start.y(), line.start.z()},
-             {line.end.x(), line.end.y(), line.end.z()}}}}}});
+    nlohmann::json properties = {{"kind", kindName(line.kind)}, {"building_id", line.building_id}};
+    if (line.kind == kLearntKind) {
+      properties["status"] = line.status;
+      properties["passes"] = line.passes;
+    }
+    features.push_back({{"type", "Feature"},
+                        {"properties", properties},
+                        {"geometry",
+                         {{"type", "LineString"},
+                          {"coordinates",
+                           {{line.start.x(), line.start.y(), line.start.z()},
+                            {line.end.x(), line.end.y(), line.end.z()}}}}}});
   }
   const nlohmann::json document = {
       {"type", "FeatureCollection"},
@@ -80,7 +104,8 @@ void writeGeoJson(std::ofstream& out, const Site& site, const std::vector<Stored
 
 }  // namespace
 
-int exportLines(Connection& connection, const Site& site, const std::string& path) {
+int exportLines(Connection& connection, const Site& site, const std::string& path,
+                const std::optional<EnrichmentFilter>& learnt) {
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension != ".obj" && extension != ".geojson" && extension != ".json") {
     throw std::runtime_error(
@@ -90,7 +115,11 @@ int exportLines(Connection& connection, const Site& site, const std::string& pat
   if (!out) {
     throw std::runtime_error(fmt::format("{}: cannot write", path));
   }
-  const std::vector<StoredLine> lines = storedLines(connection, site);
+  std::vector<StoredLine> lines = storedLines(connection, site);
+  if (learnt) {
+    const std::vector<StoredLine> more = learntLines(connection, site, *learnt);
+    lines.insert(lines.end(), more.begin(), more.end());
+  }
   if (extension == ".obj") {
     writeObj(out, site, lines);
   } else {

@@ -106,7 +106,14 @@ std::vector<LoadReport> runLoadJob(
     if (!target) {
       throw std::invalid_argument(fmt::format("site '{}' is not in the database", config.site));
     }
-    const int written = exportLines(*connection, *target, config.export_lines);
+    std::optional<EnrichmentFilter> learnt;
+    if (!config.export_enrichment.empty()) {
+      learnt.emplace();
+      if (config.export_enrichment != "all") {
+        learnt->status = parseEnrichmentStatus(config.export_enrichment);
+      }
+    }
+    const int written = exportLines(*connection, *target, config.export_lines, learnt);
     out << fmt::format("{}: wrote {} lines of site '{}'\n", config.export_lines, written,
                        config.site);
   }

@@ -31,6 +31,9 @@ struct LoadJobConfig {
   bool dry_run = false;
   // .obj or .geojson file the site's lines are written to after loading.
   std::string export_lines;
+  // With export_lines: the site's learnt lines of this status (candidate,
+  // confirmed, retired, or all) follow the model's; empty: none.
+  std::string export_enrichment;
   int synthetic_buildings = 0;
   int synthetic_seed = 1;
   double coplanar_angle_deg = 10.0;

@@ -10,8 +10,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
+#include "db/enrichment_store.h"
 #include "db/loader/line_export.h"
 #include "db/loader/loader.h"
 #include "db/model_line_query.h"
@@ -210,6 +212,40 @@ TEST(Loader, LinesQueryAndExportOfASyntheticCity) {
   for (std::string line; std::getline(exported, line);)
     l_elements += line.starts_with("l ");
   EXPECT_EQ(l_elements, expected_lines);
+  std::filesystem::remove(path);
+}
+
+TEST(LineExport, LearntLinesOfTheStatusAskedFollowTheModels) {
+  test::TestDatabase database("line_export_learnt");
+  Connection owner(database.conninfo());
+  const Site site = ensureSite(owner, "learnt", 7415, {85000.0, 447000.0, 0.0});
+  Connection enricher(database.conninfo(test::DatabaseRole::kEnricher));
+  const auto sighting = [](double height_m, const std::string& robot) {
+    EnrichmentSighting line;
+    line.start_world = {10.0, 5.0, height_m};
+    line.end_world = {10.0, 6.2, height_m};
+    line.start_covariance = line.end_covariance = Eigen::Matrix3d::Identity() * 1e-4;
+    line.plane_normal = -Eigen::Vector3d::UnitX();
+    line.plane_offset = -10.0;
+    line.robot = robot;
+    line.views = 5;
+    return line;
+  };
+  writeEnrichmentPass(enricher, site, "monday", {sighting(3.5, "r1"), sighting(6.4, "r1")});
+  writeEnrichmentPass(enricher, site, "tuesday", {sighting(3.5, "r2")});
+  const std::string path = writeTemporary("learnt.geojson", "");
+  EXPECT_EQ(exportLines(owner, site, path), 0);
+  EnrichmentFilter confirmed;
+  confirmed.status = EnrichmentStatus::kConfirmed;
+  EXPECT_EQ(exportLines(owner, site, path, confirmed), 1);
+  const nlohmann::json document = nlohmann::json::parse(std::ifstream(path));
+  const nlohmann::json& properties = document["features"][0]["properties"];
+  EXPECT_EQ(properties["kind"], "learnt");
+  EXPECT_EQ(properties["status"], "confirmed");
+  EXPECT_EQ(properties["passes"], 2);
+  EXPECT_NEAR(document["features"][0]["geometry"]["coordinates"][0][0].get<double>(), 85010.0,
+              1e-9);
+  EXPECT_EQ(exportLines(owner, site, path, EnrichmentFilter{}), 2);
   std::filesystem::remove(path);
 }
 

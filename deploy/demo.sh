@@ -23,7 +23,9 @@
 # --gps-initial-error-m 10 --camera-covered-s 10 3"; default none),
 # LINELOC_DEMO_DDS_SECURITY (1: the robot and the backbone talk through DDS
 # Security, deploy/dds-security.sh, with the CA in LINELOC_DDS_SECURITY_DIR,
-# default out/dds-security/; 0: unsecured, for development).
+# default out/dds-security/; 0: unsecured, for development),
+# LINELOC_DEMO_LEARNT_LINES (1: the backbone matches the site's confirmed
+# learnt lines, lineloc-enrich, with the model's; 0: the model's alone).
 #
 # A fleet (deploy/fleet.sh): LINELOC_DEMO_BACKBONES backbones (default 1)
 # sharing LINELOC_DEMO_ROBOTS robots (default 1), robot i driving seed
@@ -52,6 +54,11 @@ DDS_SECURITY="${LINELOC_DEMO_DDS_SECURITY:-1}"
 BACKBONES="${LINELOC_DEMO_BACKBONES:-1}"
 ROBOTS="${LINELOC_DEMO_ROBOTS:-1}"
 KILL_BACKBONE_AT_S="${LINELOC_DEMO_KILL_BACKBONE_AT_S:-0}"
+case "${LINELOC_DEMO_LEARNT_LINES:-1}" in
+  1) LEARNT_LINES=true ;;
+  0) LEARNT_LINES=false ;;
+  *) echo "demo: LINELOC_DEMO_LEARNT_LINES is 1 or 0" >&2; exit 2 ;;
+esac
 MODEL_CRS=()
 # Site frame: the site's CRS minus an origin near the model's centre; for the
 # named cities EPSG:7415 (RD New + NAP height).
@@ -152,7 +159,8 @@ for backbone in $(seq 1 "$BACKBONES"); do
   dds_config="$(dds_config_of backbone "$(backbone_name "$backbone")")"
   "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$dds_config" \
     --backbone-name "$(backbone_name "$backbone")" --db "$READER_CONNINFO" --site "$SITE" \
-    --sun-from-clock --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
+    --learnt-lines "$LEARNT_LINES" --sun-from-clock \
+    --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
     --stats-file "$(backbone_out "$backbone")-stats.json" >"$(backbone_out "$backbone").log" 2>&1 &
   BACKBONE_PIDS+=($!)
 done

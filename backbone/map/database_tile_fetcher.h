@@ -12,7 +12,9 @@ namespace lineloc {
 // db::DatabaseError when either fails. A fetch whose server has gone away
 // connects again and asks once more: with a connection string that names
 // several servers (a replica, then its primary; docs/production.md), the
-// next that answers.
-TileFetcher makeDatabaseTileFetcher(const std::string& conninfo, const std::string& site_name);
+// next that answers. With `learnt_lines`, tiles hold the site's confirmed
+// learnt lines too.
+TileFetcher makeDatabaseTileFetcher(const std::string& conninfo, const std::string& site_name,
+                                    bool learnt_lines = false);
 
 }  // namespace lineloc

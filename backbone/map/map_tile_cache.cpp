@@ -104,6 +104,7 @@ std::shared_ptr<const MapView> MapTileCache::merged(
   std::set<int64_t> line_ids;
   std::set<int64_t> face_ids;
   std::set<int64_t> terrain_ids;
+  std::set<int64_t> learnt_ids;
   for (const auto& tile : tiles) {
     for (const db::ModelLine& line : tile->lines) {
       if (line_ids.insert(line.id).second)
@@ -116,6 +117,10 @@ std::shared_ptr<const MapView> MapTileCache::merged(
     for (const db::TerrainTriangleRecord& triangle : tile->terrain) {
       if (terrain_ids.insert(triangle.id).second)
         view->terrain.push_back(triangle);
+    }
+    for (const db::LearntLineRecord& line : tile->learnt_lines) {
+      if (learnt_ids.insert(line.id).second)
+        view->learnt_lines.push_back(line);
     }
   }
   recent_views_.push_front({keys, {std::move(tiles), view}});

@@ -29,7 +29,11 @@ double modelSigmaM(bool on_ground, const AlignmentOptions& options) {
   return on_ground ? options.ground_line_sigma_m : options.model_sigma_m;
 }
 
+// A learnt line is never more certain than a surveyed one.
 double modelSigmaM(const VisibleSegment& line, const AlignmentOptions& options) {
+  if (line.kind == static_cast<int>(citymodel::LineKind::kLearnt)) {
+    return std::max(line.sigma_m, options.model_sigma_m);
+  }
   return modelSigmaM(line.kind == static_cast<int>(citymodel::LineKind::kGround), options);
 }
 

@@ -2,11 +2,16 @@
 
 namespace lineloc {
 
-std::vector<ModelSegment> modelSegments(const std::vector<db::ModelLine>& lines) {
+std::vector<ModelSegment> modelSegments(const std::vector<db::ModelLine>& lines,
+                                        const std::vector<db::LearntLineRecord>& learnt_lines) {
   std::vector<ModelSegment> segments;
-  segments.reserve(lines.size());
+  segments.reserve(lines.size() + learnt_lines.size());
   for (const db::ModelLine& line : lines) {
     segments.push_back({line.id, static_cast<int>(line.kind), line.start_world, line.end_world});
+  }
+  for (const db::LearntLineRecord& line : learnt_lines) {
+    segments.push_back({-line.id, static_cast<int>(citymodel::LineKind::kLearnt), line.start_world,
+                        line.end_world, line.sigma_m});
   }
   return segments;
 }

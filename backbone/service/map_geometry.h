@@ -1,6 +1,6 @@
 // A map view's rows (db/tiles/map_tile_query.h) as visibility and matching
-// take them: the model lines as segments, the faces as an occlusion scene
-// with each face's building.
+// take them: the model's lines and the learnt ones as segments, the faces as
+// an occlusion scene with each face's building.
 #pragma once
 
 #include <vector>
@@ -11,7 +11,10 @@
 
 namespace lineloc {
 
-std::vector<ModelSegment> modelSegments(const std::vector<db::ModelLine>& lines);
+// The model's lines, then the learnt ones (LineKind::kLearnt, their ids
+// negated so that they stay apart from the model's).
+std::vector<ModelSegment> modelSegments(const std::vector<db::ModelLine>& lines,
+                                        const std::vector<db::LearntLineRecord>& learnt_lines = {});
 
 OcclusionScene occlusionScene(const std::vector<db::ModelFaceRecord>& faces);
 

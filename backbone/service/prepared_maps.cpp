@@ -19,7 +19,7 @@ constexpr char kPreparation[] = "map";
 PreparedMap::PreparedMap(std::shared_ptr<const MapView> map_view, const Eigen::Vector3d& centre)
     : view(std::move(map_view)),
       centre_world(centre),
-      segments(modelSegments(view->lines)),
+      segments(modelSegments(view->lines, view->learnt_lines)),
       scene(occlusionScene(view->faces)),
       ground_level(*view) {}
 

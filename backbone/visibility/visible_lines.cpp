@@ -10,6 +10,7 @@
 
 #include "common/camera/camera_frustum.h"
 #include "common/parallel/parallel_for.h"
+#include "db/citymodel/line_extraction.h"
 
 namespace lineloc {
 namespace {
@@ -244,7 +245,8 @@ class LineSampler {
                             options_.contrast_probe_px *
                                 Eigen::Vector2d(a_px.y() - b_px.y(), b_px.x() - a_px.x()) /
                                 length_px,
-                            options_.contrast_probe_px / length_px};
+                            options_.contrast_probe_px / length_px,
+                            line.kind == static_cast<int>(citymodel::LineKind::kLearnt)};
     const int samples =
         std::clamp(static_cast<int>(std::ceil(length_px / options_.sample_spacing_px)) + 1, 2,
                    options_.max_samples_per_line);
@@ -272,7 +274,7 @@ class LineSampler {
         visible.push_back({line.id, line.kind, at(run_start), at(i - 1),
                            run_weight / (i - run_start), polarity_votes.side(),
                            facade_side_votes.side(), clipped.a_is_start && run_start == 0,
-                           clipped.b_is_end && i == samples});
+                           clipped.b_is_end && i == samples, line.sigma_m});
       }
       run_start = -1;
       run_weight = 0.0;
@@ -284,12 +286,13 @@ class LineSampler {
  private:
   // A clipped line (camera frame) with its contrast probes' offset normal to
   // it (pixels) and their inset from its ends (fraction of its length), where
-  // it meets a face's corner.
+  // it meets a face's corner; a painted line (a learnt one) needs no probe.
   struct ProbedLine {
     Eigen::Vector3d a_camera;
     Eigen::Vector3d b_camera;
     Eigen::Vector2d probe_offset_px;
     double probe_inset;
+    bool painted;
   };
 
   struct SampledPoint {
@@ -325,6 +328,9 @@ class LineSampler {
   SampledPoint samplePoint(const ProbedLine& line, const Eigen::Vector3d& p_world, double t) const {
     if (scene_.blocked(viewpoints_.points[0], p_world, options_.surface_clearance_m)) {
       return {};
+    }
+    if (line.painted) {
+      return {visibleFraction(scene_, viewpoints_, p_world, options_.surface_clearance_m), 0, 0};
     }
     const double t_probe = std::clamp(t, line.probe_inset, 1.0 - line.probe_inset);
     const Eigen::Vector2d p_px =

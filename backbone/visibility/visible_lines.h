@@ -69,6 +69,10 @@ struct ModelSegment {
   int kind = 0;
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_world = Eigen::Vector3d::Zero();
+  // A learnt line's (LineKind::kLearnt) standard deviation across it (m); a
+  // learnt line is an edge of paint on its face, not of shape, and shows
+  // wherever it is in view. 0 for the model's lines.
+  double sigma_m = 0.0;
 };
 
 struct VisibleSegment {
@@ -88,6 +92,8 @@ struct VisibleSegment {
   // the frustum and seen, not cut off by the frustum or by a face in front.
   bool reaches_line_start = false;
   bool reaches_line_end = false;
+  // The line's ModelSegment::sigma_m.
+  double sigma_m = 0.0;
 };
 
 struct VisibilityOptions {

@@ -21,8 +21,16 @@
 
 namespace lineloc::citymodel {
 
-// Codes as in the database table line_kind.
-enum class LineKind : int16_t { kOther = 0, kVertical = 1, kEave = 2, kRidge = 3, kGround = 4 };
+// Codes as in the database table line_kind; kLearnt, a line learnt from the
+// robots' images (db/enrichment_store.h), is never in table line.
+enum class LineKind : int16_t {
+  kOther = 0,
+  kVertical = 1,
+  kEave = 2,
+  kRidge = 3,
+  kGround = 4,
+  kLearnt = 5
+};
 
 struct LineExtractionOptions {
   double coplanar_angle_rad = 10.0 * M_PI / 180.0;

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "common/geometry/pose.h"
+#include "db/enrichment_store.h"
 #include "db/ewkb.h"
 
 namespace lineloc::db {
@@ -34,8 +38,8 @@ std::string number(double value) {
 
 }  // namespace
 
-MapTileQuery::MapTileQuery(Connection& connection, const Site& site)
-    : connection_(connection), site_(site), lines_(connection, site) {
+MapTileQuery::MapTileQuery(Connection& connection, const Site& site, bool learnt_lines)
+    : connection_(connection), site_(site), lines_(connection, site), learnt_lines_(learnt_lines) {
   connection_.prepareOnce(kFacesStatement, kFacesSql);
   connection_.prepareOnce(kTerrainStatement, kTerrainSql);
 }
@@ -75,6 +79,16 @@ TileContents MapTileQuery::within(const Eigen::AlignedBox2d& bounds_world) {
     contents.terrain.push_back(
         {terrain.binaryInt8(row, 0),
          {closed[0] - site_.origin, closed[1] - site_.origin, closed[2] - site_.origin}});
+  }
+  if (learnt_lines_) {
+    EnrichmentFilter confirmed;
+    confirmed.status = EnrichmentStatus::kConfirmed;
+    confirmed.area_world = bounds_world;
+    for (const StoredEnrichmentLine& line : readEnrichment(connection_, site_, confirmed)) {
+      contents.learnt_lines.push_back(
+          {line.id, line.start_world, line.end_world,
+           std::max(largestSigma(line.start_covariance), largestSigma(line.end_covariance))});
+    }
   }
   return contents;
 }

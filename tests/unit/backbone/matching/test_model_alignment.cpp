@@ -126,8 +126,8 @@ Scene withRaisedFeet(const Street& street, const OcclusionScene& occlusion, std:
   const Eigen::Vector3d raised(0.0, 0.0, 0.2);
   for (size_t i = 0; i < scene.visible.size(); ++i) {
     const VisibleSegment& line = scene.visible[i];
-    if (line.kind != kGroundKind) {
-      continue;
+    if (line.start_world.z() != 0.0 || line.end_world.z() != 0.0) {
+      continue;  // not a wall's foot
     }
     const ProjectedSegment p =
         projectSegment(line.start_world + raised, line.end_world + raised, truePose(), kCamera);
@@ -162,6 +162,47 @@ TEST(ModelAlignment, GroundLinesOffTheWallFeetDoNotPullThePose) {
   }
   // Taken as surveyed as the roofs, the feet pull the camera down towards them.
   EXPECT_LT(height_error_m, 0.5 * height_error_surveyed_m);
+}
+
+// Learnt lines (LineKind::kLearnt) 0.2 m below where the image shows them,
+// as uncertain as learnt lines can be: they pull the pose in proportion to
+// their own standard deviation, and one that claims to be exact is taken no
+// more surely than a surveyed model line.
+TEST(ModelAlignment, LearntLinesPullThePoseByTheirOwnUncertainty) {
+  const auto streetWithLearntFeet = [](double sigma_m) {
+    Street street = makeStreet();
+    for (ModelSegment& edge : street.edges) {
+      if (edge.start_world.z() == 0.0 && edge.end_world.z() == 0.0) {
+        edge.kind = static_cast<int>(citymodel::LineKind::kLearnt);
+        edge.sigma_m = sigma_m;
+      }
+    }
+    return street;
+  };
+  const Street uncertain = streetWithLearntFeet(0.15);
+  const Street exact = streetWithLearntFeet(0.0);
+  const Street as_surveyed = streetWithLearntFeet(AlignmentOptions{}.model_sigma_m);
+  const OcclusionScene occlusion(uncertain.faces, uncertain.face_building_ids);
+  double uncertain_error_m = 0.0;
+  double exact_error_m = 0.0;
+  for (int trial = 0; trial < 10; ++trial) {
+    std::mt19937 random(31 + trial);
+    const auto align = [&](const Street& street) {
+      std::mt19937 same(random);
+      const Scene scene = withRaisedFeet(street, occlusion, same);
+      const PoseWithCovariance prior = perturbedPrior(truePose(), same, 0.1, 0.01);
+      return alignModel(scene.image, scene.visible, prior, kCamera, {});
+    };
+    const Alignment with_uncertain = align(uncertain);
+    const Alignment with_exact = align(exact);
+    const Alignment with_surveyed = align(as_surveyed);
+    ASSERT_EQ(with_uncertain.status, AlignmentStatus::kOk) << with_uncertain.message;
+    ASSERT_EQ(with_exact.status, AlignmentStatus::kOk) << with_exact.message;
+    EXPECT_TRUE(with_exact.T_world_camera.pose.isApprox(with_surveyed.T_world_camera.pose, 1e-9));
+    uncertain_error_m += std::abs(with_uncertain.T_world_camera.pose.translation().z() - 1.5);
+    exact_error_m += std::abs(with_exact.T_world_camera.pose.translation().z() - 1.5);
+  }
+  EXPECT_LT(uncertain_error_m, 0.5 * exact_error_m);
 }
 
 // Where window frames lie beside the building edges in the image: to the

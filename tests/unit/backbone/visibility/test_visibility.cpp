@@ -84,6 +84,32 @@ TEST(Visibility, HeadOnCubeShowsOnlyItsFrontWall) {
   }
 }
 
+// A window's top edge painted on the front wall (y = 0) of the cube: a line
+// of the model there would show no edge (one face on both sides of it); a
+// learnt line shows wherever it is in view, carrying its uncertainty, and is
+// hidden like any other behind a face in front of it.
+TEST(Visibility, ALearntLineOnAWallShowsWhereItIsInView) {
+  const Box cube = makeBox(0, 0, 10, 10, 10, 0);
+  const ModelSegment window_top{100, static_cast<int>(citymodel::LineKind::kOther),
+                                Eigen::Vector3d(3, 0, 4), Eigen::Vector3d(6, 0, 4)};
+  ModelSegment learnt = window_top;
+  learnt.id = -7;
+  learnt.kind = static_cast<int>(citymodel::LineKind::kLearnt);
+  learnt.sigma_m = 0.02;
+  const OcclusionScene scene = sceneOf({&cube});
+  const PoseWithCovariance view = lookingNorth({5, -20, 5}, 0.01);
+  EXPECT_TRUE(visibleSegments({window_top}, scene, view, kCamera, {}).empty());
+  const std::vector<VisibleSegment> visible = visibleSegments({learnt}, scene, view, kCamera, {});
+  ASSERT_EQ(visible.size(), 1u);
+  EXPECT_EQ(visible[0].model_line_id, -7);
+  EXPECT_EQ(visible[0].sigma_m, 0.02);
+  EXPECT_EQ(visible[0].polarity, 0);
+  EXPECT_NEAR((visible[0].end_world - visible[0].start_world).norm(), 3.0, 1e-9);
+  // A hoarding 5 m in front of the wall hides it.
+  const Box hoarding = makeBox(0, -5.2, 10, -5, 8, 50);
+  EXPECT_TRUE(visibleSegments({learnt}, sceneOf({&cube, &hoarding}), view, kCamera, {}).empty());
+}
+
 // The image direction of a piece's projection, start -> end.
 Eigen::Vector2d projectedDirection(const VisibleSegment& segment,
                                    const PoseWithCovariance& T_world_camera) {

@@ -1,6 +1,7 @@
 // Tile queries against a real PostGIS database holding cubes of known geometry.
 #include <gtest/gtest.h>
 
+#include "db/enrichment_store.h"
 #include "db/tiles/map_tile_query.h"
 #include "tests/support/test_database.h"
 
@@ -51,6 +52,39 @@ TEST(MapTileQuery, DecodesFacesAsOpenRings) {
   EXPECT_EQ(tile.faces[0].kind, 1);
   ASSERT_EQ(tile.faces[0].ring_world.size(), 4u);
   EXPECT_TRUE(tile.faces[0].ring_world[2].isApprox(Eigen::Vector3d(10, 0, 8)));
+}
+
+TEST(MapTileQuery, HoldsTheConfirmedLearntLinesMeetingTheSquareWhenAsked) {
+  test::TestDatabase database("tile_learnt");
+  test::insertCubeBuilding(database.conninfo(), 85000, 447000, 0, 0);
+  Connection enricher(database.conninfo(test::DatabaseRole::kEnricher));
+  const Site site = *findSite(enricher, "test");
+  const auto sighting = [](double height_m, double sigma_m) {
+    EnrichmentSighting line;
+    line.start_world = {2.0, 0.0, height_m};
+    line.end_world = {4.0, 0.0, height_m};
+    line.start_covariance = Eigen::Matrix3d::Identity() * 1e-6;
+    line.end_covariance = Eigen::Vector3d(1e-6, 1e-6, sigma_m * sigma_m).asDiagonal();
+    line.plane_normal = -Eigen::Vector3d::UnitY();
+    line.plane_offset = 0.0;
+    line.robot = "r1";
+    line.views = 4;
+    return line;
+  };
+  // Two lines seen on two passes, one on the first only.
+  writeEnrichmentPass(enricher, site, "monday", {sighting(3.0, 0.02), sighting(6.0, 0.01)});
+  writeEnrichmentPass(enricher, site, "tuesday", {sighting(3.0, 0.02)});
+  Connection reader(database.conninfo(test::DatabaseRole::kReader));
+  const Eigen::AlignedBox2d around(Eigen::Vector2d(-50, -50), Eigen::Vector2d(50, 50));
+  EXPECT_TRUE(MapTileQuery(reader, site).within(around).learnt_lines.empty());
+  MapTileQuery with_learnt(reader, site, true);
+  const TileContents contents = with_learnt.within(around);
+  EXPECT_EQ(contents.lines.size(), 12u);
+  ASSERT_EQ(contents.learnt_lines.size(), 1u);
+  EXPECT_LT((contents.learnt_lines[0].start_world - Eigen::Vector3d(2, 0, 3)).norm(), 1e-9);
+  EXPECT_NEAR(contents.learnt_lines[0].sigma_m, 0.02, 1e-12);
+  EXPECT_TRUE(with_learnt.within({Eigen::Vector2d(100, 100), Eigen::Vector2d(200, 200)})
+                  .learnt_lines.empty());
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   options.add("db", config.db,
               "libpq connection string of the building database, as its reader role");
   options.add("site", config.site, "name of the site in the database");
-  options.add("learnt_lines", config.learnt_lines,
+  options.add("use_learnt_lines", config.use_learnt_lines,
               "match the site's confirmed learnt lines (lineloc-enrich) with the model's, each "
               "weighted by its own uncertainty: true or false");
   options.add("backbone_name", config.backbone_name,

@@ -159,7 +159,7 @@ for backbone in $(seq 1 "$BACKBONES"); do
   dds_config="$(dds_config_of backbone "$(backbone_name "$backbone")")"
   "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$dds_config" \
     --backbone-name "$(backbone_name "$backbone")" --db "$READER_CONNINFO" --site "$SITE" \
-    --learnt-lines "$LEARNT_LINES" --sun-from-clock \
+    --use-learnt-lines "$LEARNT_LINES" --sun-from-clock \
     --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
     --stats-file "$(backbone_out "$backbone")-stats.json" >"$(backbone_out "$backbone").log" 2>&1 &
   BACKBONE_PIDS+=($!)

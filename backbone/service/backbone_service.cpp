@@ -245,7 +245,9 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   limits.max_camera_side_px = static_cast<uint32_t>(config.max_camera_side_px);
   limits.max_camera_megapixels = config.max_camera_megapixels;
   MapTileCache map(
-      [&config] { return makeDatabaseTileFetcher(config.db, config.site, config.learnt_lines); },
+      [&config] {
+        return makeDatabaseTileFetcher(config.db, config.site, config.use_learnt_lines);
+      },
       config.tile_size_m, static_cast<size_t>(config.max_cached_tiles));
   PipelineOptions pipeline;
   pipeline.query_radius_m = config.query_radius_m;

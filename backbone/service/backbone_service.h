@@ -20,7 +20,7 @@ struct BackboneConfig {
   std::string site = "delft";
   // The site's confirmed learnt lines (db/enrichment_store.h) are matched with
   // the model's, each weighted by its own uncertainty.
-  bool learnt_lines = true;
+  bool use_learnt_lines = true;
   // This backbone's name among the backbones sharing the domain's robots
   // (backbone_peers.h), [A-Za-z0-9][A-Za-z0-9_.-]*; empty: <hostname>-<pid>.
   // Each robot is served by one backbone alive, chosen by name

@@ -71,9 +71,12 @@ class PassStore {
     }
   }
 
-  std::vector<KnownLearntLine> knownLines() {
+  // The stored lines that are not retired within `area_world` (x, y).
+  std::vector<KnownLearntLine> knownLines(const Eigen::AlignedBox2d& area_world) {
+    db::EnrichmentFilter near;
+    near.area_world = area_world;
     std::vector<KnownLearntLine> known;
-    for (const db::StoredEnrichmentLine& line : db::readEnrichment(connection_, site_)) {
+    for (const db::StoredEnrichmentLine& line : db::readEnrichment(connection_, site_, near)) {
       if (line.status != db::EnrichmentStatus::kRetired) {
         known.push_back(
             {line.id, line.start_world, line.end_world, {line.plane_normal, line.plane_offset}});
@@ -124,8 +127,17 @@ OfflineEnrichmentSummary runOfflineEnrichment(const OfflineEnrichmentConfig& con
     }
     store.emplace(config, local.origin);
   }
-  ExpectedLines expected(store ? store->knownLines() : std::vector<KnownLearntLine>(),
-                         config.expected);
+  // Only lines near the drive can be expected of it.
+  Eigen::AlignedBox2d driven;
+  for (const auto& [stamp_ns, fix] : fixes) {
+    driven.extend(fix.T_world_camera.pose.translation().head<2>());
+  }
+  const Eigen::AlignedBox2d reach(
+      driven.min() - Eigen::Vector2d::Constant(config.expected.max_depth_m),
+      driven.max() + Eigen::Vector2d::Constant(config.expected.max_depth_m));
+  ExpectedLines expected(
+      store && !driven.isEmpty() ? store->knownLines(reach) : std::vector<KnownLearntLine>(),
+      config.expected);
   FeatureExtractor extractor(calibration, config.extractor);
   SurfaceLineTracks tracks(config.tracks);
   OfflineEnrichmentSummary summary;

@@ -7,6 +7,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/geometry/line_segments.h"
+
 namespace lineloc::db {
 namespace {
 
@@ -104,28 +106,6 @@ struct NearLine {
   double covariance_trace = 0.0;
 };
 
-bool joins(const EnrichmentSighting& sighting, const NearLine& stored,
-           const EnrichmentMergeOptions& options) {
-  const Eigen::Vector3d along = stored.end_world - stored.start_world;
-  const double length = along.norm();
-  const Eigen::Vector3d direction = along / length;
-  const Eigen::Vector3d sighted = (sighting.end_world - sighting.start_world).normalized();
-  if (direction.cross(sighted).norm() > std::sin(options.max_angle_rad)) {
-    return false;
-  }
-  const auto across = [&](const Eigen::Vector3d& point) {
-    const Eigen::Vector3d offset = point - stored.start_world;
-    return (offset - offset.dot(direction) * direction).norm();
-  };
-  if (across(sighting.start_world) > options.max_distance_m ||
-      across(sighting.end_world) > options.max_distance_m) {
-    return false;
-  }
-  const double s0 = direction.dot(sighting.start_world - stored.start_world);
-  const double s1 = direction.dot(sighting.end_world - stored.start_world);
-  return std::max(s0, s1) > 0.0 && std::min(s0, s1) < length;
-}
-
 class PassWriter {
  public:
   PassWriter(Connection& connection, const Site& site, const std::string& pass,
@@ -203,7 +183,8 @@ class PassWriter {
       line.start_world = sitePoint(result, row, 1, site_.origin);
       line.end_world = sitePoint(result, row, 4, site_.origin);
       line.covariance_trace = std::stod(result.text(row, 7));
-      if (!joins(sighting, line, options_)) {
+      if (!runsAlong(line.start_world, line.end_world, sighting.start_world, sighting.end_world,
+                     options_.max_angle_rad, options_.max_distance_m)) {
         continue;
       }
       const double distance_m = (0.5 * (line.start_world + line.end_world) -

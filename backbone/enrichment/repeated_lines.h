@@ -1,8 +1,8 @@
 // Learnt lines of a repeating pattern (brick courses, tiles, railings, slats)
 // are no landmarks: a matcher cannot tell one from its neighbour. A learnt
-// line is dropped when another on the same building and plane runs within
-// max_angle_rad of it, with the same side bright, overlapping it along its
-// length, and within min_separation_m across it: the width of a tracking
+// line is dropped when another on the same building and plane, with the same
+// side bright, runs along it (runsAlong: within max_angle_rad, both ends
+// within min_separation_m across it, overlapping): the width of a tracking
 // gate. Lines that alternate in brightness a few centimetres apart (a window
 // frame's outer and inner edges) stay apart by their bright sides.
 #pragma once

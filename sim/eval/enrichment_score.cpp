@@ -11,18 +11,13 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "common/geometry/line_segments.h"
+#include "common/text/data_rows.h"
+
 namespace lineloc {
 namespace {
 
 constexpr int kMinSamples = 5;
-
-double distanceToSegment(const Eigen::Vector3d& point, const Eigen::Vector3d& a,
-                         const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - point).norm();
-}
 
 // The edges by the cells of a grid of reach_m that their boxes touch.
 class EdgeGrid {
@@ -74,13 +69,8 @@ class EdgeGrid {
 }  // namespace
 
 std::vector<LearntLine> parseLearntLines(std::string_view text, const std::string& source) {
-  std::istringstream in{std::string(text)};
   std::vector<LearntLine> lines;
-  std::string row;
-  for (int number = 1; std::getline(in, row); ++number) {
-    if (row.empty() || row.front() == '#') {
-      continue;
-    }
+  forEachDataRow(text, [&](const std::string& row, int number) {
     std::istringstream fields(row);
     LearntLine line;
     if (!(fields >> line.start.x() >> line.start.y() >> line.start.z() >> line.end.x() >>
@@ -91,18 +81,12 @@ std::vector<LearntLine> parseLearntLines(std::string_view text, const std::strin
                       number, row));
     }
     lines.push_back(line);
-  }
+  });
   return lines;
 }
 
 std::vector<LearntLine> readLearntLines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw std::runtime_error(fmt::format("cannot read learnt lines from {}", path));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseLearntLines(text.str(), path);
+  return parseLearntLines(readTextFile(path, "learnt lines"), path);
 }
 
 EnrichmentScore scoreEnrichment(const std::vector<LearntLine>& lines,

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/text/data_rows.h"
+
 namespace lineloc {
 namespace {
 
@@ -69,13 +71,8 @@ void writeClutterBoxes(const std::string& path, const std::vector<ClutterBox>& b
 }
 
 std::vector<ClutterBox> parseClutterBoxes(std::string_view text, const std::string& source) {
-  std::istringstream in{std::string(text)};
   std::vector<ClutterBox> boxes;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.empty() || line.front() == '#') {
-      continue;
-    }
+  forEachDataRow(text, [&](const std::string& line, int number) {
     std::istringstream fields(line);
     ClutterBox box;
     Eigen::Vector3d low, high;
@@ -91,18 +88,12 @@ std::vector<ClutterBox> parseClutterBoxes(std::string_view text, const std::stri
     }
     box.box_world = Eigen::AlignedBox3d(low, high);
     boxes.push_back(std::move(box));
-  }
+  });
   return boxes;
 }
 
 std::vector<ClutterBox> readClutterBoxes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw std::runtime_error(fmt::format("cannot read clutter boxes from {}", path));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseClutterBoxes(text.str(), path);
+  return parseClutterBoxes(readTextFile(path, "clutter boxes"), path);
 }
 
 }  // namespace lineloc

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/geometry/line_segments.h"
+#include "common/text/data_rows.h"
 #include "sim/render/facade_layout.h"
 
 namespace lineloc {
@@ -65,20 +67,12 @@ std::vector<std::array<double, 2>> clipToPolygon(const Polygon2d& polygon,
   return intervals;
 }
 
-double distanceToSegment(const Eigen::Vector2d& point, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - point).norm();
-}
-
 bool nearAny(const CityWall& wall, const std::vector<Eigen::Vector2d>& near,
              double max_distance_m) {
   for (const auto& triangle : wall.triangles) {
     for (int i = 0, j = 2; i < 3; j = i++) {
       for (const Eigen::Vector2d& point : near) {
-        if (distanceToSegment(point, triangle[i].head<2>(), triangle[j].head<2>()) <=
+        if (distanceToSegment<2>(point, triangle[i].head<2>(), triangle[j].head<2>()) <=
             max_distance_m) {
           return true;
         }
@@ -282,13 +276,8 @@ void writeFacadeEdges(const std::string& path, const std::vector<FacadeEdge>& ed
 }
 
 std::vector<FacadeEdge> parseFacadeEdges(std::string_view text, const std::string& source) {
-  std::istringstream in{std::string(text)};
   std::vector<FacadeEdge> edges;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.empty() || line.front() == '#') {
-      continue;
-    }
+  forEachDataRow(text, [&](const std::string& line, int number) {
     std::istringstream fields(line);
     FacadeEdge edge;
     std::string rest;
@@ -300,18 +289,12 @@ std::vector<FacadeEdge> parseFacadeEdges(std::string_view text, const std::strin
                       source, number, line));
     }
     edges.push_back(edge);
-  }
+  });
   return edges;
 }
 
 std::vector<FacadeEdge> readFacadeEdges(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw std::runtime_error(fmt::format("cannot read façade edges from {}", path));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseFacadeEdges(text.str(), path);
+  return parseFacadeEdges(readTextFile(path, "façade edges"), path);
 }
 
 }  // namespace lineloc

@@ -21,10 +21,10 @@ int main(int argc, char** argv) {
   options.add("site", config.site, "with --db: the site the city model is");
   options.add("pass", config.pass,
               "with --db: the drive or day the lines were seen on; a second pass confirms them");
-  options.add("max_placement_sigma_m", config.observation.max_placement_sigma_m,
+  options.add("max_placement_sigma_m", config.learner.observation.max_placement_sigma_m,
               "segments the fix places on a wall less precisely than this are not learnt from "
               "(m, across the line)");
-  options.add("min_views", config.tracks.triangulation.min_views,
+  options.add("min_views", config.learner.tracks.triangulation.min_views,
               "views a line needs before it is triangulated");
   if (const auto exit_code = options.parse(argc, argv)) {
     return *exit_code;

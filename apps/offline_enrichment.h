@@ -22,8 +22,7 @@
 #include <vector>
 
 #include "apps/recorded_drive.h"
-#include "backbone/enrichment/expected_lines.h"
-#include "backbone/enrichment/surface_line_tracks.h"
+#include "backbone/enrichment/line_learner.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
@@ -44,29 +43,16 @@ struct OfflineEnrichmentConfig {
   std::string site;
   std::string pass;
   FeatureExtractorOptions extractor = trackingFrontEndOptions();
-  SurfaceObservationOptions observation;
-  SurfaceLineTrackOptions tracks;
-  // With a database: when the pass should have seen a stored line.
-  ExpectedLineOptions expected;
+  // With a database, its expected options say when the pass should have
+  // seen a stored line.
+  LineLearnerOptions learner;
 };
 
 struct OfflineEnrichmentSummary {
   int frames = 0;
   int fixed_frames = 0;
-  // Frames whose OK fix placed at least one segment precisely enough.
-  int precise_frames = 0;
-  int segments = 0;
-  int explained = 0;
-  int off_surface = 0;
-  int shadow_edges = 0;
-  int imprecise = 0;
-  int on_surface = 0;
-  size_t tracks = 0;
-  // Triangulated lines that were model lines seen again, or of a repeating
-  // pattern.
-  int model_lines_seen = 0;
-  int repeated_lines = 0;
-  std::vector<LineCandidate> lines;
+  LearningCounts learning;
+  LearntPass pass;
 };
 
 // Throws std::runtime_error naming the option or file that is malformed or

@@ -130,15 +130,18 @@ class PassWriter {
     report.confirmed += confirmIfSeenOnEnoughPasses(line_id) ? 1 : 0;
   }
 
-  // Records the miss of an expected line no sighting of the pass joined, and
-  // retires the line when enough passes since it was last seen missed it.
+  // Records the miss of an expected line no sighting of the pass joined, now
+  // or when the pass was written before (a pass written piecewise, as a
+  // backbone writes a robot's day tile by tile), and retires the line when
+  // enough passes since it was last seen missed it.
   void miss(const EnrichmentExpectation& expected, EnrichmentWriteReport& report) {
     if (seen_.count(expected.line_id) > 0) {
       return;
     }
     const Result missed = connection_.execParams(
         "INSERT INTO enrichment_miss (line_id, pass, missed_at) SELECT id, $2, to_timestamp($3) "
-        "FROM enrichment_line WHERE id = $1 AND site_id = $4 AND status <> 2 "
+        "FROM enrichment_line WHERE id = $1 AND site_id = $4 AND status <> 2 AND NOT EXISTS "
+        "(SELECT 1 FROM enrichment_sighting s WHERE s.line_id = $1 AND s.pass = $2) "
         "ON CONFLICT (line_id, pass) DO NOTHING RETURNING line_id",
         {std::to_string(expected.line_id), pass_, timestamp(expected.expected_at_ns),
          std::to_string(site_.id)});

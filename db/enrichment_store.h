@@ -15,7 +15,8 @@
 //
 // The caller also names the stored lines the pass should have seen (in view,
 // near and unoccluded from enough of its frames). One that no sighting of the
-// pass joined is missed by the pass, once per pass; a line missed on
+// pass joined, in this write or an earlier one (a pass may be written piece
+// by piece), is missed by the pass, once per pass; a line missed on
 // retire_after_passes separate passes since it was last seen is retired, and
 // no sighting joins it again (a line seen there anew is a new candidate).
 //

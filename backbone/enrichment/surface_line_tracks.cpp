@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -151,6 +152,26 @@ std::vector<LineCandidate> SurfaceLineTracks::candidates() const {
     }
   }
   return candidates;
+}
+
+void SurfaceLineTracks::forgetStale(int64_t before_ns) {
+  for (auto building = tracks_by_building_.begin(); building != tracks_by_building_.end();) {
+    std::erase_if(building->second, [&](const Track& track) {
+      return static_cast<int>(track.views.size()) < options_.triangulation.min_views &&
+             track.last_stamp_ns < before_ns;
+    });
+    building = building->second.empty() ? tracks_by_building_.erase(building) : std::next(building);
+  }
+}
+
+size_t SurfaceLineTracks::viewCount() const {
+  size_t count = 0;
+  for (const auto& [building_id, tracks] : tracks_by_building_) {
+    for (const Track& track : tracks) {
+      count += track.views.size();
+    }
+  }
+  return count;
 }
 
 size_t SurfaceLineTracks::trackCount() const {

@@ -27,7 +27,9 @@
 // parallel to the path) understates its error.
 //
 // Each track keeps at most max_views views: the first max_views - 1 and the
-// latest, so that its baseline only grows.
+// latest, so that its baseline only grows. A track with fewer views than a
+// line needs and none since a given time may be forgotten (forgetStale): a
+// segment seen once, in passing, keeps no memory.
 #pragma once
 
 #include <cstdint>
@@ -74,7 +76,13 @@ class SurfaceLineTracks {
   // the views do not place off it.
   std::vector<LineCandidate> candidates() const;
 
+  // Forgets the tracks with fewer than triangulation.min_views views whose
+  // last view is older than `before_ns`.
+  void forgetStale(int64_t before_ns);
+
   size_t trackCount() const;
+  // Views the tracks keep.
+  size_t viewCount() const;
 
  private:
   struct Track {

@@ -85,11 +85,11 @@ TEST_F(OfflineEnrichment, LearntLinesLieOnThePaintedFacadeDetail) {
   const OfflineEnrichmentSummary summary = runOfflineEnrichment(config(), out);
   EXPECT_EQ(summary.frames, frames_);
   EXPECT_EQ(summary.fixed_frames, frames_);
-  ASSERT_GE(summary.lines.size(), 10u) << out.str();
+  ASSERT_GE(summary.pass.lines.size(), 10u) << out.str();
   const EnrichmentScore score =
       scoreEnrichment(readLearntLines(config().out),
                       readFacadeEdges((folder_ / "dataset" / "facade_edges.txt").string()));
-  EXPECT_EQ(score.lines, static_cast<int>(summary.lines.size()));
+  EXPECT_EQ(score.lines, static_cast<int>(summary.pass.lines.size()));
   // 1 cm of pose and a pixel at 10 m put a line 1-2 cm off; three times that.
   EXPECT_LT(score.median_distance_m, 0.05) << out.str();
   EXPECT_GE(score.within_fraction, 0.8) << out.str();
@@ -106,7 +106,7 @@ TEST_F(OfflineEnrichment, PassesAreStoredOnceConfirmedByASecondAndAdministered) 
   monday.site = "delft";
   monday.pass = "monday";
   std::ostringstream out;
-  const size_t learnt = runOfflineEnrichment(monday, out).lines.size();
+  const size_t learnt = runOfflineEnrichment(monday, out).pass.lines.size();
   ASSERT_GT(learnt, 0u);
   EXPECT_NE(out.str().find(fmt::format("{} new candidates", learnt)), std::string::npos)
       << out.str();

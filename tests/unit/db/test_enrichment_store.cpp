@@ -166,6 +166,18 @@ TEST_F(EnrichmentStoreTest, MissesBeforeTheLastSightingDoNotRetire) {
   EXPECT_EQ(readEnrichment(enricher_, site_).front().status, EnrichmentStatus::kConfirmed);
 }
 
+TEST_F(EnrichmentStoreTest, APassThatSawALineInAnEarlierPieceDoesNotMissIt) {
+  writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
+  const int64_t id = readEnrichment(enricher_, site_).front().id;
+  // Monday's pass written in a second piece (another tile of the robot's
+  // day) expected the line again without seeing it: no miss.
+  EXPECT_EQ(writeEnrichmentPass(enricher_, site_, "monday", {}, {{id, kMonday_ns + 60'000'000'000}})
+                .missed,
+            0);
+  EXPECT_EQ(
+      writeEnrichmentPass(enricher_, site_, "tuesday", {}, {{id, kMonday_ns + kDay_ns}}).missed, 1);
+}
+
 TEST_F(EnrichmentStoreTest, ReadsAndPurgesTakeWhatTheFilterNames) {
   writeEnrichmentPass(enricher_, site_, "monday", {windowTop(3.5, "r1", kMonday_ns)});
   EnrichmentSighting far = windowTop(3.5, "r2", kMonday_ns + kDay_ns);

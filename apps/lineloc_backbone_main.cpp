@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
   options.add("use_learnt_lines", config.use_learnt_lines,
               "match the site's confirmed learnt lines (lineloc-enrich) with the model's, each "
               "weighted by its own uncertainty: true or false");
+  options.add("learning_db", config.learning_db,
+              "libpq connection string of the database as its enricher role: lines are learnt "
+              "from the frames answered and stored as the site's enrichment (empty: none are); "
+              "give it a connect_timeout");
   options.add("backbone_name", config.backbone_name,
               "this backbone's name among those sharing the domain's robots, "
               "[A-Za-z0-9][A-Za-z0-9_.-]* (empty: <hostname>-<pid>)");
@@ -92,6 +96,16 @@ int main(int argc, char** argv) {
         counters.received, counters.answered, counters.fixes_ok, counters.searches,
         counters.visibility_ahead, counters.notices_after_line_set, counters.dropped_invalid,
         counters.map_errors, counters.refused_robot_frames, counters.refused_searches);
+    if (!config.learning_db.empty()) {
+      const lineloc::LearningCounters& learnt = counters.learning;
+      std::cout << fmt::format(
+          "lineloc-backbone: learnt from {} frames ({} dropped as the learning fell behind): {} "
+          "pieces written ({} failed, {} dropped), {} new candidates, {} lines seen again ({} "
+          "confirmed), {} expected lines missed ({} retired)\n",
+          learnt.frames, learnt.frames_dropped, learnt.pieces_written, learnt.write_failures,
+          learnt.pieces_dropped, learnt.lines_added, learnt.lines_seen_again,
+          learnt.lines_confirmed, learnt.lines_missed, learnt.lines_retired);
+    }
     std::string stages;
     for (const lineloc::StagePercentiles& stage : lineloc::stagePercentiles(counters)) {
       stages += fmt::format(" {} {:.2f}/{:.2f}/{:.1f}", stage.stage, stage.median_ms, stage.p99_ms,

@@ -25,7 +25,11 @@
 # Security, deploy/dds-security.sh, with the CA in LINELOC_DDS_SECURITY_DIR,
 # default out/dds-security/; 0: unsecured, for development),
 # LINELOC_DEMO_LEARNT_LINES (1: the backbone matches the site's confirmed
-# learnt lines, lineloc-enrich, with the model's; 0: the model's alone).
+# learnt lines, lineloc-enrich, with the model's; 0: the model's alone),
+# LINELOC_DEMO_LEARN (1: the backbone learns lines from the frames it answers
+# into the site's enrichment, --learning-db; 0: it does not, the default),
+# LINELOC_DEMO_ROBOT_ID (the robot's id, demo-robot; a pass of learning is
+# one robot's day).
 #
 # A fleet (deploy/fleet.sh): LINELOC_DEMO_BACKBONES backbones (default 1)
 # sharing LINELOC_DEMO_ROBOTS robots (default 1), robot i driving seed
@@ -54,6 +58,11 @@ DDS_SECURITY="${LINELOC_DEMO_DDS_SECURITY:-1}"
 BACKBONES="${LINELOC_DEMO_BACKBONES:-1}"
 ROBOTS="${LINELOC_DEMO_ROBOTS:-1}"
 KILL_BACKBONE_AT_S="${LINELOC_DEMO_KILL_BACKBONE_AT_S:-0}"
+ROBOT_ID="${LINELOC_DEMO_ROBOT_ID:-demo-robot}"
+case "${LINELOC_DEMO_LEARN:-0}" in
+  1 | 0) LEARN="${LINELOC_DEMO_LEARN:-0}" ;;
+  *) echo "demo: LINELOC_DEMO_LEARN is 1 or 0" >&2; exit 2 ;;
+esac
 case "${LINELOC_DEMO_LEARNT_LINES:-1}" in
   1) LEARNT_LINES=true ;;
   0) LEARNT_LINES=false ;;
@@ -99,7 +108,7 @@ if [ "$BACKBONE_REALTIME_PRIORITY" -gt 0 ] && chrt -f 6 true 2>/dev/null; then
 fi
 # One robot's id and folder, or robot $1's of a fleet; backbone $1's name and
 # the prefix of its log and counters.
-robot_id() { if [ "$ROBOTS" -eq 1 ]; then echo demo-robot; else echo "demo-robot-$1"; fi; }
+robot_id() { if [ "$ROBOTS" -eq 1 ]; then echo "$ROBOT_ID"; else echo "$ROBOT_ID-$1"; fi; }
 robot_out() { if [ "$ROBOTS" -eq 1 ]; then echo "$OUT"; else echo "$OUT/robot-$1"; fi; }
 backbone_name() { if [ "$BACKBONES" -eq 1 ]; then echo demo; else echo "demo-$1"; fi; }
 backbone_out() { if [ "$BACKBONES" -eq 1 ]; then echo "$OUT/backbone"; else echo "$OUT/backbone-$1"; fi; }
@@ -139,6 +148,10 @@ rm -rf "$OUT" && mkdir -p "$OUT"
 OWNER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_owner)"
 WRITER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_writer)"
 READER_CONNINFO="$("$ROOT/deploy/pg.sh" conninfo lineloc_reader)"
+LEARNING=()
+if [ "$LEARN" -eq 1 ]; then
+  LEARNING=(--learning-db "$("$ROOT/deploy/pg.sh" conninfo lineloc_enricher) connect_timeout=5")
+fi
 "$BIN/lineloc-migrate" --db "$OWNER_CONNINFO"
 "$BIN/lineloc-load" --db "$WRITER_CONNINFO" --site "$SITE" "${MODEL_CRS[@]}" --site-crs "$SITE_CRS" \
   --site-origin "${SITE_ORIGIN[@]}" "$CITY_MODEL"
@@ -159,7 +172,7 @@ for backbone in $(seq 1 "$BACKBONES"); do
   dds_config="$(dds_config_of backbone "$(backbone_name "$backbone")")"
   "$BIN/lineloc-backbone" --domain-id "$DOMAIN_ID" --dds-config "$dds_config" \
     --backbone-name "$(backbone_name "$backbone")" --db "$READER_CONNINFO" --site "$SITE" \
-    --use-learnt-lines "$LEARNT_LINES" --sun-from-clock \
+    --use-learnt-lines "$LEARNT_LINES" "${LEARNING[@]}" --sun-from-clock \
     --realtime-priority "$BACKBONE_REALTIME_PRIORITY" \
     --stats-file "$(backbone_out "$backbone")-stats.json" >"$(backbone_out "$backbone").log" 2>&1 &
   BACKBONE_PIDS+=($!)

@@ -189,6 +189,17 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
     stage_ms[stage.stage] = {
         {"median", stage.median_ms}, {"p99", stage.p99_ms}, {"max", stage.max_ms}};
   }
+  const LearningCounters& learnt = counters.learning;
+  const nlohmann::json learning = {{"frames", learnt.frames},
+                                   {"frames_dropped", learnt.frames_dropped},
+                                   {"pieces_written", learnt.pieces_written},
+                                   {"pieces_dropped", learnt.pieces_dropped},
+                                   {"write_failures", learnt.write_failures},
+                                   {"lines_added", learnt.lines_added},
+                                   {"lines_seen_again", learnt.lines_seen_again},
+                                   {"lines_confirmed", learnt.lines_confirmed},
+                                   {"lines_missed", learnt.lines_missed},
+                                   {"lines_retired", learnt.lines_retired}};
   const nlohmann::json json = {{"received", counters.received},
                                {"answered", counters.answered},
                                {"fixes_ok", counters.fixes_ok},
@@ -205,6 +216,7 @@ void writeCountersJson(const BackboneCounters& counters, const std::string& path
                                {"late_frames", counters.late_frames},
                                {"backbones", counters.backbones},
                                {"frames_served_elsewhere", counters.frames_served_elsewhere},
+                               {"learning", learning},
                                {"last_drop_reason", counters.last_drop_reason},
                                {"stage_ms", stage_ms}};
   const std::string temporary = path + ".tmp";
@@ -255,6 +267,8 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
   pipeline.forget_robot_after_s = config.forget_robot_after_s;
   pipeline.max_robots = config.max_robots;
   pipeline.max_queued_searches = config.max_queued_searches;
+  pipeline.learning.db = config.learning_db;
+  pipeline.learning.site = config.site;
   pipeline.localizer.visibility.sunlight = config.sunlight;
   dds::Domain domain(config.domain_id, config.dds_config);
   dds::logSecurity(domain);
@@ -340,6 +354,7 @@ BackboneCounters runBackbone(const BackboneConfig& config, const std::atomic<boo
       });
     }
   }
+  handler.stopLearning();
   if (!config.stats_file.empty()) {
     writeCountersJson(handler.counters(), config.stats_file);
   }

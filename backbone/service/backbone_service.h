@@ -21,6 +21,10 @@ struct BackboneConfig {
   // The site's confirmed learnt lines (db/enrichment_store.h) are matched with
   // the model's, each weighted by its own uncertainty.
   bool use_learnt_lines = true;
+  // The enricher role's connection string: lines are learnt from the frames
+  // answered and stored in the site's enrichment (online_learning.h); empty:
+  // none are.
+  std::string learning_db;
   // This backbone's name among the backbones sharing the domain's robots
   // (backbone_peers.h), [A-Za-z0-9][A-Za-z0-9_.-]*; empty: <hostname>-<pid>.
   // Each robot is served by one backbone alive, chosen by name

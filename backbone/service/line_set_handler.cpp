@@ -52,6 +52,9 @@ LineSetHandler::LineSetHandler(MapTileCache& map, const MessageLimits& limits,
       cadence_(fromMilliseconds(options.quiet_before_frame_ms),
                fromMilliseconds(options.max_background_yield_ms)),
       maps_(map, options.query_radius_m, options.map_reuse_distance_m, &foreground_),
+      learning_(options.learning.db.empty()
+                    ? nullptr
+                    : std::make_unique<OnlineLearning>(options.learning, &foreground_)),
       search_worker_(&foreground_, static_cast<size_t>(std::max(options.max_queued_searches, 0))) {}
 
 LineSetHandler::~LineSetHandler() {
@@ -63,6 +66,12 @@ void LineSetHandler::waitForSearches() {
   search_worker_.waitUntilIdle();
 }
 
+void LineSetHandler::stopLearning() {
+  if (learning_) {
+    learning_->stop();
+  }
+}
+
 void LineSetHandler::flushLogs(int64_t now_ns) {
   drop_log_.flush(now_ns);
   busy_log_.flush(now_ns);
@@ -70,8 +79,15 @@ void LineSetHandler::flushLogs(int64_t now_ns) {
 }
 
 BackboneCounters LineSetHandler::counters() const {
-  const std::lock_guard<std::mutex> lock(counters_mutex_);
-  return counters_;
+  BackboneCounters counters;
+  {
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    counters = counters_;
+  }
+  if (learning_) {
+    counters.learning = learning_->counters();
+  }
+  return counters;
 }
 
 bool LineSetHandler::hearFrom(const std::string& robot_id, int64_t arrival_ns) {
@@ -113,7 +129,15 @@ void LineSetHandler::dropRobotsNotServed() {
   cadence_.forget(unheard);
   {
     const std::lock_guard<std::mutex> lock(sessions_mutex_);
-    std::erase_if(sessions_, [&](const auto& robot) { return unheard(robot.first); });
+    std::erase_if(sessions_, [&](const auto& robot) {
+      if (!unheard(robot.first)) {
+        return false;
+      }
+      if (learning_) {
+        learning_->finishRobot(robot.first);
+      }
+      return true;
+    });
   }
   {
     const std::lock_guard<std::mutex> lock(notices_mutex_);
@@ -172,6 +196,11 @@ void LineSetHandler::track(const std::shared_ptr<RobotSession>& session,
       localize(line_set.segments, line_set.corners, map->segments, map->scene, plan.prior,
                line_set.camera, options, visible_from_prior);
   const RobotSession::Answered answered = session->answer(line_set, odometry, localization, fix);
+  if (learning_ && fix.status == lineloc_msg_FIX_OK) {
+    const std::optional<Sunlight>& sunlight = options.visibility.sunlight;
+    learning_->offer(line_set, fix.T_world_camera, map, localization.visible,
+                     sunlight ? std::optional(sunlight->direction_world) : std::nullopt);
+  }
   if (answered.resumed) {
     spdlog::info("tracking {} from #{} on continues the proof its last backbone handed over",
                  line_set.robot_id, line_set.sequence_number);

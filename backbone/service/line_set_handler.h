@@ -64,9 +64,14 @@
 // them (LocalizerOptions::threads 0; at least one), so that the frames in
 // hand share the cores.
 //
-// Background work. Searches and map preparation pause between pieces while
-// a LineSet is being handled and from quiet_before_frame_ms before a tracked
-// robot's next one is due (foreground_gate.h, frame_cadence.h).
+// Background work. Searches, map preparation and learning pause between
+// pieces while a LineSet is being handled and from quiet_before_frame_ms
+// before a tracked robot's next one is due (foreground_gate.h,
+// frame_cadence.h).
+//
+// Learning. With PipelineOptions::learning.db set, each tracked frame
+// answered OK is offered to the learning of lines (online_learning.h), and a
+// robot forgotten here has what it learnt written.
 #pragma once
 
 #include <atomic>
@@ -85,6 +90,7 @@
 #include "backbone/matching/localizer.h"
 #include "backbone/service/fair_frame_queue.h"
 #include "backbone/service/frame_cadence.h"
+#include "backbone/service/online_learning.h"
 #include "backbone/service/prepared_maps.h"
 #include "backbone/service/robot_roster.h"
 #include "backbone/service/robot_session.h"
@@ -124,6 +130,8 @@ struct BackboneCounters {
   // left to the others, whose robots they serve (backbone_peers.h).
   uint64_t backbones = 1;
   uint64_t frames_served_elsewhere = 0;
+  // Learning lines from the frames answered (online_learning.h).
+  LearningCounters learning;
   std::string last_drop_reason;
   // Stage times of the last kTimingWindow answers, oldest overwritten first.
   std::vector<StageTimingsNs> recent_timings;
@@ -159,6 +167,8 @@ struct PipelineOptions {
   // When set, each LineSet is localized under the sun of its stamp instead
   // of localizer.visibility.sunlight (none while the sun is down).
   std::optional<SiteSun> sun_from_clock;
+  // Learning from the frames answered, when learning.db is set.
+  OnlineLearningOptions learning;
 };
 
 // How a backbone's sessions hand their robots' tracking over to the backbone
@@ -210,6 +220,10 @@ class LineSetHandler {
 
   // Blocks until the searches under way have finished.
   void waitForSearches();
+
+  // Ends learning, if on: the frames waiting are dropped and what every
+  // robot learnt is written (online_learning.h).
+  void stopLearning();
 
   // From now on each LineSet is localized under the sun of its stamp over
   // the site (PipelineOptions::sun_from_clock): for a site looked up once
@@ -342,6 +356,8 @@ class LineSetHandler {
   std::atomic<int> frames_in_hand_{0};
   FrameCadence cadence_;
   PreparedMaps maps_;
+  // Null without learning.
+  std::unique_ptr<OnlineLearning> learning_;
   // Last, so that it is destroyed first: its searches use the members above.
   SearchWorker search_worker_;
 };

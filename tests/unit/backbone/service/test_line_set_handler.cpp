@@ -13,6 +13,7 @@
 #include "backbone/service/map_geometry.h"
 #include "common/time/clock.h"
 #include "common/time/utc_time.h"
+#include "db/enrichment_store.h"
 #include "tests/support/test_database.h"
 
 namespace lineloc {
@@ -179,6 +180,59 @@ std::pair<std::vector<ImageSegment>, PoseWithCovariance> trackableView(
   prepareMapAt(handler, {13, -30, 1.5});
   return {observedEdges(conninfo, lookingNorth({13, -30, 1.5})),
           lookingNorth({13.05, -30.04, 1.5}, 0.1, 0.003)};
+}
+
+// With learning on, the frames answered OK teach the map the edges painted
+// on a cube's face that no model line explains, written once the robot is
+// forgotten, on the cube's building. The robot is tracked from its own
+// prediction, which no search proved, so its fixes stay widened (0.06-0.5 m
+// in position): the test takes segments placed that well.
+TEST_F(LineSetHandlerTest, LearnsTheLinesOfTheFramesItAnswersOk) {
+  // The first cube's south face (y = 0), which the sill is painted on.
+  db::Connection owner(database_.conninfo());
+  owner.execParams(
+      "INSERT INTO face (site_id, building_id, kind, geom) SELECT site_id, id, 1, "
+      "ST_GeomFromText('POLYGON Z ((85000 447000 0, 85010 447000 0, 85010 447000 10, 85000 "
+      "447000 10, 85000 447000 0))', 7415) FROM building WHERE source_id = 'cube-0-0'",
+      {});
+  MapTileCache cache = makeCache(database_.conninfo());
+  PipelineOptions options;
+  options.learning.db = database_.conninfo(test::DatabaseRole::kEnricher);
+  options.learning.site = "test";
+  options.learning.frame_interval_s = 0.0;
+  options.learning.learner.observation.max_placement_sigma_m = 0.5;
+  {
+    LineSetHandler handler(cache, MessageLimits{}, options);
+    prepareMapAt(handler, {12, -20, 1.5});
+    // A window's sill on the first cube's south face (y = 0), 3 m up.
+    const Eigen::Vector3d sill_start(2.0, 0.0, 3.0);
+    const Eigen::Vector3d sill_end(6.0, 0.0, 3.0);
+    for (int k = 0; k < 9; ++k) {
+      const Eigen::Vector3d position(10.0 + 0.5 * k, -20.0, 1.5);
+      const PoseWithCovariance truth = lookingNorth(position);
+      std::vector<ImageSegment> seen = observedEdges(database_.conninfo(), truth);
+      const ProjectedSegment sill = projectSegment(sill_start, sill_end, truth, kCamera);
+      ImageSegment painted = seen.front();
+      painted.start = sill.start_px.cast<float>();
+      painted.end = sill.end_px.cast<float>();
+      seen.push_back(painted);
+      const PoseWithCovariance predicted =
+          lookingNorth(position + Eigen::Vector3d(0.05, -0.04, 0.0), 0.1, 0.003);
+      ASSERT_EQ(handler.handle(lineSetMessage(seen, predicted, 3 + k)->message())->status,
+                lineloc_msg_FIX_OK);
+    }
+    handler.forgetSilentRobots(onceSilentFor(options));
+  }
+  db::Connection reader(database_.conninfo(test::DatabaseRole::kReader));
+  const std::vector<db::StoredEnrichmentLine> lines =
+      db::readEnrichment(reader, db::requireSite(reader, "test"));
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NEAR(lines[0].start_world.y(), 0.0, 1e-6);
+  EXPECT_NEAR(lines[0].start_world.z(), 3.0, 0.05);
+  EXPECT_NEAR(lines[0].end_world.z(), 3.0, 0.05);
+  const std::string cube_id =
+      reader.execParams("SELECT id FROM building WHERE source_id = 'cube-0-0'", {}).text(0, 0);
+  EXPECT_EQ(lines[0].building_id, std::stoll(cube_id));
 }
 
 // A notice for another frame, one whose prediction the LineSet does not

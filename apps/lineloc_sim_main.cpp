@@ -53,6 +53,16 @@ int main(int argc, char** argv) {
   options.add("cars_per_100m", config.clutter.cars_per_100m, "parked cars per 100 m of route");
   options.add("trees_per_100m", config.clutter.trees_per_100m, "trees per 100 m of route");
   options.add("poles_per_100m", config.clutter.poles_per_100m, "lamp posts per 100 m of route");
+  options.add("tall_trees_per_100m", config.clutter.tall_trees_per_100m,
+              "trees 11-16 m tall beside the façades, their crowns over the roof lines, per 100 m "
+              "of route");
+  options.add("cables_per_100m", config.furniture.cables_per_100m,
+              "cables across the street from façade to façade, 6-8.5 m up, every other one with "
+              "a lamp, per 100 m of route");
+  options.add("lane_markings", config.furniture.lane_markings,
+              "a dashed lane line beside the route: true or false");
+  options.add("kerbs", config.furniture.kerbs,
+              "kerbs between the pavements and the road: true or false");
   options.add("pedestrians_per_100m", config.clutter.pedestrians_per_100m,
               "pedestrians per 100 m of route");
   options.add("camera_calibration", config.camera_calibration,
@@ -162,11 +172,15 @@ int main(int argc, char** argv) {
         lineloc::simulateDrive(config, meter.callback());
     fmt::print(
         "lineloc-sim: {} images ({:.1f} frames/s rendering on one core), {} IMU samples, {} GPS "
-        "fixes, {} compass readings; route {:.0f} m with {} cars, {} trees, {} poles, {} "
-        "pedestrians -> {}\n",
+        "fixes, {} compass readings; route {:.0f} m with {} cars, {} trees ({} tall), {} poles, "
+        "{} pedestrians, {} cables ({} with a lamp), {} lane marking dashes, {:.0f} m of kerb -> "
+        "{}\n",
         summary.images, summary.images / std::max(summary.render_cpu_s, 1e-9), summary.imu_samples,
         summary.gps_fixes, summary.compass_readings, summary.route_length_m, summary.clutter.cars,
-        summary.clutter.trees, summary.clutter.poles, summary.clutter.pedestrians, config.output);
+        summary.clutter.trees + summary.clutter.tall_trees, summary.clutter.tall_trees,
+        summary.clutter.poles, summary.clutter.pedestrians, summary.furniture.cables,
+        summary.furniture.lamps, summary.furniture.marking_dashes, summary.furniture.kerb_m,
+        config.output);
     return 0;
   } catch (const std::exception& error) {
     spdlog::error("{}", error.what());

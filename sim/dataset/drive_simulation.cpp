@@ -248,6 +248,10 @@ DriveSimulationSummary simulateDrive(const DriveSimulationConfig& config,
   clutter.seed = static_cast<uint32_t>(config.seed * 4);
   summary.clutter =
       addStreetClutter(map, route, ground_height_m, clutter, kFirstClutterObjectId, scene);
+  StreetFurnitureOptions furniture = config.furniture;
+  furniture.seed = static_cast<uint32_t>(config.seed * 4 + 1);
+  summary.furniture =
+      addStreetFurniture(map, route, ground_height_m, furniture, kFirstFurnitureObjectId, scene);
   RouteDriveOptions drive = config.drive;
   drive.duration_s = config.duration_s;
   drive.seed = config.seed;

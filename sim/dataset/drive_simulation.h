@@ -22,6 +22,7 @@
 #include "sim/sensors/sensor_synthesis.h"
 #include "sim/world/route_trajectory.h"
 #include "sim/world/street_clutter.h"
+#include "sim/world/street_furniture.h"
 #include "sim/world/street_network.h"
 #include "sim/world/street_route.h"
 
@@ -46,6 +47,7 @@ struct DriveSimulationConfig {
   StreetRouteOptions route;
   RouteDriveOptions drive;
   StreetClutterOptions clutter;
+  StreetFurnitureOptions furniture;
   // OpenCV YAML calibration; empty: a 640x480 camera with OpenCV's sample lens.
   std::string camera_calibration;
   double camera_rate_hz = 20.0;
@@ -100,6 +102,7 @@ struct DriveSimulationSummary {
   int compass_readings = 0;
   double route_length_m = 0.0;
   StreetClutterCounts clutter;
+  StreetFurnitureCounts furniture;
   // Thread CPU time spent rendering (s).
   double render_cpu_s = 0.0;
 };

@@ -21,6 +21,9 @@ enum class SurfaceKind : uint8_t {
   kFoliage,
   kPole,
   kPerson,
+  kCable,
+  kRoadMarking,
+  kKerb,
   // The model's terrain, shaded as the ground plane is.
   kGround
 };

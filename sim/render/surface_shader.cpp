@@ -107,6 +107,12 @@ float SurfaceShader::meshAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& p,
       return 0.45f;
     case SurfaceKind::kPerson:
       return 0.1f + 0.5f * unitFromHash(proceduralHash(id, 12));
+    case SurfaceKind::kCable:
+      return 0.06f;
+    case SurfaceKind::kRoadMarking:
+      return 0.75f;
+    case SurfaceKind::kKerb:
+      return 0.42f;
   }
   return 0.5f;
 }

@@ -54,6 +54,8 @@ double groundHeightAt(const CityMesh& city, const Eigen::Vector2d& xy);
 // takes ids from kFirstClutterObjectId on.
 inline constexpr uint32_t kTerrainObjectId = 999'999;
 inline constexpr uint32_t kFirstClutterObjectId = 1'000'000;
+// Street furniture's (street_furniture.h): after every clutter object's.
+inline constexpr uint32_t kFirstFurnitureObjectId = 2'000'000;
 
 // Builds the scene with the given origin. Throws std::invalid_argument when the
 // model has no buildings.

@@ -24,6 +24,12 @@ const char* kindName(SurfaceKind kind) {
       return "pole";
     case SurfaceKind::kPerson:
       return "person";
+    case SurfaceKind::kCable:
+      return "cable";
+    case SurfaceKind::kRoadMarking:
+      return "marking";
+    case SurfaceKind::kKerb:
+      return "kerb";
     case SurfaceKind::kWall:
     case SurfaceKind::kRoof:
     case SurfaceKind::kGround:

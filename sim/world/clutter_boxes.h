@@ -16,7 +16,7 @@ namespace lineloc {
 
 struct ClutterBox {
   uint32_t object_id = 0;
-  std::string kind;  // car, tree, pole or person
+  std::string kind;  // car, tree, pole, person, cable, marking or kerb
   Eigen::AlignedBox3d box_world;
 };
 

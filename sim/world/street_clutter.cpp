@@ -23,6 +23,7 @@ struct Placement {
 
 constexpr Placement kCarPlacement{2.2, 3.6, 5.0};
 constexpr Placement kTreePlacement{4.0, 9.0, 6.0};
+constexpr Placement kTallTreePlacement{1.5, 4.0, 8.0};
 constexpr Placement kPolePlacement{2.0, 6.0, 4.0};
 constexpr Placement kPedestrianPlacement{0.8, 4.0, 1.5};
 
@@ -205,6 +206,13 @@ StreetClutterCounts addStreetClutter(
       addTree(mesh, placeOnGround(xy, 0.0, ground_height_m(xy)), id++, placer.uniform(5.0, 9.0),
               placer.random());
       ++counts.trees;
+    }
+  }
+  for (int i = 0; i < targetCount(options.tall_trees_per_100m, length_m); ++i) {
+    if (placer.find(kTallTreePlacement, xy)) {
+      addTree(mesh, placeOnGround(xy, 0.0, ground_height_m(xy)), id++, placer.uniform(11.0, 16.0),
+              placer.random());
+      ++counts.tall_trees;
     }
   }
   for (int i = 0; i < targetCount(options.poles_per_100m, length_m); ++i) {

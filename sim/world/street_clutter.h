@@ -18,6 +18,9 @@ struct StreetClutterOptions {
   // Objects per 100 m of route.
   double cars_per_100m = 6.0;
   double trees_per_100m = 3.0;
+  // Trees 11-16 m tall within 1.5-4 m of a façade, their crowns over its
+  // roof line, as real streets have and city models do not.
+  double tall_trees_per_100m = 0.0;
   double poles_per_100m = 4.0;
   double pedestrians_per_100m = 4.0;
   // Nothing stands closer than this to the route (m).
@@ -30,6 +33,7 @@ struct StreetClutterOptions {
 struct StreetClutterCounts {
   int cars = 0;
   int trees = 0;
+  int tall_trees = 0;
   int poles = 0;
   int pedestrians = 0;
 };

@@ -1,8 +1,21 @@
 #include "common/geometry/line_segments.h"
 
 #include <Eigen/Geometry>
+#include <limits>
 
 namespace lineloc {
+
+double distanceToPolyline(const Eigen::Vector2d& point,
+                          const std::vector<Eigen::Vector2d>& points) {
+  if (points.size() == 1) {
+    return (point - points.front()).norm();
+  }
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < points.size(); ++i) {
+    nearest = std::min(nearest, distanceToSegment<2>(point, points[i - 1], points[i]));
+  }
+  return nearest;
+}
 
 bool runsAlong(const Eigen::Vector3d& a_start, const Eigen::Vector3d& a_end,
                const Eigen::Vector3d& b_start, const Eigen::Vector3d& b_end, double max_angle_rad,

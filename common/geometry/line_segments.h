@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace lineloc {
 
@@ -18,6 +19,10 @@ double distanceToSegment(const Eigen::Matrix<double, N, 1>& point,
   const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
   return (a + t * ab - point).norm();
 }
+
+// Distance from `point` to the polyline through `points`: to the nearest of
+// its segments (to its one point; infinity when it has none).
+double distanceToPolyline(const Eigen::Vector2d& point, const std::vector<Eigen::Vector2d>& points);
 
 // Whether segment b runs along segment a: within max_angle_rad of a's
 // direction, both its ends within max_distance_m of a's line, and the two

@@ -14,6 +14,15 @@ TEST(LineSegments, DistanceIsToTheNearestPointOfTheSegment) {
   EXPECT_DOUBLE_EQ(distanceToSegment<2>({-1, 0}, a, a), 1.0);
 }
 
+TEST(LineSegments, DistanceToAPolylineIsToItsNearestSegment) {
+  const std::vector<Eigen::Vector2d> corner = {{0, 0}, {10, 0}, {10, 10}};
+  EXPECT_DOUBLE_EQ(distanceToPolyline({5, 2}, corner), 2.0);
+  EXPECT_DOUBLE_EQ(distanceToPolyline({12, 5}, corner), 2.0);
+  EXPECT_DOUBLE_EQ(distanceToPolyline({13, -4}, corner), 5.0);
+  EXPECT_DOUBLE_EQ(distanceToPolyline({3, 4}, {{0, 0}}), 5.0);
+  EXPECT_EQ(distanceToPolyline({3, 4}, {}), std::numeric_limits<double>::infinity());
+}
+
 TEST(LineSegments, ASegmentRunsAlongAnotherParallelCloseAndOverlapping) {
   const Eigen::Vector3d a0(0, 0, 0), a1(10, 0, 0);
   const double angle = 3.0 * M_PI / 180.0;

@@ -9,22 +9,13 @@
 
 #include <map>
 
+#include "common/geometry/line_segments.h"
 #include "sim/world/street_furniture.h"
 #include "sim/world/street_route.h"
 #include "tests/unit/sim/world/box_city.h"
 
 namespace lineloc {
 namespace {
-
-double distanceToPolyline(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& line) {
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 1; i < line.size(); ++i) {
-    const Eigen::Vector2d ab = line[i] - line[i - 1];
-    const double s = std::clamp((p - line[i - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (p - (line[i - 1] + s * ab)).norm());
-  }
-  return best;
-}
 
 class StreetFurnitureTest : public ::testing::Test {
  protected:

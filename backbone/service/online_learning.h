@@ -14,10 +14,11 @@
 // (foreground_gate.h): it learns while no LineSet is being answered.
 //
 // Passes. A pass is one robot's frames of one UTC day, named
-// "<robot>/<YYYY-MM-DD>": another robot, or the same robot on another day,
-// confirms a line (db/enrichment_store.h), a robot that drives a street twice
-// in a day does not confirm what it saw alone, and a robot handed over to
-// another backbone, or served again after a restart, goes on with its pass.
+// "<robot>/<YYYY-MM-DD>" (a piece by the day of its first frame): another
+// robot, or the same robot on another day, confirms a line
+// (db/enrichment_store.h), a robot that drives a street twice in a day does
+// not confirm what it saw alone, and a robot handed over to another
+// backbone, or served again after a restart, goes on with its pass.
 //
 // Tiles. A robot learns in the square tile of tile_size_m its camera is in,
 // reading the stored lines it may be expected to see around it; once its

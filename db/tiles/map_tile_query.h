@@ -30,7 +30,8 @@ struct TerrainTriangleRecord {
 };
 
 // A confirmed learnt line (db/enrichment_store.h) in world coordinates, with
-// the larger of its ends' largest standard deviations across it.
+// the larger of its ends' largest standard deviations in any direction: never
+// less than across the line, which is what matching weighs.
 struct LearntLineRecord {
   int64_t id = 0;
   Eigen::Vector3d start_world = Eigen::Vector3d::Zero();

@@ -66,6 +66,12 @@ void LineSetHandler::waitForSearches() {
   search_worker_.waitUntilIdle();
 }
 
+void LineSetHandler::waitForLearning() {
+  if (learning_) {
+    learning_->waitUntilIdle();
+  }
+}
+
 void LineSetHandler::stopLearning() {
   if (learning_) {
     learning_->stop();

@@ -221,6 +221,10 @@ class LineSetHandler {
   // Blocks until the searches under way have finished.
   void waitForSearches();
 
+  // Blocks until the frames offered to learning, and the robots' finished
+  // pieces, have been learnt and written (if learning is on).
+  void waitForLearning();
+
   // Ends learning, if on: the frames waiting are dropped and what every
   // robot learnt is written (online_learning.h).
   void stopLearning();

@@ -51,15 +51,16 @@ double scorePose(const CoverageVerifier& verifier, const std::vector<ImageSegmen
                        skyEdgeLength(image, T_world_camera, camera, scene, options.sky_edges));
 }
 
-// The image segments a search takes (AcquisitionOptions::min_segment_contrast).
-std::vector<ImageSegment> searchedSegments(const std::vector<ImageSegment>& segments,
-                                           const AcquisitionOptions& options) {
+// The reference view of the image segments a search takes
+// (AcquisitionOptions::min_segment_contrast).
+ReferenceView searchedView(const std::vector<ImageSegment>& segments, const PinholeCamera& camera,
+                           const AcquisitionOptions& options) {
   std::vector<ImageSegment> searched;
   std::copy_if(segments.begin(), segments.end(), std::back_inserter(searched),
                [&](const ImageSegment& segment) {
                  return segment.contrast >= options.min_segment_contrast;
                });
-  return searched;
+  return referenceView(searched, camera, options.reference_focal_px);
 }
 
 bool byScore(const Verified& a, const Verified& b) {
@@ -149,9 +150,12 @@ ScoredHypothesis scored(const Verified& candidate, const AcquisitionOptions& opt
 
 CoverageVerifier::CoverageVerifier(const std::vector<ImageSegment>& image,
                                    const PinholeCamera& camera, const AcquisitionOptions& options)
-    : camera_(camera),
+    : CoverageVerifier(referenceView(image, camera, options.reference_focal_px), options) {}
+
+CoverageVerifier::CoverageVerifier(const ReferenceView& view, const AcquisitionOptions& options)
+    : camera_(view.camera),
       options_(options.search),
-      map_(image, camera.width, camera.height, options.verification_distances) {}
+      map_(view.segments, view.camera.width, view.camera.height, options.verification_distances) {}
 
 Coverage CoverageVerifier::coverage(const std::vector<VisibleSegment>& visible,
                                     const Eigen::Isometry3d& T_world_camera) const {
@@ -163,13 +167,13 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
                         const PoseWithCovariance& prior, const PinholeCamera& camera,
                         const AcquisitionOptions& options,
                         const std::vector<Eigen::Isometry3d>& carried_starts) {
-  const std::vector<ImageSegment> image = searchedSegments(segments, options);
+  const ReferenceView view = searchedView(segments, camera, options);
   Acquisition acquisition;
   acquisition.alignment.T_world_camera = prior;
   const int64_t search_start_ns = steadyClockNs();
-  const PoseSearch search(lines, scene, camera, options.search);
+  const PoseSearch search(lines, scene, view.camera, options.search);
   std::vector<Eigen::Isometry3d> starts;
-  for (const PoseHypothesis& hypothesis : search.search(image, prior)) {
+  for (const PoseHypothesis& hypothesis : search.search(view.segments, prior)) {
     starts.push_back(hypothesis.T_world_camera);
   }
   acquisition.summary.search_ns = steadyClockNs() - search_start_ns;
@@ -177,10 +181,11 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
   const size_t grid_starts = starts.size();
   starts.insert(starts.end(), carried_starts.begin(), carried_starts.end());
 
-  const CoverageVerifier verifier(image, camera, options);
+  const CoverageVerifier verifier(view, options);
   std::vector<Verified> verified(starts.size());
   parallelFor(static_cast<int>(starts.size()), options.search.threads, [&](int i) {
-    verified[i] = alignFrom(image, verifier, lines, scene, prior, starts[i], camera, options);
+    verified[i] =
+        alignFrom(view.segments, verifier, lines, scene, prior, starts[i], view.camera, options);
     verified[i].carried_index =
         i < static_cast<int>(grid_starts) ? -1 : i - static_cast<int>(grid_starts);
   });
@@ -206,6 +211,7 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
   const int64_t pose_ns = acquisition.alignment.pose_ns;
   acquisition.alignment = best->alignment;
   acquisition.alignment.T_world_camera = scored(*best, options).T_world_camera;
+  acquisition.alignment.rms_residual_px /= view.scale;
   acquisition.visible = best->visible;
   acquisition.alignment.matching_ns = matching_ns;
   acquisition.alignment.pose_ns = pose_ns;
@@ -243,20 +249,20 @@ double verificationScore(const std::vector<ImageSegment>& segments,
                          const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
                          const AcquisitionOptions& options) {
-  const std::vector<ImageSegment> image = searchedSegments(segments, options);
+  const ReferenceView view = searchedView(segments, camera, options);
   const std::vector<VisibleSegment> visible = visibleSegments(
-      lines, scene, hypothesisStart(T_world_camera, options), camera, options.visibility);
-  return scorePose(CoverageVerifier(image, camera, options), image, visible, scene, T_world_camera,
-                   camera, options);
+      lines, scene, hypothesisStart(T_world_camera, options), view.camera, options.visibility);
+  return scorePose(CoverageVerifier(view, options), view.segments, visible, scene, T_world_camera,
+                   view.camera, options);
 }
 
 std::optional<ScoredHypothesis> alignHypothesis(
     const std::vector<ImageSegment>& segments, const std::vector<ModelSegment>& lines,
     const OcclusionScene& scene, const PoseWithCovariance& prior, const Eigen::Isometry3d& start,
     const PinholeCamera& camera, const AcquisitionOptions& options) {
-  const std::vector<ImageSegment> image = searchedSegments(segments, options);
-  const Verified candidate = alignFrom(image, CoverageVerifier(image, camera, options), lines,
-                                       scene, prior, start, camera, options);
+  const ReferenceView view = searchedView(segments, camera, options);
+  const Verified candidate = alignFrom(view.segments, CoverageVerifier(view, options), lines, scene,
+                                       prior, start, view.camera, options);
   if (!hasPose(candidate.alignment)) {
     return std::nullopt;
   }

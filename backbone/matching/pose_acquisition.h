@@ -26,6 +26,11 @@
 // model_alignment.h), gets the search's own resolution, acquired_*_sigma,
 // added, unscaled, so that the robot takes it as a start and tracking
 // (tight gates, many frames) brings it to centimetres.
+//
+// Every pixel length in these options, and the scores, are in pixels of a
+// camera of focal length reference_focal_px: each frame is seen through its
+// reference view (reference_view.h), so that the same street seen by a
+// 640 x 480 and a 5 megapixel camera is decided alike.
 #pragma once
 
 #include <limits>
@@ -34,11 +39,15 @@
 
 #include "backbone/matching/model_alignment.h"
 #include "backbone/matching/pose_search.h"
+#include "backbone/matching/reference_view.h"
 #include "backbone/matching/sky_edges.h"
 
 namespace lineloc {
 
 struct AcquisitionOptions {
+  // The focal length (pixels) whose pixels the options below are given in:
+  // the simulator's default camera, 62 degrees across 640 pixels.
+  double reference_focal_px = 536.0;
   PoseSearchOptions search;
   // A hypothesis's alignment keeps a wide loss (model_alignment.h,
   // loss_scale_sigma): it starts up to the fine grid's reach from the truth,
@@ -94,12 +103,14 @@ struct AcquisitionOptions {
 };
 
 // Coverage of aligned poses against the sharp verification distance map of
-// one frame's image: how acquisition scores its aligned hypotheses, and
-// tracking its disagreeing alignments (localizer.h).
+// one frame's image, in its reference view: how acquisition scores its
+// aligned hypotheses, and tracking its disagreeing alignments (localizer.h).
 class CoverageVerifier {
  public:
   CoverageVerifier(const std::vector<ImageSegment>& image, const PinholeCamera& camera,
                    const AcquisitionOptions& options);
+  // Of a frame already in its reference view.
+  CoverageVerifier(const ReferenceView& view, const AcquisitionOptions& options);
 
   Coverage coverage(const std::vector<VisibleSegment>& visible,
                     const Eigen::Isometry3d& T_world_camera) const;

@@ -201,6 +201,44 @@ TEST(PoseAcquisition, FaintLinesOfAViewBesideDoNotRivalTheCamera) {
   EXPECT_NE(confused.alignment.status, AlignmentStatus::kOk) << confused.alignment.message;
 }
 
+// The same view seen by a camera of four times the resolution (the same
+// field of view, every pixel coordinate and its uncertainty scaled): the
+// search decides alike, at the same pose, with the same score.
+TEST(PoseAcquisition, DecidesAlikeAtFourTimesTheResolution) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(23);
+  Scene scene = render(street, occlusion, 0, random);
+  scene = render(street, occlusion, static_cast<int>(scene.image.size()) / 4, random);
+  const PinholeCamera fine{4 * kCamera.fx,    4 * kCamera.fy,    4 * kCamera.cx, 4 * kCamera.cy, 0,
+                           4 * kCamera.width, 4 * kCamera.height};
+  std::vector<ImageSegment> fine_image = scene.image;
+  for (ImageSegment& segment : fine_image) {
+    segment.start *= 4.0f;
+    segment.end *= 4.0f;
+    segment.start_covariance *= 16.0f;
+    segment.end_covariance *= 16.0f;
+  }
+  for (int trial = 0; trial < 3; ++trial) {
+    const PoseWithCovariance prior = dgpsPrior(random);
+    const AcquisitionOptions options;
+    const Acquisition coarse =
+        acquirePose(scene.image, street.edges, occlusion, prior, kCamera, options);
+    const Acquisition sharp =
+        acquirePose(fine_image, street.edges, occlusion, prior, fine, options);
+    EXPECT_EQ(sharp.alignment.status, coarse.alignment.status) << sharp.alignment.message;
+    EXPECT_EQ(sharp.summary.hypotheses, coarse.summary.hypotheses);
+    EXPECT_NEAR(sharp.summary.best_score, coarse.summary.best_score,
+                1e-3 * coarse.summary.best_score);
+    EXPECT_LT((sharp.alignment.T_world_camera.pose.translation() -
+               coarse.alignment.T_world_camera.pose.translation())
+                  .norm(),
+              1e-3);
+    EXPECT_NEAR(sharp.alignment.rms_residual_px, 4 * coarse.alignment.rms_residual_px,
+                1e-3 * coarse.alignment.rms_residual_px);
+  }
+}
+
 TEST(PoseSearch, ScoresTheTruePoseAboveOnesMetresAway) {
   const Street street = makeStreet();
   const OcclusionScene occlusion(street.faces, street.face_building_ids);

@@ -62,6 +62,31 @@ int main(int argc, char** argv) {
   options.addFixedSize("site_origin", config.site_origin, 3, "site origin x y z in that CRS");
   options.add("magnetic_declination_deg", config.magnetic_declination_deg,
               "magnetic declination at the site, east positive (degrees)");
+  lineloc::SensorSetup& sensors = config.sensors;
+  options.add("gyro_noise_density", sensors.gyro_noise_density,
+              "IMU gyroscope white noise (rad/s/sqrt(Hz)); 0, with the three below: the "
+              "dataset's imu0/sensor.yaml, else an ADIS16448's");
+  options.add("accel_noise_density", sensors.accel_noise_density,
+              "IMU accelerometer white noise (m/s^2/sqrt(Hz))");
+  options.add("gyro_random_walk", sensors.gyro_random_walk,
+              "IMU gyroscope bias random walk (rad/s^2/sqrt(Hz))");
+  options.add("accel_random_walk", sensors.accel_random_walk,
+              "IMU accelerometer bias random walk (m/s^3/sqrt(Hz))");
+  options.add("gyro_range_radps", sensors.gyro_range_radps,
+              "IMU gyroscope range (rad/s): rates beyond it are saturated (0: an ADIS16448's)");
+  options.add(
+      "accel_range_mps2", sensors.accel_range_mps2,
+      "IMU accelerometer range (m/s^2): forces beyond it are saturated (0: an ADIS16448's)");
+  options.add("T_body_camera", sensors.T_body_camera,
+              "camera pose in the body frame, 16 numbers row-major (empty: the dataset's "
+              "cam0/sensor.yaml T_BS, else looking forward)");
+  options.add("T_body_imu", sensors.T_body_imu,
+              "IMU pose in the body frame, 16 numbers row-major (empty: the dataset's "
+              "imu0/sensor.yaml T_BS, else the body frame)");
+  options.addFixedSize("p_body_gps_antenna", sensors.p_body_gps_antenna, 3,
+                       "GNSS antenna phase centre in the body frame, x y z (m)");
+  options.add("camera_time_offset_s", sensors.camera_time_offset_s,
+              "camera clock minus the IMU's, GNSS's and compass's (s)");
   options.add("playback_speed", config.playback_speed,
               "replay speed of a timed dataset (1: real time, 0: as fast as possible)");
   options.add("rate_hz", config.rate_hz,

@@ -26,6 +26,7 @@
 #include "common/trajectory/pose_covariance_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/agent/outstanding_frames.h"
+#include "robot/agent/sensor_setup.h"
 #include "robot/agent/sensor_streams.h"
 #include "robot/input/image_prefetcher.h"
 #include "robot/vision/features/feature_extractor.h"
@@ -214,10 +215,7 @@ InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGps
                                         const SensorStreams& streams) {
   InertialNavigatorConfig navigator;
   navigator.magnetic_declination_rad = config.magnetic_declination_deg * M_PI / 180.0;
-  if (streams.T_body_camera)
-    navigator.T_body_camera = *streams.T_body_camera;
-  if (streams.T_body_imu)
-    navigator.R_body_imu = streams.T_body_imu->linear();
+  applySensorSetup(config.sensors, streams, navigator);
   if (gps != nullptr && !streams.gps.empty()) {
     const GeodeticPosition where =
         gps->projection().toGeodetic(streams.gps.front().p_world_antenna);
@@ -314,8 +312,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           : std::optional(poseOption(config.start_pose, config.start_position_sigma_m,
                                      config.start_rotation_sigma_deg, "start_pose"));
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
-  SensorStreams streams =
-      loadSensorStreams(config.images, gps.get(), static_cast<int64_t>(config.start_at_s * 1e9));
+  SensorStreams streams = loadSensorStreams(
+      config.images, gps.get(),
+      {static_cast<int64_t>(config.start_at_s * 1e9), cameraTimeOffsetNs(config.sensors)});
   requireNavigationSensors(config.images, streams, gps != nullptr, start_pose.has_value());
   for (const std::string& reason : streams.drop_reasons) {
     spdlog::warn("input dropped: {}", reason);

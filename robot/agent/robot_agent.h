@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/geometry/pose.h"
+#include "robot/agent/sensor_setup.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
@@ -41,6 +42,8 @@ struct RobotConfig {
   std::string site_crs;
   std::vector<double> site_origin = {0.0, 0.0, 0.0};
   double magnetic_declination_deg = 0.0;
+  // The IMU's noise and range, the sensors' mounting, the camera clock's offset.
+  SensorSetup sensors;
   // Replay speed for timed datasets (1: real time; 0: as fast as possible).
   double playback_speed = 1.0;
   // Frame rate for image folders without time stamps (0: as fast as possible).

@@ -91,6 +91,18 @@ std::optional<Eigen::Isometry3d> sensorPose(const fs::path& sensor_yaml) {
   return readEurocSensorPose(sensor_yaml.string());
 }
 
+std::optional<ImuNoiseDensities> imuNoise(const fs::path& sensor_yaml) {
+  if (!fs::is_regular_file(sensor_yaml)) {
+    return std::nullopt;
+  }
+  const std::optional<EurocImuNoise> noise = readEurocImuNoise(sensor_yaml.string());
+  if (!noise) {
+    return std::nullopt;
+  }
+  return ImuNoiseDensities{noise->gyroscope_noise_density, noise->accelerometer_noise_density,
+                           noise->gyroscope_random_walk, noise->accelerometer_random_walk};
+}
+
 template <typename T>
 int64_t stampOf(const T& record) {
   return record.stamp_ns;
@@ -180,12 +192,18 @@ void requireNavigationSensors(const std::string& root, const SensorStreams& stre
 }
 
 SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
-                                int64_t start_offset_ns) {
+                                const StreamTiming& timing) {
   SensorStreams streams;
   streams.frames = listImageSequence(root);
+  for (FrameRef& frame : streams.frames) {
+    if (frame.stamp_ns) {
+      *frame.stamp_ns -= timing.camera_time_offset_ns;
+    }
+  }
   const fs::path dataset(root);
   streams.T_body_camera = sensorPose(dataset / "cam0" / "sensor.yaml");
   streams.T_body_imu = sensorPose(dataset / "imu0" / "sensor.yaml");
+  streams.imu_noise = imuNoise(dataset / "imu0" / "sensor.yaml");
   if (fs::is_regular_file(dataset / "imu0" / "data.csv")) {
     takeCsv(readEurocImuCsv((dataset / "imu0" / "data.csv").string()), streams.imu, streams);
   }
@@ -204,7 +222,7 @@ SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
           streams.frames[i].path));
     }
   }
-  startAfter(start_offset_ns, streams);
+  startAfter(timing.start_offset_ns, streams);
   for (size_t i = 0; i < streams.frames.size(); ++i) {
     streams.timeline.push_back({stampOf(streams.frames[i]), SensorKind::kFrame, i});
   }

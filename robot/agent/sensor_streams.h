@@ -2,9 +2,10 @@
 // camera frames (cam0/), IMU (imu0/data.csv), DGPS as NMEA 0183
 // (gps0/data.csv: "timestamp_ns,sentence"; positions and velocities) and
 // compass (compass0/data.csv) — merged into one time-ordered timeline, so the
-// robot can replay them as they were measured, and the mounting of camera and
-// IMU on the body (T_BS of cam0/sensor.yaml and imu0/sensor.yaml). Streams
-// other than the camera are optional.
+// robot can replay them as they were measured, the mounting of camera and
+// IMU on the body (T_BS of cam0/sensor.yaml and imu0/sensor.yaml) and the
+// IMU's noise (imu0/sensor.yaml, euroc_sensor.h). Streams other than the
+// camera are optional.
 #pragma once
 
 #include <cstdint>
@@ -36,22 +37,31 @@ struct SensorStreams {
   // The sensors' poses in the body frame, when the dataset gives them.
   std::optional<Eigen::Isometry3d> T_body_camera;
   std::optional<Eigen::Isometry3d> T_body_imu;
+  // The IMU's noise, when its sensor.yaml gives it.
+  std::optional<ImuNoiseDensities> imu_noise;
   // Lines of the CSV and NMEA inputs dropped as malformed, with the first few
   // reasons.
   int dropped_lines = 0;
   std::vector<std::string> drop_reasons;
 };
 
+struct StreamTiming {
+  // Leaves out the records of this long from the earliest one of any stream
+  // (a robot whose software restarts mid-drive).
+  int64_t start_offset_ns = 0;
+  // The camera clock minus the other sensors': each frame's stamp less this
+  // is its place on their timeline, and the stamp the robot uses.
+  int64_t camera_time_offset_ns = 0;
+};
+
 // Reads the streams of the dataset at `root` (or a plain image folder: frames
 // only). `gps` decodes the NMEA sentences into the site frame; without it
-// DGPS is not read. `start_offset_ns` leaves out the records of that long
-// from the earliest one of any stream (a robot whose software restarts
-// mid-drive). Throws std::runtime_error naming the file when the camera
-// stream is unreadable; frames without a time stamp are refused when other
-// streams are present (they cannot be placed on the timeline), and when the
-// replay starts later.
+// DGPS is not read. Throws std::runtime_error naming the file when the camera
+// stream or a sensor.yaml is unreadable; frames without a time stamp are
+// refused when other streams are present (they cannot be placed on the
+// timeline), and when the replay starts later.
 SensorStreams loadSensorStreams(const std::string& root, NmeaGpsDecoder* gps,
-                                int64_t start_offset_ns = 0);
+                                const StreamTiming& timing = {});
 
 // Throws std::runtime_error, naming the file and what is missing, unless
 // `streams`, read from `root`, hold what the robot needs to localise: in a

@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
-#include <vector>
 
 #include "common/config/yaml_document.h"
 
@@ -31,31 +32,50 @@ std::vector<double> poseEntries(const YAML::Node& root, const std::string& sourc
   std::vector<double> entries;
   for (const YAML::Node& value : data) {
     entries.push_back(value.as<double>());
-    if (!std::isfinite(entries.back())) {
-      throw std::runtime_error(fmt::format("{}: T_BS data holds a non-finite number", source));
-    }
   }
   return entries;
 }
 
-}  // namespace
-
-Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source) {
-  std::vector<double> entries;
+// The document of `yaml`, parsed by `read`, with yaml-cpp's errors named by `source`.
+template <typename T>
+T readDocument(std::istream& yaml, const std::string& source,
+               const std::function<T(const YAML::Node&)>& read) {
   try {
-    entries = poseEntries(loadYamlDocument(yaml, source), source);
+    return read(loadYamlDocument(yaml, source));
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: {}", source, error.what()));
+  }
+}
+
+std::ifstream openFile(const std::string& path) {
+  std::ifstream stream(path);
+  if (!stream) {
+    throw std::runtime_error(fmt::format("cannot open '{}'", path));
+  }
+  return stream;
+}
+
+}  // namespace
+
+Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source) {
+  if (entries.size() != 16) {
+    throw std::runtime_error(fmt::format(
+        "{}: a rigid transform is 16 numbers (4x4, row-major), not {}", source, entries.size()));
+  }
+  for (const double entry : entries) {
+    if (!std::isfinite(entry)) {
+      throw std::runtime_error(fmt::format("{}: holds a non-finite number", source));
+    }
   }
   const Eigen::Matrix4d T =
       Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(entries.data());
   if (!T.row(3).isApprox(Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0), kOrthonormalityTolerance)) {
-    throw std::runtime_error(fmt::format("{}: T_BS last row must be 0 0 0 1", source));
+    throw std::runtime_error(fmt::format("{}: the last row must be 0 0 0 1", source));
   }
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
   if (!(R.transpose() * R).isIdentity(kOrthonormalityTolerance) ||
       std::abs(R.determinant() - 1.0) > kOrthonormalityTolerance) {
-    throw std::runtime_error(fmt::format("{}: T_BS rotation is not a proper rotation", source));
+    throw std::runtime_error(fmt::format("{}: the rotation is not a proper rotation", source));
   }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = R;
@@ -63,12 +83,51 @@ Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& so
   return pose;
 }
 
+Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source) {
+  const std::vector<double> entries = readDocument<std::vector<double>>(
+      yaml, source, [&](const YAML::Node& root) { return poseEntries(root, source); });
+  return rigidTransform(entries, source + ": T_BS");
+}
+
 Eigen::Isometry3d readEurocSensorPose(const std::string& path) {
-  std::ifstream stream(path);
-  if (!stream) {
-    throw std::runtime_error(fmt::format("cannot open '{}'", path));
-  }
+  std::ifstream stream = openFile(path);
   return parseEurocSensorPose(stream, path);
+}
+
+std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::string& source) {
+  return readDocument<std::optional<EurocImuNoise>>(
+      yaml, source, [&](const YAML::Node& root) -> std::optional<EurocImuNoise> {
+        EurocImuNoise noise;
+        const std::array<std::pair<const char*, double*>, 4> keys = {
+            {{"gyroscope_noise_density", &noise.gyroscope_noise_density},
+             {"gyroscope_random_walk", &noise.gyroscope_random_walk},
+             {"accelerometer_noise_density", &noise.accelerometer_noise_density},
+             {"accelerometer_random_walk", &noise.accelerometer_random_walk}}};
+        int given = 0;
+        for (const auto& [key, value] : keys) {
+          given += root.IsMap() && root[key] ? 1 : 0;
+        }
+        if (given == 0) {
+          return std::nullopt;
+        }
+        for (const auto& [key, value] : keys) {
+          if (!root[key]) {
+            throw std::runtime_error(fmt::format(
+                "{}: {} is missing: an IMU's noise needs all four densities", source, key));
+          }
+          *value = root[key].as<double>();
+          if (!std::isfinite(*value) || *value <= 0.0) {
+            throw std::runtime_error(
+                fmt::format("{}: {} must be a positive number, not {}", source, key, *value));
+          }
+        }
+        return noise;
+      });
+}
+
+std::optional<EurocImuNoise> readEurocImuNoise(const std::string& path) {
+  std::ifstream stream = openFile(path);
+  return parseEurocImuNoise(stream, path);
 }
 
 }  // namespace lineloc

@@ -1,21 +1,48 @@
-// The mounting of a sensor in an EuRoC/ASL dataset: the T_BS block of its
-// sensor.yaml, the sensor's pose in the body frame as a row-major 4x4 matrix
-// (Burri et al., "The EuRoC micro aerial vehicle datasets", IJRR 2016).
+// What an EuRoC/ASL dataset's sensor.yaml says of its sensor (Burri et al.,
+// "The EuRoC micro aerial vehicle datasets", IJRR 2016): its mounting, the
+// T_BS block, the sensor's pose in the body frame as a row-major 4x4 matrix;
+// and of an IMU, its noise as continuous-time densities under the keys
+// EuRoC and Kalibr share (gyroscope_noise_density rad/s/sqrt(Hz),
+// gyroscope_random_walk rad/s^2/sqrt(Hz), accelerometer_noise_density
+// m/s^2/sqrt(Hz), accelerometer_random_walk m/s^3/sqrt(Hz)).
 #pragma once
 
 #include <Eigen/Geometry>
 #include <istream>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace lineloc {
 
+struct EurocImuNoise {
+  double gyroscope_noise_density = 0.0;
+  double gyroscope_random_walk = 0.0;
+  double accelerometer_noise_density = 0.0;
+  double accelerometer_random_walk = 0.0;
+};
+
 // Parses T_BS (rows: 4, cols: 4, data: 16 numbers) from sensor.yaml text;
 // `source` names it in errors. Throws std::runtime_error when the block is
-// missing or malformed, the last row is not 0 0 0 1, or the rotation is not
-// orthonormal with determinant +1 (within 1e-6).
+// missing or malformed, or is not a rigid transform (rigidTransform).
 Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source);
 
 // The same for a file.
 Eigen::Isometry3d readEurocSensorPose(const std::string& path);
+
+// The four noise densities of an IMU's sensor.yaml text; nullopt when it
+// holds none of them. Throws std::runtime_error naming `source` and the key
+// when it holds some but not all, or one that is not a positive finite
+// number.
+std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::string& source);
+
+// The same for a file.
+std::optional<EurocImuNoise> readEurocImuNoise(const std::string& path);
+
+// The 4x4 row-major matrix `entries` (16 numbers) as a rigid transform.
+// Throws std::runtime_error naming `source` when there are not 16 finite
+// numbers, the last row is not 0 0 0 1, or the rotation is not orthonormal
+// with determinant +1 (within 1e-6).
+Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source);
 
 }  // namespace lineloc

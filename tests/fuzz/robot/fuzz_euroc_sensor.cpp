@@ -1,4 +1,4 @@
-// Fuzz target: the T_BS block of EuRoC/ASL sensor.yaml files.
+// Fuzz target: EuRoC/ASL sensor.yaml files, their T_BS block and an IMU's noise.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
@@ -11,6 +11,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const Eigen::Isometry3d T_body_sensor = lineloc::parseEurocSensorPose(stream, "fuzz.yaml");
     if (!T_body_sensor.matrix().allFinite()) {
+      __builtin_trap();
+    }
+  } catch (const std::runtime_error&) {
+  }
+  std::istringstream imu(std::string(reinterpret_cast<const char*>(data), size));
+  try {
+    const std::optional<lineloc::EurocImuNoise> noise =
+        lineloc::parseEurocImuNoise(imu, "fuzz.yaml");
+    if (noise &&
+        !(noise->gyroscope_noise_density > 0.0 && noise->gyroscope_random_walk > 0.0 &&
+          noise->accelerometer_noise_density > 0.0 && noise->accelerometer_random_walk > 0.0)) {
       __builtin_trap();
     }
   } catch (const std::runtime_error&) {

@@ -80,7 +80,8 @@ TEST_F(SensorStreamsTest, ReadsEveryStreamOfASimulatedDataset) {
 // only the second frame is left; everything else came at the start.
 TEST_F(SensorStreamsTest, StartsLaterLeavingOutTheRecordsBefore) {
   NmeaGpsDecoder gps(SiteProjection("EPSG:7415", Eigen::Vector3d(84900.0, 447600.0, 0.0)));
-  const SensorStreams streams = loadSensorStreams(root_.string(), &gps, 10'000'000);
+  const SensorStreams streams =
+      loadSensorStreams(root_.string(), &gps, {.start_offset_ns = 10'000'000});
   ASSERT_EQ(streams.frames.size(), 1u);
   EXPECT_EQ(streams.frames[0].stamp_ns, 1700000000050000000);
   EXPECT_TRUE(streams.imu.empty());
@@ -92,11 +93,41 @@ TEST_F(SensorStreamsTest, StartsLaterLeavingOutTheRecordsBefore) {
   EXPECT_EQ(streams.timeline[0].index, 0u);
 }
 
+// A camera whose clock runs 30 ms ahead of the other sensors': its frames
+// take their place on the timeline, and their stamps, 30 ms earlier.
+TEST_F(SensorStreamsTest, FramesAreStampedOnTheOtherSensorsClock) {
+  const SensorStreams streams =
+      loadSensorStreams(root_.string(), nullptr, {.camera_time_offset_ns = 30'000'000});
+  ASSERT_EQ(streams.frames.size(), 2u);
+  EXPECT_EQ(streams.frames[0].stamp_ns, 1699999999970000000);
+  EXPECT_EQ(streams.frames[1].stamp_ns, 1700000000020000000);
+  ASSERT_FALSE(streams.timeline.empty());
+  EXPECT_EQ(streams.timeline.front().kind, SensorKind::kFrame);
+  EXPECT_EQ(streams.timeline.front().stamp_ns, 1699999999970000000);
+}
+
+// The IMU's noise comes from its sensor.yaml, as lineloc-sim and EuRoC write it.
+TEST_F(SensorStreamsTest, ReadsTheImusNoiseFromItsSensorYaml) {
+  EXPECT_FALSE(loadSensorStreams(root_.string(), nullptr).imu_noise.has_value());
+  writeFile(root_ / "imu0" / "sensor.yaml",
+            "sensor_type: imu\nrate_hz: 200\ngyroscope_noise_density: 1.6968e-04\n"
+            "gyroscope_random_walk: 1.9393e-05\naccelerometer_noise_density: 2.0000e-03\n"
+            "accelerometer_random_walk: 3.0000e-03\n"
+            "T_BS:\n  cols: 4\n  rows: 4\n  data: [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]\n");
+  const std::optional<ImuNoiseDensities> noise =
+      loadSensorStreams(root_.string(), nullptr).imu_noise;
+  ASSERT_TRUE(noise.has_value());
+  EXPECT_EQ(noise->gyro_noise_radps_per_sqrt_hz, 1.6968e-04);
+  EXPECT_EQ(noise->accel_noise_mps2_per_sqrt_hz, 2.0e-03);
+  EXPECT_EQ(noise->gyro_bias_random_walk_radps2_per_sqrt_hz, 1.9393e-05);
+  EXPECT_EQ(noise->accel_bias_random_walk_mps3_per_sqrt_hz, 3.0e-03);
+}
+
 TEST_F(SensorStreamsTest, StartingLaterNeedsTimeStampedFrames) {
   const fs::path images = root_ / "plain";
   writeFile(images / "a.png", "");
   try {
-    loadSensorStreams(images.string(), nullptr, 1'000'000'000);
+    loadSensorStreams(images.string(), nullptr, {.start_offset_ns = 1'000'000'000});
     FAIL() << "started an untimed image folder later";
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("time-stamped"), std::string::npos) << error.what();

@@ -58,6 +58,64 @@ TEST(EurocSensor, NestingTooDeepIsAnErrorNamingTheFile) {
   }
 }
 
+std::optional<EurocImuNoise> parseNoise(const std::string& text) {
+  std::istringstream stream(text);
+  return parseEurocImuNoise(stream, "imu0/sensor.yaml");
+}
+
+// EuRoC's own imu0/sensor.yaml (an ADIS16448), comments and all.
+const std::string kEurocImu =
+    "sensor_type: imu\ncomment: VI-Sensor IMU (ADIS16448)\nrate_hz: 200\n"
+    "gyroscope_noise_density: 1.6968e-04     # [ rad / s / sqrt(Hz) ]   ( gyro \"white noise\" )\n"
+    "gyroscope_random_walk: 1.9393e-05       # [ rad / s^2 / sqrt(Hz) ] ( gyro bias diffusion )\n"
+    "accelerometer_noise_density: 2.0000e-3  # [ m / s^2 / sqrt(Hz) ]   ( accel \"white noise\" )\n"
+    "accelerometer_random_walk: 3.0000e-3    # [ m / s^3 / sqrt(Hz) ].  ( accel bias diffusion )\n";
+
+TEST(EurocSensor, ReadsAnImusNoiseDensities) {
+  const std::optional<EurocImuNoise> noise = parseNoise(kEurocImu);
+  ASSERT_TRUE(noise.has_value());
+  EXPECT_EQ(noise->gyroscope_noise_density, 1.6968e-04);
+  EXPECT_EQ(noise->gyroscope_random_walk, 1.9393e-05);
+  EXPECT_EQ(noise->accelerometer_noise_density, 2.0e-3);
+  EXPECT_EQ(noise->accelerometer_random_walk, 3.0e-3);
+  EXPECT_FALSE(parseNoise(sensorYaml("1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1")).has_value());
+  EXPECT_FALSE(parseNoise("just a scalar\n").has_value());
+}
+
+TEST(EurocSensor, RejectsAPartOrANonPositiveDensityNamingTheKey) {
+  const auto replaced = [](const std::string& from, const std::string& to) {
+    std::string text = kEurocImu;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  for (const auto& [text, key] :
+       {std::pair{replaced("gyroscope_random_walk", "gyro_random_walk"), "gyroscope_random_walk"},
+        std::pair{replaced("2.0000e-3", "-2.0e-3"), "accelerometer_noise_density"},
+        std::pair{replaced("1.6968e-04", "0"), "gyroscope_noise_density"},
+        std::pair{replaced("3.0000e-3", ".inf"), "accelerometer_random_walk"},
+        std::pair{replaced("1.9393e-05", "fast"), "imu0/sensor.yaml"}}) {
+    try {
+      parseNoise(text);
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const std::runtime_error& error) {
+      EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("imu0/sensor.yaml"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST(EurocSensor, ARigidTransformOfTheWrongSizeNamesItsSource) {
+  try {
+    rigidTransform({1, 0, 0, 0}, "T_body_camera");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("T_body_camera: a rigid transform is 16 numbers"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(EurocSensor, MissingFileIsAnError) {
   EXPECT_THROW(readEurocSensorPose("no-such-dir/sensor.yaml"), std::runtime_error);
 }

@@ -1,10 +1,13 @@
 #include "common/geometry/pose.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace lineloc {
 
@@ -115,6 +118,33 @@ bool isFinitePose(const PoseWithCovariance& pose, double tolerance) {
   }
   const Eigen::Matrix3d R = pose.pose.linear();
   return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < tolerance;
+}
+
+Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source) {
+  constexpr double kRigidTolerance = 1e-6;
+  if (entries.size() != 16) {
+    throw std::runtime_error(fmt::format(
+        "{}: a rigid transform is 16 numbers (4x4, row-major), not {}", source, entries.size()));
+  }
+  for (const double entry : entries) {
+    if (!std::isfinite(entry)) {
+      throw std::runtime_error(fmt::format("{}: holds a non-finite number", source));
+    }
+  }
+  const Eigen::Matrix4d T =
+      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(entries.data());
+  if (!T.row(3).isApprox(Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0), kRigidTolerance)) {
+    throw std::runtime_error(fmt::format("{}: the last row must be 0 0 0 1", source));
+  }
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  if (!(R.transpose() * R).isIdentity(kRigidTolerance) ||
+      std::abs(R.determinant() - 1.0) > kRigidTolerance) {
+    throw std::runtime_error(fmt::format("{}: the rotation is not a proper rotation", source));
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = R;
+  pose.translation() = T.topRightCorner<3, 1>();
+  return pose;
 }
 
 }  // namespace lineloc

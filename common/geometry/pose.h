@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 namespace lineloc {
@@ -74,5 +75,11 @@ double normalizedErrorSquared(const PoseWithCovariance& estimate, const Eigen::I
 // True when every entry of the pose and covariance is finite and the rotation is
 // orthonormal to within `tolerance`.
 bool isFinitePose(const PoseWithCovariance& pose, double tolerance = 1e-6);
+
+// The 4x4 row-major matrix `entries` (16 numbers) as a rigid transform.
+// Throws std::runtime_error naming `source` when there are not 16 finite
+// numbers, the last row is not 0 0 0 1, or the rotation is not orthonormal
+// with determinant +1 (within 1e-6).
+Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source);
 
 }  // namespace lineloc

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "robot/input/euroc_sensor.h"
+#include "common/geometry/pose.h"
 
 namespace lineloc {
 namespace {

@@ -10,11 +10,10 @@
 #include <stdexcept>
 
 #include "common/config/yaml_document.h"
+#include "common/geometry/pose.h"
 
 namespace lineloc {
 namespace {
-
-constexpr double kOrthonormalityTolerance = 1e-6;
 
 std::vector<double> poseEntries(const YAML::Node& root, const std::string& source) {
   const YAML::Node block = root["T_BS"];
@@ -56,32 +55,6 @@ std::ifstream openFile(const std::string& path) {
 }
 
 }  // namespace
-
-Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source) {
-  if (entries.size() != 16) {
-    throw std::runtime_error(fmt::format(
-        "{}: a rigid transform is 16 numbers (4x4, row-major), not {}", source, entries.size()));
-  }
-  for (const double entry : entries) {
-    if (!std::isfinite(entry)) {
-      throw std::runtime_error(fmt::format("{}: holds a non-finite number", source));
-    }
-  }
-  const Eigen::Matrix4d T =
-      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(entries.data());
-  if (!T.row(3).isApprox(Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0), kOrthonormalityTolerance)) {
-    throw std::runtime_error(fmt::format("{}: the last row must be 0 0 0 1", source));
-  }
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  if (!(R.transpose() * R).isIdentity(kOrthonormalityTolerance) ||
-      std::abs(R.determinant() - 1.0) > kOrthonormalityTolerance) {
-    throw std::runtime_error(fmt::format("{}: the rotation is not a proper rotation", source));
-  }
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = R;
-  pose.translation() = T.topRightCorner<3, 1>();
-  return pose;
-}
 
 Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source) {
   const std::vector<double> entries = readDocument<std::vector<double>>(

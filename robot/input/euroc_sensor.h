@@ -24,7 +24,7 @@ struct EurocImuNoise {
 
 // Parses T_BS (rows: 4, cols: 4, data: 16 numbers) from sensor.yaml text;
 // `source` names it in errors. Throws std::runtime_error when the block is
-// missing or malformed, or is not a rigid transform (rigidTransform).
+// missing or malformed, or is not a rigid transform (rigidTransform, pose.h).
 Eigen::Isometry3d parseEurocSensorPose(std::istream& yaml, const std::string& source);
 
 // The same for a file.
@@ -38,11 +38,5 @@ std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::s
 
 // The same for a file.
 std::optional<EurocImuNoise> readEurocImuNoise(const std::string& path);
-
-// The 4x4 row-major matrix `entries` (16 numbers) as a rigid transform.
-// Throws std::runtime_error naming `source` when there are not 16 finite
-// numbers, the last row is not 0 0 0 1, or the rotation is not orthonormal
-// with determinant +1 (within 1e-6).
-Eigen::Isometry3d rigidTransform(const std::vector<double>& entries, const std::string& source);
 
 }  // namespace lineloc

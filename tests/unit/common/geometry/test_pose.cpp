@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "common/geometry/pose.h"
 
@@ -134,6 +135,24 @@ TEST(CoveringCovariance, IsInfiniteForACovarianceThatIsNotPositiveDefinite) {
   Matrix6d singular = diagonalPoseCovariance(0.1, 0.01);
   singular(2, 2) = 0.0;
   EXPECT_FALSE(coveringCovariance(singular, Matrix6d::Identity()).allFinite());
+}
+
+TEST(RigidTransform, AMatrixOfTheWrongSizeNamesItsSource) {
+  try {
+    rigidTransform({1, 0, 0, 0}, "T_body_camera");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("T_body_camera: a rigid transform is 16 numbers"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(RigidTransform, ReadsARowMajorMatrix) {
+  const Eigen::Isometry3d T =
+      rigidTransform({0, -1, 0, 1.5, 1, 0, 0, -2, 0, 0, 1, 0.25, 0, 0, 0, 1}, "T");
+  EXPECT_TRUE(T.translation().isApprox(Eigen::Vector3d(1.5, -2.0, 0.25)));
+  EXPECT_TRUE((T.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY()));
 }
 
 }  // namespace

@@ -105,17 +105,6 @@ TEST(EurocSensor, RejectsAPartOrANonPositiveDensityNamingTheKey) {
   }
 }
 
-TEST(EurocSensor, ARigidTransformOfTheWrongSizeNamesItsSource) {
-  try {
-    rigidTransform({1, 0, 0, 0}, "T_body_camera");
-    FAIL() << "expected an error";
-  } catch (const std::runtime_error& error) {
-    EXPECT_NE(std::string(error.what()).find("T_body_camera: a rigid transform is 16 numbers"),
-              std::string::npos)
-        << error.what();
-  }
-}
-
 TEST(EurocSensor, MissingFileIsAnError) {
   EXPECT_THROW(readEurocSensorPose("no-such-dir/sensor.yaml"), std::runtime_error);
 }

@@ -37,7 +37,9 @@ struct CameraCalibration {
   std::vector<double> distortion;
 };
 
-// Reads any format cv::FileStorage reads (YAML, JSON, XML). Throws
+// Reads any format cv::FileStorage reads (YAML, JSON, XML: camera_matrix,
+// distortion_coefficients, image_width, image_height), a Kalibr camchain.yaml
+// (its cam0) or an EuRoC sensor.yaml (kalibr_camera.h). Throws
 // std::runtime_error naming the file and the missing or invalid key, or
 // saying it nests too deeply to be parsed safely.
 CameraCalibration readCameraCalibration(const std::string& path);

@@ -1,0 +1,130 @@
+#include "common/camera/kalibr_camera.h"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "common/config/yaml_document.h"
+#include "common/geometry/pose.h"
+
+namespace lineloc {
+namespace {
+
+std::vector<double> numbers(const YAML::Node& camera, const std::string& key, size_t count,
+                            const std::string& source) {
+  const YAML::Node node = camera[key];
+  if (!node || !node.IsSequence() || node.size() != count) {
+    throw std::runtime_error(fmt::format("{}: {} must hold {} numbers", source, key, count));
+  }
+  std::vector<double> values;
+  for (const YAML::Node& value : node) {
+    values.push_back(value.as<double>());
+    if (!std::isfinite(values.back())) {
+      throw std::runtime_error(fmt::format("{}: {} holds a non-finite number", source, key));
+    }
+  }
+  return values;
+}
+
+std::string text(const YAML::Node& camera, const std::string& key, const std::string& source) {
+  const YAML::Node node = camera[key];
+  if (!node || !node.IsScalar()) {
+    throw std::runtime_error(fmt::format("{}: {} is missing", source, key));
+  }
+  return node.as<std::string>();
+}
+
+// The 4x4 matrix Kalibr writes as a list of four rows.
+Eigen::Isometry3d cameraImuPose(const YAML::Node& rows, const std::string& source) {
+  if (!rows.IsSequence() || rows.size() != 4) {
+    throw std::runtime_error(
+        fmt::format("{}: T_cam_imu must be four rows of four numbers", source));
+  }
+  std::vector<double> entries;
+  for (const YAML::Node& row : rows) {
+    if (!row.IsSequence() || row.size() != 4) {
+      throw std::runtime_error(
+          fmt::format("{}: T_cam_imu must be four rows of four numbers", source));
+    }
+    for (const YAML::Node& value : row) {
+      entries.push_back(value.as<double>());
+    }
+  }
+  return rigidTransform(entries, source + ": T_cam_imu");
+}
+
+KalibrCamera readCamera(const YAML::Node& camera, bool camchain, const std::string& source) {
+  const std::string model =
+      camera["camera_model"] ? text(camera, "camera_model", source) : "pinhole";
+  if (model != "pinhole") {
+    throw std::runtime_error(
+        fmt::format("{}: camera_model '{}' is not supported (only pinhole)", source, model));
+  }
+  const std::string distortion_model = text(camera, "distortion_model", source);
+  if (distortion_model != "radtan" && distortion_model != "radial-tangential") {
+    throw std::runtime_error(
+        fmt::format("{}: distortion_model '{}' is not supported (only radtan, "
+                    "radial-tangential; an equidistant fisheye lens is not yet)",
+                    source, distortion_model));
+  }
+  KalibrCamera result;
+  const std::vector<double> intrinsics = numbers(camera, "intrinsics", 4, source);
+  const std::vector<double> resolution = numbers(camera, "resolution", 2, source);
+  PinholeCamera& pinhole = result.calibration.camera;
+  pinhole.fx = intrinsics[0];
+  pinhole.fy = intrinsics[1];
+  pinhole.cx = intrinsics[2];
+  pinhole.cy = intrinsics[3];
+  if (!(pinhole.fx > 0.0 && pinhole.fy > 0.0)) {
+    throw std::runtime_error(fmt::format("{}: intrinsics' focal lengths must be positive", source));
+  }
+  for (const double side : resolution) {
+    if (!(side >= 1.0 && side <= 1e5 && side == std::floor(side))) {
+      throw std::runtime_error(
+          fmt::format("{}: resolution must be two positive whole numbers of pixels", source));
+    }
+  }
+  pinhole.width = static_cast<int>(resolution[0]);
+  pinhole.height = static_cast<int>(resolution[1]);
+  result.calibration.distortion =
+      numbers(camera, camchain ? "distortion_coeffs" : "distortion_coefficients", 4, source);
+  if (camchain && camera["T_cam_imu"]) {
+    result.T_cam_imu = cameraImuPose(camera["T_cam_imu"], source);
+  }
+  if (camchain && camera["timeshift_cam_imu"]) {
+    result.timeshift_cam_imu_s = camera["timeshift_cam_imu"].as<double>();
+    if (!std::isfinite(result.timeshift_cam_imu_s)) {
+      throw std::runtime_error(fmt::format("{}: timeshift_cam_imu must be finite", source));
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::string& source) {
+  try {
+    const YAML::Node root = loadYamlDocument(yaml, source);
+    if (!root.IsMap()) {
+      return std::nullopt;
+    }
+    if (const YAML::Node cam0 = root["cam0"]) {
+      if (!cam0.IsMap()) {
+        throw std::runtime_error(
+            fmt::format("{}: cam0 must be a map of the camera's keys", source));
+      }
+      return readCamera(cam0, true, source + ": cam0");
+    }
+    if (root["intrinsics"]) {
+      return readCamera(root, false, source);
+    }
+    return std::nullopt;
+  } catch (const YAML::Exception& error) {
+    throw std::runtime_error(fmt::format("{}: {}", source, error.what()));
+  }
+}
+
+}  // namespace lineloc

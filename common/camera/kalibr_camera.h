@@ -1,0 +1,38 @@
+// Camera calibrations in the YAML of Kalibr (camchain.yaml, its cam0) and of
+// the EuRoC/ASL datasets (cam0/sensor.yaml), which share Kalibr's camera
+// keys: camera_model (pinhole), intrinsics [fu, fv, cu, cv], resolution
+// [width, height], distortion_model (radtan, or EuRoC's radial-tangential:
+// k1 k2 p1 p2, OpenCV's first four) and its coefficients (Kalibr's
+// distortion_coeffs, EuRoC's distortion_coefficients). A camchain's cam0
+// also holds the IMU's pose in the camera frame (T_cam_imu, 4x4) and the
+// camera clock's shift (timeshift_cam_imu, s: t_imu = t_cam + shift).
+// Furgale, Rehder & Siegwart, "Unified temporal and spatial calibration for
+// multi-sensor systems", IROS 2013.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <istream>
+#include <optional>
+#include <string>
+
+#include "common/camera/camera_calibration.h"
+
+namespace lineloc {
+
+struct KalibrCamera {
+  CameraCalibration calibration;
+  // A camchain's; none from a sensor.yaml.
+  std::optional<Eigen::Isometry3d> T_cam_imu;
+  double timeshift_cam_imu_s = 0.0;
+};
+
+// The camera of YAML text in either format; nullopt when the text is YAML
+// in neither (no cam0 block, no intrinsics key), so another format may hold
+// it. Throws std::runtime_error naming `source` and the key when the camera
+// is incomplete or invalid: not a pinhole, a distortion model other than
+// radial-tangential (an equidistant fisheye lens is not supported), a
+// non-positive focal length or size, coefficients other than four, a
+// T_cam_imu that is not a rigid transform.
+std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::string& source);
+
+}  // namespace lineloc

@@ -78,15 +78,16 @@ int main(int argc, char** argv) {
       "accel_range_mps2", sensors.accel_range_mps2,
       "IMU accelerometer range (m/s^2): forces beyond it are saturated (0: an ADIS16448's)");
   options.add("T_body_camera", sensors.T_body_camera,
-              "camera pose in the body frame, 16 numbers row-major (empty: the dataset's "
-              "cam0/sensor.yaml T_BS, else looking forward)");
+              "camera pose in the body frame, 16 numbers row-major (empty: a Kalibr camchain's "
+              "T_cam_imu, else the dataset's cam0/sensor.yaml T_BS, else looking forward)");
   options.add("T_body_imu", sensors.T_body_imu,
               "IMU pose in the body frame, 16 numbers row-major (empty: the dataset's "
               "imu0/sensor.yaml T_BS, else the body frame)");
   options.addFixedSize("p_body_gps_antenna", sensors.p_body_gps_antenna, 3,
                        "GNSS antenna phase centre in the body frame, x y z (m)");
   options.add("camera_time_offset_s", sensors.camera_time_offset_s,
-              "camera clock minus the IMU's, GNSS's and compass's (s)");
+              "camera clock minus the IMU's, GNSS's and compass's (s), added to a Kalibr "
+              "camchain's");
   options.add("playback_speed", config.playback_speed,
               "replay speed of a timed dataset (1: real time, 0: as fast as possible)");
   options.add("rate_hz", config.rate_hz,

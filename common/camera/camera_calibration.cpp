@@ -74,38 +74,12 @@ int readPositiveInt(const cv::FileStorage& storage, const std::string& key,
   return static_cast<int>(node);
 }
 
-// OpenCV writes its YAML under a "%YAML:1.0" header, which is not YAML to
-// other parsers, and its XML under "<?xml": such a file is OpenCV's.
-bool opencvHeader(const std::string& path) {
-  std::ifstream file(path);
-  std::string first;
-  file >> first;
-  return first.starts_with("%YAML:") || first.starts_with("<");
-}
-
-// The camera of a Kalibr camchain or an EuRoC sensor.yaml (kalibr_camera.h);
-// nullopt for a file in neither.
-std::optional<CameraCalibration> readKalibrCalibration(const std::string& path) {
-  if (opencvHeader(path)) {
-    return std::nullopt;
-  }
-  std::ifstream file(path);
-  if (!file) {
-    return std::nullopt;
-  }
-  const std::optional<KalibrCamera> camera = parseKalibrCamera(file, path);
-  if (!camera) {
-    return std::nullopt;
-  }
-  return camera->calibration;
-}
-
 }  // namespace
 
 CameraCalibration readCameraCalibration(const std::string& path) {
   checkOpeningsBound(path);
-  if (const std::optional<CameraCalibration> kalibr = readKalibrCalibration(path)) {
-    return *kalibr;
+  if (const std::optional<KalibrCamera> kalibr = readKalibrCamera(path)) {
+    return kalibr->calibration;
   }
   cv::FileStorage storage;
   try {

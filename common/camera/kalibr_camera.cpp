@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 #include <vector>
 
@@ -125,6 +126,17 @@ std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::str
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: {}", source, error.what()));
   }
+}
+
+std::optional<KalibrCamera> readKalibrCamera(const std::string& path) {
+  std::ifstream file(path);
+  std::string first;
+  file >> first;
+  if (!file || first.starts_with("%YAML:") || first.starts_with("<")) {
+    return std::nullopt;
+  }
+  file.seekg(0);
+  return parseKalibrCamera(file, path);
 }
 
 }  // namespace lineloc

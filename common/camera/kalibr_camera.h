@@ -35,4 +35,9 @@ struct KalibrCamera {
 // T_cam_imu that is not a rigid transform.
 std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::string& source);
 
+// The camera of the file at `path` when it is in either format; nullopt for
+// a file that is not (OpenCV's YAML, whose %YAML:1.0 header is not YAML to
+// other parsers, or its XML), or that cannot be opened.
+std::optional<KalibrCamera> readKalibrCamera(const std::string& path);
+
 }  // namespace lineloc

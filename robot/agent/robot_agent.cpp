@@ -212,10 +212,11 @@ std::unique_ptr<NmeaGpsDecoder> gpsDecoder(const RobotConfig& config) {
 }
 
 InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGpsDecoder* gps,
-                                        const SensorStreams& streams) {
+                                        const SensorStreams& streams,
+                                        const std::optional<KalibrCamera>& camchain) {
   InertialNavigatorConfig navigator;
   navigator.magnetic_declination_rad = config.magnetic_declination_deg * M_PI / 180.0;
-  applySensorSetup(config.sensors, streams, navigator);
+  applySensorSetup(config.sensors, streams, camchain, navigator);
   if (gps != nullptr && !streams.gps.empty()) {
     const GeodeticPosition where =
         gps->projection().toGeodetic(streams.gps.front().p_world_antenna);
@@ -303,6 +304,7 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
         fmt::format("start_at_s must be >= 0 seconds, got {}", config.start_at_s));
   }
   const CameraCalibration calibration = readCameraCalibration(config.camera_calibration);
+  const std::optional<KalibrCamera> camchain = readKalibrCamera(config.camera_calibration);
   const PoseWithCovariance configured =
       poseOption(config.predicted_pose, config.predicted_position_sigma_m,
                  config.predicted_rotation_sigma_deg, "predicted_pose");
@@ -312,16 +314,16 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           : std::optional(poseOption(config.start_pose, config.start_position_sigma_m,
                                      config.start_rotation_sigma_deg, "start_pose"));
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
-  SensorStreams streams = loadSensorStreams(
-      config.images, gps.get(),
-      {static_cast<int64_t>(config.start_at_s * 1e9), cameraTimeOffsetNs(config.sensors)});
+  SensorStreams streams = loadSensorStreams(config.images, gps.get(),
+                                            {static_cast<int64_t>(config.start_at_s * 1e9),
+                                             cameraTimeOffsetNs(config.sensors, camchain)});
   requireNavigationSensors(config.images, streams, gps != nullptr, start_pose.has_value());
   for (const std::string& reason : streams.drop_reasons) {
     spdlog::warn("input dropped: {}", reason);
   }
   std::optional<InertialNavigator> navigator;
   if (!streams.imu.empty()) {
-    navigator.emplace(navigatorConfig(config, gps.get(), streams));
+    navigator.emplace(navigatorConfig(config, gps.get(), streams, camchain));
     if (start_pose) {
       navigator->setStartPose(*start_pose);
     }

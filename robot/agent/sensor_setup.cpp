@@ -65,6 +65,7 @@ std::optional<Eigen::Isometry3d> configuredPose(const char* name,
 }  // namespace
 
 void applySensorSetup(const SensorSetup& setup, const SensorStreams& streams,
+                      const std::optional<KalibrCamera>& camchain,
                       InertialNavigatorConfig& navigator) {
   if (const std::optional<ImuNoiseDensities> noise = configuredImuNoise(setup)) {
     navigator.imu_noise = *noise;
@@ -73,12 +74,18 @@ void applySensorSetup(const SensorSetup& setup, const SensorStreams& streams,
   }
   applyRange("gyro_range_radps", setup.gyro_range_radps, navigator.gyro_range_radps);
   applyRange("accel_range_mps2", setup.accel_range_mps2, navigator.accel_range_mps2);
-  if (const auto camera =
-          configuredPose("T_body_camera", setup.T_body_camera, streams.T_body_camera)) {
-    navigator.T_body_camera = *camera;
+  const std::optional<Eigen::Isometry3d> T_body_imu =
+      configuredPose("T_body_imu", setup.T_body_imu, streams.T_body_imu);
+  if (T_body_imu) {
+    navigator.R_body_imu = T_body_imu->linear();
   }
-  if (const auto imu = configuredPose("T_body_imu", setup.T_body_imu, streams.T_body_imu)) {
-    navigator.R_body_imu = imu->linear();
+  std::optional<Eigen::Isometry3d> T_body_camera = streams.T_body_camera;
+  if (camchain && camchain->T_cam_imu) {
+    T_body_camera =
+        T_body_imu.value_or(Eigen::Isometry3d::Identity()) * camchain->T_cam_imu->inverse();
+  }
+  if (const auto camera = configuredPose("T_body_camera", setup.T_body_camera, T_body_camera)) {
+    navigator.T_body_camera = *camera;
   }
   if (setup.p_body_gps_antenna.size() != 3 ||
       !Eigen::Map<const Eigen::Vector3d>(setup.p_body_gps_antenna.data()).allFinite()) {
@@ -87,11 +94,12 @@ void applySensorSetup(const SensorSetup& setup, const SensorStreams& streams,
   navigator.p_body_gps_antenna = Eigen::Map<const Eigen::Vector3d>(setup.p_body_gps_antenna.data());
 }
 
-int64_t cameraTimeOffsetNs(const SensorSetup& setup) {
-  if (!std::isfinite(setup.camera_time_offset_s)) {
+int64_t cameraTimeOffsetNs(const SensorSetup& setup, const std::optional<KalibrCamera>& camchain) {
+  if (!(std::isfinite(setup.camera_time_offset_s) && std::abs(setup.camera_time_offset_s) < 1e6)) {
     throw std::invalid_argument("camera_time_offset_s must be a finite number of seconds");
   }
-  return std::llround(setup.camera_time_offset_s * 1e9);
+  const double shift_s = camchain ? camchain->timeshift_cam_imu_s : 0.0;
+  return std::llround((setup.camera_time_offset_s - shift_s) * 1e9);
 }
 
 }  // namespace lineloc

@@ -1,14 +1,19 @@
 // The robot's sensors as mounted and specified: the IMU's noise and range,
 // the camera's and the IMU's poses on the body, the GNSS antenna's place on
 // it, and the camera clock's offset from the other sensors'. Each comes from
-// the robot's config when given there, else from the dataset's sensor.yaml
-// files (EuRoC/Kalibr keys, euroc_sensor.h), else the navigator's defaults
-// (an ADIS16448 IMU, a camera looking forward, inertial_navigator_config.h).
+// the robot's config when given there, else from a Kalibr camchain given as
+// the camera's calibration (kalibr_camera.h: T_body_camera = T_body_imu
+// T_cam_imu^-1), else from the dataset's sensor.yaml files (EuRoC/Kalibr
+// keys, euroc_sensor.h), else the navigator's defaults (an ADIS16448 IMU, a
+// camera looking forward, inertial_navigator_config.h). The camera clock's
+// offset is the config's plus the camchain's, -timeshift_cam_imu.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "common/camera/kalibr_camera.h"
 #include "robot/agent/sensor_streams.h"
 #include "robot/inertial/inertial_navigator_config.h"
 
@@ -32,8 +37,8 @@ struct SensorSetup {
   // The GNSS antenna's phase centre in the body frame (m).
   std::vector<double> p_body_gps_antenna = {0.0, 0.0, 0.0};
   // The camera clock minus the clock of the IMU, GNSS and compass (s): a
-  // frame stamped t was exposed at t - camera_time_offset_s on theirs (the
-  // negative of Kalibr's timeshift_cam_imu).
+  // frame stamped t was exposed at t - offset on theirs; added to a
+  // camchain's (the negative of Kalibr's timeshift_cam_imu).
   double camera_time_offset_s = 0.0;
 };
 
@@ -43,9 +48,11 @@ struct SensorSetup {
 // in part or not positive, a range is negative, or a pose is not a rigid
 // transform.
 void applySensorSetup(const SensorSetup& setup, const SensorStreams& streams,
+                      const std::optional<KalibrCamera>& camchain,
                       InertialNavigatorConfig& navigator);
 
-// camera_time_offset_s in nanoseconds, for loadSensorStreams.
-int64_t cameraTimeOffsetNs(const SensorSetup& setup);
+// The camera clock's offset in nanoseconds, for loadSensorStreams:
+// camera_time_offset_s - the camchain's timeshift_cam_imu.
+int64_t cameraTimeOffsetNs(const SensorSetup& setup, const std::optional<KalibrCamera>& camchain);
 
 }  // namespace lineloc

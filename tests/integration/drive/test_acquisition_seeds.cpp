@@ -24,10 +24,11 @@
 // roof lines, lane lines, kerbs: sim/world/street_furniture.h), where the
 // searches must fix as many drives, wrongly none; and on furnished streets
 // a start 40 m off with the stated 1 m / 3 degrees, whose region does not
-// hold the truth: no answer may be OK. And with a 5 megapixel camera: the
-// 1 m / 3 degree starts on plain streets must be decided as the default
-// camera's, those on furnished streets fixed as often, wrongly none, and the
-// starts 40 m off on furnished streets answered OK never.
+// hold the truth: no answer may be OK. And with a 5 megapixel camera, of the
+// default camera's field of view and of 90 degrees: the 1 m / 3 degree
+// starts on plain streets must be decided as the default camera's, those on
+// furnished streets fixed as often, wrongly none, and the starts 40 m off on
+// furnished streets answered OK never.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -227,13 +228,23 @@ class AcquisitionSeeds : public ::testing::Test {
     camera = {s * camera.fx, s * camera.fy, s * camera.cx, s * camera.cy, 0.0, 2464, 2056};
     camera.cy = 0.5 * camera.height;
     writeCameraCalibration(fiveMegapixelCalibration(), five_megapixel);
+    // And a wide one: 90 degrees across, an undistorted lens.
+    CameraCalibration wide;
+    wide.camera = {1232.0, 1232.0, 1232.0, 1028.0, 0.0, 2464, 2056};
+    writeCameraCalibration(wideFiveMegapixelCalibration(), wide);
   }
   static std::string fiveMegapixelCalibration() { return (work_ / "five_megapixel.yaml").string(); }
+  static std::string wideFiveMegapixelCalibration() {
+    return (work_ / "wide_five_megapixel.yaml").string();
+  }
   static Streets plainAtFiveMegapixels() {
     return {"plain-5mp", false, fiveMegapixelCalibration()};
   }
   static Streets furnishedAtFiveMegapixels() {
     return {"furnished-5mp", true, fiveMegapixelCalibration()};
+  }
+  static Streets furnishedWideAtFiveMegapixels() {
+    return {"furnished-wide-5mp", true, wideFiveMegapixelCalibration()};
   }
 
   static fs::path work_;
@@ -264,6 +275,7 @@ TEST_F(AcquisitionSeeds, AStartWhoseRegionMissesTheTruthIsNeverAnsweredOk) {
   const StartError forty_metres_off{1.0, 3.0 * M_PI / 180.0, 40.0};
   EXPECT_EQ(runStarts(71, 90, forty_metres_off, kFurnished).fixed, 0);
   EXPECT_EQ(runStarts(71, 80, forty_metres_off, furnishedAtFiveMegapixels()).fixed, 0);
+  EXPECT_EQ(runStarts(71, 80, forty_metres_off, furnishedWideAtFiveMegapixels()).fixed, 0);
 }
 
 // The same starts seen by a 5 megapixel camera: the searches, which measure
@@ -284,6 +296,9 @@ TEST_F(AcquisitionSeeds, AFiveMegapixelCameraIsDecidedAsTheDefaultOne) {
   }
   EXPECT_GE(alike, 8);
   EXPECT_GE(furnished.fixed, sharp.fixed - 2);
+  const Outcome wide = runStarts(91, 100, metre, furnishedWideAtFiveMegapixels());
+  EXPECT_EQ(wide.wrong, 0);
+  EXPECT_GE(wide.fixed, default_camera.fixed - 2);
 }
 
 }  // namespace

@@ -1,15 +1,21 @@
 #include "common/camera/camera_calibration.h"
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "common/camera/kalibr_camera.h"
+#include "common/config/yaml_document.h"
 
 namespace lineloc {
 
@@ -51,27 +57,101 @@ void checkOpeningsBound(const std::string& path) {
   }
 }
 
-cv::Mat readMatrix(const cv::FileStorage& storage, const std::string& key,
-                   const std::string& path) {
-  cv::Mat matrix;
-  storage[key] >> matrix;
-  if (matrix.empty()) {
-    throw std::runtime_error(fmt::format("{}: missing or empty '{}'", path, key));
+// Calibration files are a few hundred bytes; a much larger one is not one.
+constexpr std::streamoff kMaxCalibrationBytes = 1 << 20;
+
+// The text of OpenCV's YAML (after its "%YAML:1.0" header, which is not
+// YAML to other parsers) or JSON, parsed as YAML. OpenCV's own parsers crash
+// on some damaged files (a truncated XML prolog), so they never read one.
+YAML::Node opencvDocument(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    throw std::runtime_error(fmt::format("cannot open camera calibration '{}'", path));
   }
-  matrix.convertTo(matrix, CV_64F);
-  if (!cv::checkRange(matrix)) {
-    throw std::runtime_error(fmt::format("{}: '{}' has non-finite entries", path, key));
+  std::string text(std::istreambuf_iterator<char>(file), {});
+  if (static_cast<std::streamoff>(text.size()) > kMaxCalibrationBytes) {
+    throw std::runtime_error(
+        fmt::format("{}: over {} bytes, not a camera calibration", path, kMaxCalibrationBytes));
   }
-  return matrix;
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '<') {
+    throw std::runtime_error(fmt::format(
+        "{}: an XML calibration is not read; write it as YAML or JSON (opencv_storage's keys)",
+        path));
+  }
+  if (text.compare(first == std::string::npos ? 0 : first, 6, "%YAML:") == 0) {
+    text.erase(0, text.find('\n', first));
+  }
+  std::istringstream stream(text);
+  return loadYamlDocument(stream, path);
 }
 
-int readPositiveInt(const cv::FileStorage& storage, const std::string& key,
-                    const std::string& path) {
-  const cv::FileNode node = storage[key];
-  if (node.empty() || !node.isInt() || static_cast<int>(node) <= 0) {
+// An OpenCV matrix {rows, cols, dt, data: [rows x cols numbers]}, row-major.
+std::vector<double> readMatrix(const YAML::Node& root, const std::string& key, int rows, int cols,
+                               const std::string& path) {
+  const YAML::Node matrix = root[key];
+  if (!matrix || !matrix.IsMap()) {
+    throw std::runtime_error(fmt::format("{}: missing or empty '{}'", path, key));
+  }
+  const YAML::Node data = matrix["data"];
+  if (!matrix["rows"] || !matrix["cols"] || !data || !data.IsSequence() ||
+      matrix["rows"].as<int>() != rows || matrix["cols"].as<int>() != cols ||
+      data.size() != static_cast<size_t>(rows) * static_cast<size_t>(cols)) {
+    throw std::runtime_error(
+        fmt::format("{}: '{}' must be a {} x {} matrix (rows, cols, data)", path, key, rows, cols));
+  }
+  std::vector<double> values;
+  for (const YAML::Node& value : data) {
+    values.push_back(value.as<double>());
+    if (!std::isfinite(values.back())) {
+      throw std::runtime_error(fmt::format("{}: '{}' has non-finite entries", path, key));
+    }
+  }
+  return values;
+}
+
+// A coefficient vector written as one row or one column of `count` numbers.
+std::vector<double> readCoefficients(const YAML::Node& root, const std::string& key,
+                                     const std::string& path) {
+  const YAML::Node matrix = root[key];
+  if (!matrix || !matrix.IsMap() || !matrix["rows"] || !matrix["cols"]) {
+    throw std::runtime_error(fmt::format("{}: missing or empty '{}'", path, key));
+  }
+  const int rows = matrix["rows"].as<int>();
+  const int cols = matrix["cols"].as<int>();
+  if (!((rows == 1 && cols >= 4 && cols <= 8) || (cols == 1 && rows >= 4 && rows <= 8))) {
+    throw std::runtime_error(fmt::format("{}: {} must have 4 to 8 entries", path, key));
+  }
+  return readMatrix(root, key, rows, cols, path);
+}
+
+int readPositiveInt(const YAML::Node& root, const std::string& key, const std::string& path) {
+  const YAML::Node node = root[key];
+  if (!node || !node.IsScalar() || node.as<int>() <= 0) {
     throw std::runtime_error(fmt::format("{}: '{}' must be a positive integer", path, key));
   }
-  return static_cast<int>(node);
+  return node.as<int>();
+}
+
+CameraCalibration readOpenCvCalibration(const YAML::Node& root, const std::string& path) {
+  if (!root.IsMap()) {
+    throw std::runtime_error(fmt::format("{}: not a map of calibration keys", path));
+  }
+  const std::vector<double> K = readMatrix(root, "camera_matrix", 3, 3, path);
+  CameraCalibration calibration;
+  PinholeCamera& camera = calibration.camera;
+  camera.fx = K[0];
+  camera.skew = K[1];
+  camera.cx = K[2];
+  camera.fy = K[4];
+  camera.cy = K[5];
+  if (camera.fx <= 0.0 || camera.fy <= 0.0) {
+    throw std::runtime_error(fmt::format("{}: focal lengths must be positive", path));
+  }
+  camera.width = readPositiveInt(root, "image_width", path);
+  camera.height = readPositiveInt(root, "image_height", path);
+  calibration.distortion = readCoefficients(root, "distortion_coefficients", path);
+  return calibration;
 }
 
 }  // namespace
@@ -81,39 +161,11 @@ CameraCalibration readCameraCalibration(const std::string& path) {
   if (const std::optional<KalibrCamera> kalibr = readKalibrCamera(path)) {
     return kalibr->calibration;
   }
-  cv::FileStorage storage;
   try {
-    storage.open(path, cv::FileStorage::READ);
-  } catch (const cv::Exception& error) {
-    throw std::runtime_error(
-        fmt::format("{}: not a readable OpenCV YAML file: {}", path, error.what()));
+    return readOpenCvCalibration(opencvDocument(path), path);
+  } catch (const YAML::Exception& error) {
+    throw std::runtime_error(fmt::format("{}: {}", path, error.what()));
   }
-  if (!storage.isOpened()) {
-    throw std::runtime_error(fmt::format("cannot open camera calibration '{}'", path));
-  }
-  const cv::Mat K = readMatrix(storage, "camera_matrix", path);
-  if (K.rows != 3 || K.cols != 3) {
-    throw std::runtime_error(fmt::format("{}: camera_matrix must be 3x3", path));
-  }
-  CameraCalibration calibration;
-  PinholeCamera& camera = calibration.camera;
-  camera.fx = K.at<double>(0, 0);
-  camera.skew = K.at<double>(0, 1);
-  camera.cx = K.at<double>(0, 2);
-  camera.fy = K.at<double>(1, 1);
-  camera.cy = K.at<double>(1, 2);
-  if (camera.fx <= 0.0 || camera.fy <= 0.0) {
-    throw std::runtime_error(fmt::format("{}: focal lengths must be positive", path));
-  }
-  camera.width = readPositiveInt(storage, "image_width", path);
-  camera.height = readPositiveInt(storage, "image_height", path);
-  const cv::Mat distortion = readMatrix(storage, "distortion_coefficients", path);
-  if (distortion.total() < 4 || distortion.total() > 8) {
-    throw std::runtime_error(
-        fmt::format("{}: distortion_coefficients must have 4 to 8 entries", path));
-  }
-  calibration.distortion.assign(distortion.begin<double>(), distortion.end<double>());
-  return calibration;
 }
 
 void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& calibration) {
@@ -130,6 +182,10 @@ void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& c
 }
 
 cv::FileStorage openCalibrationFileForWriting(const std::string& path) {
+  if (std::filesystem::path(path).extension() == ".xml") {
+    throw std::runtime_error(fmt::format(
+        "cannot write '{}': calibrations are written as YAML or JSON, which are read back", path));
+  }
   cv::FileStorage storage;
   try {
     storage.open(path, cv::FileStorage::WRITE);

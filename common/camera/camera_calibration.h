@@ -37,15 +37,17 @@ struct CameraCalibration {
   std::vector<double> distortion;
 };
 
-// Reads any format cv::FileStorage reads (YAML, JSON, XML: camera_matrix,
-// distortion_coefficients, image_width, image_height), a Kalibr camchain.yaml
-// (its cam0) or an EuRoC sensor.yaml (kalibr_camera.h). Throws
-// std::runtime_error naming the file and the missing or invalid key, or
-// saying it nests too deeply to be parsed safely.
+// Reads OpenCV's YAML or JSON (camera_matrix, distortion_coefficients,
+// image_width, image_height, as writeCameraCalibration writes them), a
+// Kalibr camchain.yaml (its cam0) or an EuRoC sensor.yaml (kalibr_camera.h),
+// all with yaml-cpp; OpenCV's XML is refused, as its parser crashes on some
+// damaged files. Throws std::runtime_error naming the file and the missing
+// or invalid key, or saying it nests too deeply to be parsed safely.
 CameraCalibration readCameraCalibration(const std::string& path);
 
-// Opens an OpenCV YAML file for writing; throws std::runtime_error naming it
-// when it cannot be created.
+// Opens an OpenCV YAML (or, for a .json path, JSON) file for writing; throws
+// std::runtime_error naming it when it cannot be created, or is an .xml
+// path (XML is not read back).
 cv::FileStorage openCalibrationFileForWriting(const std::string& path);
 
 // Writes image_width, image_height, camera_matrix and distortion_coefficients

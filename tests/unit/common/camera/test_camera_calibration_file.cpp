@@ -70,17 +70,53 @@ TEST(CameraCalibrationFile, UnwritablePathIsNamed) {
   }
 }
 
-TEST(CameraCalibrationFile, EveryFormatOpenCvWritesIsRead) {
-  for (const std::string name : {"camera.yml", "camera.json", "camera.xml"}) {
+TEST(CameraCalibrationFile, OpenCvsYamlAndJsonAreReadItsXmlRefusedNamed) {
+  for (const std::string name : {"camera.yml", "camera.json"}) {
     const std::filesystem::path path = temporaryFile(name);
     writeCameraCalibration(path.string(), exampleCalibration());
-    EXPECT_EQ(readCameraCalibration(path.string()).distortion, exampleCalibration().distortion)
-        << name;
+    const CameraCalibration read = readCameraCalibration(path.string());
+    EXPECT_EQ(read.distortion, exampleCalibration().distortion) << name;
+    EXPECT_EQ(read.camera, exampleCalibration().camera) << name;
     std::filesystem::remove(path);
   }
+  const std::filesystem::path xml = temporaryFile("camera.xml");
+  EXPECT_THROW(writeCameraCalibration(xml.string(), exampleCalibration()), std::runtime_error);
+  std::ofstream(xml)
+      << "<?xml version=\"1.0\"?>\n<opencv_storage>\n<image_width>640</image_width>\n"
+         "</opencv_storage>\n";
+  try {
+    readCameraCalibration(xml.string());
+    ADD_FAILURE() << "read an XML calibration";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find(xml.string() + ": an XML calibration is not read"),
+              std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove(xml);
 }
 
-TEST(CameraCalibrationFile, DepthBombsAreRefusedBeforeOpenCvParsesThem) {
+// Damaged files, among them a truncated XML prolog that crashes OpenCV's own
+// parser, are errors naming the file.
+TEST(CameraCalibrationFile, DamagedFilesAreErrorsNamingTheFile) {
+  const std::filesystem::path path = temporaryFile("damaged.yml");
+  for (const std::string text :
+       {"<?xml version=", "%YAML:1.0\n---\ncamera_matrix: !!opencv-matrix\n   rows: 3\n",
+        "{\"image_width\": 640, \"camera_matrix\": {\"rows\": 3, \"cols\": 3,",
+        "%YAML:1.0\n---\nimage_width: 640.5\n", "%YAML:1.0", "",
+        "%YAML:1.0\ncamera_matrix: {rows: 3, cols: 3, data: [1, 0, 0, 0, 1, 0, 0, 0]}\n",
+        "%YAML:1.0\ncamera_matrix: {rows: 3, cols: 3, data: [1, 0, .nan, 0, 1, 0, 0, 0, 1]}\n"}) {
+    std::ofstream(path, std::ios::trunc) << text;
+    try {
+      readCameraCalibration(path.string());
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const std::runtime_error& error) {
+      EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
+    }
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(CameraCalibrationFile, DepthBombsAreRefusedBeforeTheyAreParsed) {
   const int depth = 70000;
   std::string xml = "<?xml version=\"1.0\"?>\n<opencv_storage>";
   for (int level = 0; level < depth; ++level) {

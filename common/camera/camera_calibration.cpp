@@ -5,17 +5,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "common/camera/kalibr_camera.h"
-#include "common/config/yaml_document.h"
 
 namespace lineloc {
 
@@ -32,59 +28,6 @@ Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& p_camera) const {
 }
 
 namespace {
-
-// OpenCV's YAML, JSON and XML parsers recurse once per level of nesting with
-// no limit of their own, so a file nested tens of thousands of levels deep
-// overflows the stack. Nesting is at most the number of opening brackets and
-// tags, whatever the format; a calibration file has a few dozen.
-constexpr size_t kMaxCalibrationOpenings = 4096;
-
-// Throws std::runtime_error naming `path` when it holds more openings ('[',
-// '{', or '<' not followed by '/') than kMaxCalibrationOpenings.
-void checkOpeningsBound(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  size_t openings = 0;
-  bool after_angle = false;
-  for (char c; file.get(c);) {
-    openings += (c == '[' || c == '{' || (after_angle && c != '/')) ? 1 : 0;
-    after_angle = c == '<';
-    if (openings > kMaxCalibrationOpenings) {
-      throw std::runtime_error(fmt::format(
-          "{}: nested too deeply for a camera calibration (more than {} opening brackets and "
-          "tags)",
-          path, kMaxCalibrationOpenings));
-    }
-  }
-}
-
-// Calibration files are a few hundred bytes; a much larger one is not one.
-constexpr std::streamoff kMaxCalibrationBytes = 1 << 20;
-
-// The text of OpenCV's YAML (after its "%YAML:1.0" header, which is not
-// YAML to other parsers) or JSON, parsed as YAML. OpenCV's own parsers crash
-// on some damaged files (a truncated XML prolog), so they never read one.
-YAML::Node opencvDocument(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    throw std::runtime_error(fmt::format("cannot open camera calibration '{}'", path));
-  }
-  std::string text(std::istreambuf_iterator<char>(file), {});
-  if (static_cast<std::streamoff>(text.size()) > kMaxCalibrationBytes) {
-    throw std::runtime_error(
-        fmt::format("{}: over {} bytes, not a camera calibration", path, kMaxCalibrationBytes));
-  }
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && text[first] == '<') {
-    throw std::runtime_error(fmt::format(
-        "{}: an XML calibration is not read; write it as YAML or JSON (opencv_storage's keys)",
-        path));
-  }
-  if (text.compare(first == std::string::npos ? 0 : first, 6, "%YAML:") == 0) {
-    text.erase(0, text.find('\n', first));
-  }
-  std::istringstream stream(text);
-  return loadYamlDocument(stream, path);
-}
 
 // An OpenCV matrix {rows, cols, dt, data: [rows x cols numbers]}, row-major.
 std::vector<double> readMatrix(const YAML::Node& root, const std::string& key, int rows, int cols,
@@ -157,12 +100,12 @@ CameraCalibration readOpenCvCalibration(const YAML::Node& root, const std::strin
 }  // namespace
 
 CameraCalibration readCameraCalibration(const std::string& path) {
-  checkOpeningsBound(path);
-  if (const std::optional<KalibrCamera> kalibr = readKalibrCamera(path)) {
+  const YAML::Node root = calibrationDocument(path);
+  if (const std::optional<KalibrCamera> kalibr = kalibrCamera(root, path)) {
     return kalibr->calibration;
   }
   try {
-    return readOpenCvCalibration(opencvDocument(path), path);
+    return readOpenCvCalibration(root, path);
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(fmt::format("{}: {}", path, error.what()));
   }

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -36,6 +38,21 @@ std::string text(const YAML::Node& camera, const std::string& key, const std::st
     throw std::runtime_error(fmt::format("{}: {} is missing", source, key));
   }
   return node.as<std::string>();
+}
+
+// Calibration files are a few hundred bytes; a much larger one is not one.
+constexpr std::streamoff kMaxCalibrationBytes = 1 << 20;
+
+// Kalibr's and EuRoC's four radial-tangential coefficients, or up to OpenCV's
+// eight in its order (k1 k2 p1 p2 [k3 [k4 k5 k6]]).
+std::vector<double> distortionCoefficients(const YAML::Node& camera, const std::string& key,
+                                           const std::string& source) {
+  const YAML::Node node = camera[key];
+  if (!node || !node.IsSequence() || node.size() < 4 || node.size() > 8) {
+    throw std::runtime_error(
+        fmt::format("{}: {} must hold 4 to 8 numbers (k1 k2 p1 p2 [k3 [k4 k5 k6]])", source, key));
+  }
+  return numbers(camera, key, node.size(), source);
 }
 
 // The 4x4 matrix Kalibr writes as a list of four rows.
@@ -90,8 +107,8 @@ KalibrCamera readCamera(const YAML::Node& camera, bool camchain, const std::stri
   }
   pinhole.width = static_cast<int>(resolution[0]);
   pinhole.height = static_cast<int>(resolution[1]);
-  result.calibration.distortion =
-      numbers(camera, camchain ? "distortion_coeffs" : "distortion_coefficients", 4, source);
+  result.calibration.distortion = distortionCoefficients(
+      camera, camchain ? "distortion_coeffs" : "distortion_coefficients", source);
   if (camchain && camera["T_cam_imu"]) {
     result.T_cam_imu = cameraImuPose(camera["T_cam_imu"], source);
   }
@@ -106,9 +123,31 @@ KalibrCamera readCamera(const YAML::Node& camera, bool camchain, const std::stri
 
 }  // namespace
 
-std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::string& source) {
+YAML::Node calibrationDocument(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    throw std::runtime_error(fmt::format("cannot open camera calibration '{}'", path));
+  }
+  std::string text(std::istreambuf_iterator<char>(file), {});
+  if (static_cast<std::streamoff>(text.size()) > kMaxCalibrationBytes) {
+    throw std::runtime_error(
+        fmt::format("{}: over {} bytes, not a camera calibration", path, kMaxCalibrationBytes));
+  }
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '<') {
+    throw std::runtime_error(fmt::format(
+        "{}: an XML calibration is not read; write it as YAML or JSON (opencv_storage's keys)",
+        path));
+  }
+  if (text.compare(first == std::string::npos ? 0 : first, 6, "%YAML:") == 0) {
+    text.erase(0, text.find('\n', first));
+  }
+  std::istringstream stream(text);
+  return loadYamlDocument(stream, path);
+}
+
+std::optional<KalibrCamera> kalibrCamera(const YAML::Node& root, const std::string& source) {
   try {
-    const YAML::Node root = loadYamlDocument(yaml, source);
     if (!root.IsMap()) {
       return std::nullopt;
     }
@@ -128,15 +167,12 @@ std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::str
   }
 }
 
+std::optional<KalibrCamera> parseKalibrCamera(std::istream& yaml, const std::string& source) {
+  return kalibrCamera(loadYamlDocument(yaml, source), source);
+}
+
 std::optional<KalibrCamera> readKalibrCamera(const std::string& path) {
-  std::ifstream file(path);
-  std::string first;
-  file >> first;
-  if (!file || first.starts_with("%YAML:") || first.starts_with("<")) {
-    return std::nullopt;
-  }
-  file.seekg(0);
-  return parseKalibrCamera(file, path);
+  return kalibrCamera(calibrationDocument(path), path);
 }
 
 }  // namespace lineloc

@@ -95,12 +95,7 @@ std::optional<ImuNoiseDensities> imuNoise(const fs::path& sensor_yaml) {
   if (!fs::is_regular_file(sensor_yaml)) {
     return std::nullopt;
   }
-  const std::optional<EurocImuNoise> noise = readEurocImuNoise(sensor_yaml.string());
-  if (!noise) {
-    return std::nullopt;
-  }
-  return ImuNoiseDensities{noise->gyroscope_noise_density, noise->accelerometer_noise_density,
-                           noise->gyroscope_random_walk, noise->accelerometer_random_walk};
+  return readEurocImuNoise(sensor_yaml.string());
 }
 
 template <typename T>

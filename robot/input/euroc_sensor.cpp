@@ -67,15 +67,15 @@ Eigen::Isometry3d readEurocSensorPose(const std::string& path) {
   return parseEurocSensorPose(stream, path);
 }
 
-std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::string& source) {
-  return readDocument<std::optional<EurocImuNoise>>(
-      yaml, source, [&](const YAML::Node& root) -> std::optional<EurocImuNoise> {
-        EurocImuNoise noise;
+std::optional<ImuNoiseDensities> parseEurocImuNoise(std::istream& yaml, const std::string& source) {
+  return readDocument<std::optional<ImuNoiseDensities>>(
+      yaml, source, [&](const YAML::Node& root) -> std::optional<ImuNoiseDensities> {
+        ImuNoiseDensities noise;
         const std::array<std::pair<const char*, double*>, 4> keys = {
-            {{"gyroscope_noise_density", &noise.gyroscope_noise_density},
-             {"gyroscope_random_walk", &noise.gyroscope_random_walk},
-             {"accelerometer_noise_density", &noise.accelerometer_noise_density},
-             {"accelerometer_random_walk", &noise.accelerometer_random_walk}}};
+            {{"gyroscope_noise_density", &noise.gyro_noise_radps_per_sqrt_hz},
+             {"gyroscope_random_walk", &noise.gyro_bias_random_walk_radps2_per_sqrt_hz},
+             {"accelerometer_noise_density", &noise.accel_noise_mps2_per_sqrt_hz},
+             {"accelerometer_random_walk", &noise.accel_bias_random_walk_mps3_per_sqrt_hz}}};
         int given = 0;
         for (const auto& [key, value] : keys) {
           given += root.IsMap() && root[key] ? 1 : 0;
@@ -98,7 +98,7 @@ std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::s
       });
 }
 
-std::optional<EurocImuNoise> readEurocImuNoise(const std::string& path) {
+std::optional<ImuNoiseDensities> readEurocImuNoise(const std::string& path) {
   std::ifstream stream = openFile(path);
   return parseEurocImuNoise(stream, path);
 }

@@ -13,14 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace lineloc {
+#include "robot/inertial/imu_sample.h"
 
-struct EurocImuNoise {
-  double gyroscope_noise_density = 0.0;
-  double gyroscope_random_walk = 0.0;
-  double accelerometer_noise_density = 0.0;
-  double accelerometer_random_walk = 0.0;
-};
+namespace lineloc {
 
 // Parses T_BS (rows: 4, cols: 4, data: 16 numbers) from sensor.yaml text;
 // `source` names it in errors. Throws std::runtime_error when the block is
@@ -34,9 +29,9 @@ Eigen::Isometry3d readEurocSensorPose(const std::string& path);
 // holds none of them. Throws std::runtime_error naming `source` and the key
 // when it holds some but not all, or one that is not a positive finite
 // number.
-std::optional<EurocImuNoise> parseEurocImuNoise(std::istream& yaml, const std::string& source);
+std::optional<ImuNoiseDensities> parseEurocImuNoise(std::istream& yaml, const std::string& source);
 
 // The same for a file.
-std::optional<EurocImuNoise> readEurocImuNoise(const std::string& path);
+std::optional<ImuNoiseDensities> readEurocImuNoise(const std::string& path);
 
 }  // namespace lineloc

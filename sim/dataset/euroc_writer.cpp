@@ -48,20 +48,19 @@ void writeText(const fs::path& path, const std::string& text) {
 
 void writeCameraFiles(const fs::path& folder, const EurocDatasetSpec& spec) {
   const PinholeCamera& camera = spec.camera.camera;
-  std::vector<double> radtan(4, 0.0);
-  std::copy_n(spec.camera.distortion.begin(), std::min<size_t>(4, spec.camera.distortion.size()),
-              radtan.begin());
+  std::vector<double> distortion = spec.camera.distortion;
+  distortion.resize(std::max<size_t>(distortion.size(), 4), 0.0);
   writeText(folder / "sensor.yaml",
             fmt::format("sensor_type: camera\n"
-                        "comment: lineloc-sim rendered camera; the full OpenCV model "
-                        "(k1 k2 p1 p2 k3 ...) is in calibration.yaml\n"
+                        "comment: lineloc-sim rendered camera, OpenCV's distortion model "
+                        "(k1 k2 p1 p2 k3 ...)\n"
                         "{}rate_hz: {:.6f}\nresolution: [{}, {}]\ncamera_model: pinhole\n"
                         "intrinsics: [{:.9f}, {:.9f}, {:.9f}, {:.9f}]\n"
                         "distortion_model: radial-tangential\n"
-                        "distortion_coefficients: [{:.12f}, {:.12f}, {:.12f}, {:.12f}]\n",
+                        "distortion_coefficients: [{:.17g}]\n",
                         transformYaml(spec.T_body_camera), spec.camera_rate_hz, camera.width,
-                        camera.height, camera.fx, camera.fy, camera.cx, camera.cy, radtan[0],
-                        radtan[1], radtan[2], radtan[3]));
+                        camera.height, camera.fx, camera.fy, camera.cx, camera.cy,
+                        fmt::join(distortion, ", ")));
   cv::FileStorage storage((folder / "calibration.yaml").string(),
                           cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
   storage << "image_width" << camera.width << "image_height" << camera.height;
@@ -72,7 +71,6 @@ void writeCameraFiles(const fs::path& folder, const EurocDatasetSpec& spec) {
     }
   }
   storage << "camera_matrix" << K;
-  std::vector<double> distortion = spec.camera.distortion;
   distortion.resize(std::max<size_t>(distortion.size(), 5), 0.0);
   storage << "distortion_coefficients" << cv::Mat(distortion).reshape(1, 1);
 }

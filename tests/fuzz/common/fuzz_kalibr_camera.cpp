@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::optional<lineloc::KalibrCamera> camera =
         lineloc::parseKalibrCamera(stream, "fuzz.yaml");
     if (camera && !(camera->calibration.camera.fx > 0.0 && camera->calibration.camera.width > 0 &&
-                    camera->calibration.distortion.size() == 4 &&
+                    camera->calibration.distortion.size() >= 4 &&
+                    camera->calibration.distortion.size() <= 8 &&
                     std::isfinite(camera->timeshift_cam_imu_s))) {
       __builtin_trap();
     }

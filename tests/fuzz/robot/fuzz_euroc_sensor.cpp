@@ -17,11 +17,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   std::istringstream imu(std::string(reinterpret_cast<const char*>(data), size));
   try {
-    const std::optional<lineloc::EurocImuNoise> noise =
+    const std::optional<lineloc::ImuNoiseDensities> noise =
         lineloc::parseEurocImuNoise(imu, "fuzz.yaml");
-    if (noise &&
-        !(noise->gyroscope_noise_density > 0.0 && noise->gyroscope_random_walk > 0.0 &&
-          noise->accelerometer_noise_density > 0.0 && noise->accelerometer_random_walk > 0.0)) {
+    if (noise && !(noise->gyro_noise_radps_per_sqrt_hz > 0.0 &&
+                   noise->gyro_bias_random_walk_radps2_per_sqrt_hz > 0.0 &&
+                   noise->accel_noise_mps2_per_sqrt_hz > 0.0 &&
+                   noise->accel_bias_random_walk_mps3_per_sqrt_hz > 0.0)) {
       __builtin_trap();
     }
   } catch (const std::runtime_error&) {

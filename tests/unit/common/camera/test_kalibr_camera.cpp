@@ -110,6 +110,7 @@ TEST(KalibrCamera, AnIncompleteOrUnsupportedCameraNamesTheKey) {
                      "focal lengths"},
            std::pair{replaced(kKalibrCamchain, "[752, 480]", "[752.5, 480]"), "resolution"},
            std::pair{replaced(kKalibrCamchain, "[752, 480]", "[0, 480]"), "resolution"},
+           std::pair{replaced(kKalibrCamchain, ", 1.76187114e-05]", "]"), "distortion_coeffs"},
            std::pair{replaced(kKalibrCamchain, "distortion_coeffs", "distortion_coefficients"),
                      "distortion_coeffs"},
            std::pair{replaced(kKalibrCamchain, "[0.0, 0.0, 0.0, 1.0]", "[0.0, 0.0, 0.0, 2.0]"),

@@ -19,7 +19,9 @@ TEST(LensDistortion, NoCoefficientsIsIdentity) {
 // the same model; both evaluate the same polynomial in double precision.
 TEST(LensDistortion, MatchesOpenCvProjection) {
   const std::vector<std::vector<double>> models = {
-      {0.1, -0.05, 0.0, 0.0}, kOpenCvLeftDistortion, {0.2, 0.01, 0.001, -0.002, 0.003, 0.05, -0.01, 0.002}};
+      {0.1, -0.05, 0.0, 0.0},
+      kOpenCvLeftDistortion,
+      {0.2, 0.01, 0.001, -0.002, 0.003, 0.05, -0.01, 0.002}};
   for (const std::vector<double>& coefficients : models) {
     std::vector<cv::Point3d> points;
     for (double x = -0.5; x <= 0.5; x += 0.25) {

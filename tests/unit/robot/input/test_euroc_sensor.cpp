@@ -58,7 +58,7 @@ TEST(EurocSensor, NestingTooDeepIsAnErrorNamingTheFile) {
   }
 }
 
-std::optional<EurocImuNoise> parseNoise(const std::string& text) {
+std::optional<ImuNoiseDensities> parseNoise(const std::string& text) {
   std::istringstream stream(text);
   return parseEurocImuNoise(stream, "imu0/sensor.yaml");
 }
@@ -72,12 +72,12 @@ const std::string kEurocImu =
     "accelerometer_random_walk: 3.0000e-3    # [ m / s^3 / sqrt(Hz) ].  ( accel bias diffusion )\n";
 
 TEST(EurocSensor, ReadsAnImusNoiseDensities) {
-  const std::optional<EurocImuNoise> noise = parseNoise(kEurocImu);
+  const std::optional<ImuNoiseDensities> noise = parseNoise(kEurocImu);
   ASSERT_TRUE(noise.has_value());
-  EXPECT_EQ(noise->gyroscope_noise_density, 1.6968e-04);
-  EXPECT_EQ(noise->gyroscope_random_walk, 1.9393e-05);
-  EXPECT_EQ(noise->accelerometer_noise_density, 2.0e-3);
-  EXPECT_EQ(noise->accelerometer_random_walk, 3.0e-3);
+  EXPECT_EQ(noise->gyro_noise_radps_per_sqrt_hz, 1.6968e-04);
+  EXPECT_EQ(noise->gyro_bias_random_walk_radps2_per_sqrt_hz, 1.9393e-05);
+  EXPECT_EQ(noise->accel_noise_mps2_per_sqrt_hz, 2.0e-3);
+  EXPECT_EQ(noise->accel_bias_random_walk_mps3_per_sqrt_hz, 3.0e-3);
   EXPECT_FALSE(parseNoise(sensorYaml("1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1")).has_value());
   EXPECT_FALSE(parseNoise("just a scalar\n").has_value());
 }

@@ -67,6 +67,11 @@ TEST(EurocWriter, WritesTheEurocLayout) {
   const CameraCalibration calibration =
       readCameraCalibration((root / "cam0" / "calibration.yaml").string());
   EXPECT_EQ(calibration.distortion, testSpec().camera.distortion);
+  // The sensor.yaml holds the same camera, the whole lens model with it.
+  const CameraCalibration from_sensor =
+      readCameraCalibration((root / "cam0" / "sensor.yaml").string());
+  EXPECT_EQ(from_sensor.distortion, testSpec().camera.distortion);
+  EXPECT_EQ(from_sensor.camera.fy, calibration.camera.fy);
   EXPECT_DOUBLE_EQ(calibration.camera.cy, 240.5);
   const YAML::Node imu = YAML::LoadFile((root / "imu0" / "sensor.yaml").string());
   EXPECT_DOUBLE_EQ(imu["gyroscope_noise_density"].as<double>(), 1.7e-4);

@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   options.add("predicted_rotation_sigma_deg", config.predicted_rotation_sigma_deg,
               "standard deviation of the predicted rotation (degrees)");
   options.add("out", config.out, "TUM trajectory file written");
+  options.add("fix_log_out", config.fix_log_out,
+              "fix log written, each frame's status and covariance (empty: none)");
   options.add("overlay_dir", config.overlay_dir, "folder for overlay PNGs (empty: none)");
   options.add("min_edge_gradient", config.extractor.edges.min_gradient,
               "edge threshold of the line extraction (grey levels per pixel)");

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <ostream>
 
 #include "backbone/tracker/model_file.h"
@@ -13,6 +14,7 @@
 #include "common/camera/camera_calibration.h"
 #include "common/config/option_values.h"
 #include "common/image/image_file.h"
+#include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "db/citymodel/city_model.h"
 #include "robot/input/image_sequence.h"
@@ -42,6 +44,10 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
                        trackerOptionsOf(config));
   FeatureExtractor extractor(calibration, config.extractor);
   TumWriter trajectory(config.out);
+  std::optional<FixLogWriter> fix_log;
+  if (!config.fix_log_out.empty()) {
+    fix_log.emplace(config.fix_log_out);
+  }
   if (!config.overlay_dir.empty()) {
     std::filesystem::create_directories(config.overlay_dir);
   }
@@ -55,7 +61,18 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
     spdlog::info("frame {}: {}{} ({} inliers){}", summary.frames, toString(frame.alignment.status),
                  frame.acquired ? " after a search" : "", frame.alignment.inliers,
                  frame.alignment.message.empty() ? "" : ": " + frame.alignment.message);
-    trajectory.write({frame_ref.stamp_ns.value_or(summary.frames), frame.T_world_camera.pose});
+    const int64_t stamp_ns = frame_ref.stamp_ns.value_or(summary.frames);
+    trajectory.write({stamp_ns, frame.T_world_camera.pose});
+    if (fix_log) {
+      LoggedFix fix;
+      fix.stamp_ns = stamp_ns;
+      fix.T_world_camera = frame.T_world_camera;
+      fix.status = toString(frame.alignment.status);
+      fix.inliers = static_cast<uint32_t>(frame.alignment.inliers);
+      fix.model_lines = static_cast<uint32_t>(frame.visible.size());
+      fix.residual_rms_px = frame.alignment.rms_residual_px;
+      fix_log->write(fix);
+    }
     if (!config.overlay_dir.empty()) {
       cv::imwrite(fmt::format("{}/frame_{:06d}.png", config.overlay_dir, summary.frames),
                   drawTrackingOverlay(image, features.segments, frame, calibration));

@@ -5,7 +5,7 @@
 // the previous frame's pose, searching when it loses the camera. No DDS, no
 // database: a model file, a folder of images (or an EuRoC/ASL camera folder)
 // and the first frame's predicted pose in; one pose per frame (TUM) out, and
-// an overlay PNG per frame when asked.
+// an overlay PNG per frame and a fix log when asked.
 //
 // It composes the robot's and the backbone's libraries, so it belongs to
 // neither: backbone/ never includes robot/.
@@ -28,6 +28,10 @@ struct OfflineTrackingConfig {
   double predicted_rotation_sigma_deg = 2.0;
   // TUM trajectory written.
   std::string out = "poses.tum";
+  // Fix log written (common/trajectory/fix_log.h), each frame's answer with
+  // its status and covariance as the robot logs the backbone's, so that
+  // lineloc-enrich and lineloc-eval take it; empty: none.
+  std::string fix_log_out;
   // Folder of overlay PNGs; empty: none.
   std::string overlay_dir;
   FeatureExtractorOptions extractor = trackingFrontEndOptions();

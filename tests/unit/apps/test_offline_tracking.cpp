@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "apps/offline_tracking.h"
+#include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "tests/support/delft_drive.h"
 
@@ -97,6 +98,32 @@ TEST_F(OfflineTracking, FollowsTheCameraThroughADrive) {
   EXPECT_NE(out.str().find(fmt::format("{} frames, {} aligned", summary.frames, summary.aligned)),
             std::string::npos)
       << out.str();
+}
+
+TEST_F(OfflineTracking, LogsEachFrameAsTheRobotLogsAFix) {
+  OfflineTrackingConfig config = configFromTruth();
+  config.fix_log_out = (folder_ / "fixes.txt").string();
+  std::ostringstream out;
+  const OfflineTrackingSummary summary = runOfflineTracking(config, out);
+  const std::vector<LoggedFix> fixes = readFixLog(config.fix_log_out);
+  const std::vector<StampedPose> poses = readTumFile(config.out);
+  ASSERT_EQ(fixes.size(), poses.size());
+  int ok = 0;
+  for (size_t i = 0; i < fixes.size(); ++i) {
+    EXPECT_EQ(fixes[i].stamp_ns, frames_->stamps_ns[i]);
+    EXPECT_LT((fixes[i].T_world_camera.pose.translation() - poses[i].pose.translation()).norm(),
+              1e-6);
+    if (fixes[i].status == "ok") {
+      ++ok;
+      EXPECT_GE(fixes[i].inliers, 6u);
+      EXPECT_GT(fixes[i].model_lines, 0u);
+      // An OK answer's covariance is a covariance, and it covers the truth
+      // as the robot's fixes must (chi^2_6 at 0.9973).
+      EXPECT_GT(fixes[i].T_world_camera.covariance.determinant(), 0.0);
+      EXPECT_LT(normalizedErrorSquared(fixes[i].T_world_camera, frames_->truth[i]), 20.06);
+    }
+  }
+  EXPECT_EQ(ok, summary.aligned);
 }
 
 TEST_F(OfflineTracking, RefusesAPredictedPoseThatIsNoPose) {

@@ -85,6 +85,16 @@ int main(int argc, char** argv) {
               "imu0/sensor.yaml T_BS, else the body frame)");
   options.addFixedSize("p_body_gps_antenna", sensors.p_body_gps_antenna, 3,
                        "GNSS antenna phase centre in the body frame, x y z (m)");
+  options.add("gnss_gps_sigma_m", sensors.gnss_errors.gps_sigma_m,
+              "GNSS fix sigma per horizontal axis at HDOP 1, autonomous fix (m)");
+  options.add("gnss_dgps_sigma_m", sensors.gnss_errors.dgps_sigma_m,
+              "GNSS fix sigma per horizontal axis at HDOP 1, DGPS or SBAS fix (m)");
+  options.add("gnss_rtk_fixed_sigma_m", sensors.gnss_errors.rtk_fixed_sigma_m,
+              "GNSS fix sigma per horizontal axis at HDOP 1, RTK fixed (m)");
+  options.add("gnss_rtk_float_sigma_m", sensors.gnss_errors.rtk_float_sigma_m,
+              "GNSS fix sigma per horizontal axis at HDOP 1, RTK float (m)");
+  options.add("gnss_vertical_ratio", sensors.gnss_errors.vertical_ratio,
+              "GNSS fix vertical sigma over horizontal");
   options.add("camera_time_offset_s", sensors.camera_time_offset_s,
               "camera clock minus the IMU's, GNSS's and compass's (s), added to a Kalibr "
               "camchain's");

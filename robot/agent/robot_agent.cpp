@@ -208,7 +208,8 @@ std::unique_ptr<NmeaGpsDecoder> gpsDecoder(const RobotConfig& config) {
   if (!origin) {
     throw std::invalid_argument("site_origin: x y z needed with site_crs");
   }
-  return std::make_unique<NmeaGpsDecoder>(SiteProjection(config.site_crs, *origin));
+  return std::make_unique<NmeaGpsDecoder>(SiteProjection(config.site_crs, *origin),
+                                          config.sensors.gnss_errors);
 }
 
 InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGpsDecoder* gps,

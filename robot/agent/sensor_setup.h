@@ -15,6 +15,7 @@
 
 #include "common/camera/kalibr_camera.h"
 #include "robot/agent/sensor_streams.h"
+#include "robot/inertial/gnss_error_model.h"
 #include "robot/inertial/inertial_navigator_config.h"
 
 namespace lineloc {
@@ -36,6 +37,9 @@ struct SensorSetup {
   std::vector<double> T_body_imu;
   // The GNSS antenna's phase centre in the body frame (m).
   std::vector<double> p_body_gps_antenna = {0.0, 0.0, 0.0};
+  // The receiver's ranging error by fix quality, which with each fix's HDOP
+  // gives its sigma (gnss_error_model.h).
+  GnssErrorModel gnss_errors;
   // The camera clock minus the clock of the IMU, GNSS and compass (s): a
   // frame stamped t was exposed at t - offset on theirs; added to a
   // camchain's (the negative of Kalibr's timeshift_cam_imu).

@@ -114,7 +114,10 @@ void InertialNavigator::addGps(const GpsFix& fix) {
     startIfAny(startup_.standing(history_));
     return;
   }
-  history_.add(fix.stamp_ns, Measurement(GpsPayload{fix.p_world_antenna}), filter_);
+  const Eigen::Vector3d sigmas = gpsFixSigmas(fix, config_);
+  history_.add(fix.stamp_ns,
+               Measurement(GpsPayload{fix.p_world_antenna, sigmas.cwiseAbs2().asDiagonal()}),
+               filter_);
 }
 
 void InertialNavigator::addGpsVelocity(const GpsVelocity& velocity) {

@@ -66,4 +66,12 @@ double compassYawSigma_rad(const InertialNavigatorConfig& config) {
   return std::hypot(config.compass_sigma_rad, config.compass_bias_sigma_rad);
 }
 
+Eigen::Vector3d gpsFixSigmas(const GpsFix& fix, const InertialNavigatorConfig& config) {
+  const double horizontal =
+      fix.horizontal_sigma_m > 0.0 ? fix.horizontal_sigma_m : config.gps_horizontal_sigma_m;
+  const double vertical =
+      fix.vertical_sigma_m > 0.0 ? fix.vertical_sigma_m : config.gps_vertical_sigma_m;
+  return {horizontal, horizontal, vertical};
+}
+
 }  // namespace lineloc

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "robot/inertial/imu_sample.h"
+#include "robot/inertial/navigator_measurements.h"
 #include "robot/inertial/stillness_detector.h"
 
 namespace lineloc {
@@ -97,5 +98,10 @@ void validate(const InertialNavigatorConfig& config);
 // sigma_c = hypot(compass_sigma_rad, compass_bias_sigma_rad): the yaw sigma
 // of one compass reading, and of a start from the compass.
 double compassYawSigma_rad(const InertialNavigatorConfig& config);
+
+// A DGPS fix's standard deviations along site x, y and z (m): the fix's own
+// where the receiver reported them (GpsFix), else gps_horizontal_sigma_m and
+// gps_vertical_sigma_m.
+Eigen::Vector3d gpsFixSigmas(const GpsFix& fix, const InertialNavigatorConfig& config);
 
 }  // namespace lineloc

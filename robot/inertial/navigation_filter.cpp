@@ -31,10 +31,6 @@ NavigationFilter::NavigationFilter(const InertialNavigatorConfig& config)
       fixes_(config),
       T_body_camera_(config.T_body_camera),
       p_body_gps_antenna_(config.p_body_gps_antenna),
-      gps_covariance_(Eigen::Vector3d(config.gps_horizontal_sigma_m * config.gps_horizontal_sigma_m,
-                                      config.gps_horizontal_sigma_m * config.gps_horizontal_sigma_m,
-                                      config.gps_vertical_sigma_m * config.gps_vertical_sigma_m)
-                          .asDiagonal()),
       gps_velocity_sigma_mps_(config.gps_velocity_sigma_mps),
       compass_yaw_sigma_rad_(compassYawSigma_rad(config)),
       zero_velocity_max_speed_mps_(config.zero_velocity_max_speed_mps),
@@ -75,7 +71,7 @@ MeasurementOutcome NavigationFilter::apply(Measurement& measurement, const ImuSa
   }
   if (const auto* gps = std::get_if<GpsPayload>(&measurement.payload)) {
     const std::optional<UpdateOutcome> outcome = applyBoundingUpdate(
-        lineariseAntennaPosition(state, gps->p_world_antenna, gps_covariance_, p_body_gps_antenna_),
+        lineariseAntennaPosition(state, gps->p_world_antenna, gps->covariance, p_body_gps_antenna_),
         gate_by_dimension_[3], state, covariance);
     if (outcome && outcome->status == UpdateStatus::kAccepted) {
       snapshot.position_known = true;

@@ -72,7 +72,6 @@ class NavigationFilter {
   std::array<double, 7> gate_by_dimension_{};
   Eigen::Isometry3d T_body_camera_;
   Eigen::Vector3d p_body_gps_antenna_;
-  Eigen::Matrix3d gps_covariance_;
   double gps_velocity_sigma_mps_;
   double compass_yaw_sigma_rad_;
   double zero_velocity_max_speed_mps_;

@@ -20,6 +20,10 @@ namespace lineloc {
 struct GpsFix {
   int64_t stamp_ns = 0;
   Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
+  // The receiver's own word on the fix's error (gnss_error_model.h), per
+  // horizontal axis and vertically (m); 0: the navigator's configured sigmas.
+  double horizontal_sigma_m = 0.0;
+  double vertical_sigma_m = 0.0;
 };
 
 // The antenna's horizontal velocity over ground, site x (east) and y (north),
@@ -68,6 +72,7 @@ struct VisionPayload {
 };
 struct GpsPayload {
   Eigen::Vector3d p_world_antenna = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
 };
 struct GpsVelocityPayload {
   Eigen::Vector2d v_world_antenna_mps = Eigen::Vector2d::Zero();

@@ -35,7 +35,10 @@ int64_t stampNearest(int64_t time_of_day_ns, int64_t reference_ns) {
   return time_of_day_ns + static_cast<int64_t>(days) * kNsPerDay;
 }
 
-NmeaGpsDecoder::NmeaGpsDecoder(SiteProjection projection) : projection_(std::move(projection)) {}
+NmeaGpsDecoder::NmeaGpsDecoder(SiteProjection projection, const GnssErrorModel& errors)
+    : projection_(std::move(projection)), errors_(errors) {
+  validate(errors_);
+}
 
 GpsReading NmeaGpsDecoder::decode(std::string_view line, int64_t reference_stamp_ns) {
   const NmeaParseResult result = parseNmeaSentence(line);
@@ -84,6 +87,10 @@ GpsReading NmeaGpsDecoder::decode(std::string_view line, int64_t reference_stamp
   } catch (const std::domain_error&) {
     ++counters_.malformed;
     return {};
+  }
+  if (const std::optional<GnssSigmas> sigmas = gnssSigmas(gga.fix_quality, gga.hdop, errors_)) {
+    fix.horizontal_sigma_m = sigmas->horizontal_m;
+    fix.vertical_sigma_m = sigmas->vertical_m;
   }
   ++counters_.fixes;
   return fix;

@@ -1,6 +1,7 @@
 // Turns NMEA 0183 sentences from a GPS receiver into DGPS fixes in the site
 // frame: GGA gives the position (WGS84 latitude and longitude, height above
-// mean sea level) and fix quality, projected with SiteProjection; its UTC time
+// mean sea level), projected with SiteProjection, and its uncertainty from the
+// fix quality and HDOP (gnss_error_model.h); its UTC time
 // of day is dated by the last RMC's date or, before any RMC, by the day
 // nearest a reference time (the IMU clock). RMC gives the velocity over
 // ground, when it holds both speed and course (a speed of zero needs no
@@ -13,6 +14,7 @@
 #include <variant>
 
 #include "common/geodesy/site_projection.h"
+#include "robot/inertial/gnss_error_model.h"
 #include "robot/inertial/inertial_navigator.h"
 
 namespace lineloc {
@@ -32,7 +34,8 @@ using GpsReading = std::variant<std::monostate, GpsFix, GpsVelocity>;
 
 class NmeaGpsDecoder {
  public:
-  explicit NmeaGpsDecoder(SiteProjection projection);
+  // Throws std::invalid_argument naming the value of `errors` that is not positive.
+  explicit NmeaGpsDecoder(SiteProjection projection, const GnssErrorModel& errors = {});
 
   // The fix of a GGA sentence with a position, the velocity of an RMC with
   // one; nothing for anything else. `reference_stamp_ns` (0: none) dates GGA
@@ -44,6 +47,7 @@ class NmeaGpsDecoder {
 
  private:
   SiteProjection projection_;
+  GnssErrorModel errors_;
   std::optional<int64_t> day_start_ns_;
   NmeaCounters counters_;
 };

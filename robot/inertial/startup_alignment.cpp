@@ -136,8 +136,7 @@ Eigen::Vector3d StartupAlignment::placeAtDgps(const GpsFix* fix, NavigationState
     return Eigen::Vector3d::Constant(kUnknownPositionSigma_m);
   }
   state.p_world_body = fix->p_world_antenna - state.q_world_body * config_.p_body_gps_antenna;
-  return {config_.gps_horizontal_sigma_m, config_.gps_horizontal_sigma_m,
-          config_.gps_vertical_sigma_m};
+  return gpsFixSigmas(*fix, config_);
 }
 
 Eigen::Vector3d StartupAlignment::initialGyroBias(bool stood_still, double& sigma_radps) const {

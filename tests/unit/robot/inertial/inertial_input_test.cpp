@@ -109,6 +109,44 @@ TEST(NmeaGpsDecoder, DatesGgaWithRmcAndProjectsToTheSite) {
   EXPECT_EQ(decoder.counters().fixes, 1);
 }
 
+// A fix's sigma is its HDOP times the ranging error of its quality; a
+// quality that says nothing of the error leaves the navigator's own.
+TEST(NmeaGpsDecoder, SetsEachFixsSigmaFromItsQualityAndHdop) {
+  GnssErrorModel errors;
+  errors.rtk_fixed_sigma_m = 0.02;
+  NmeaGpsDecoder decoder(delftSite(), errors);
+  const GeodeticPosition position = decoder.projection().toGeodetic({10.0, 20.0, 1.0});
+  const RmcSentence rmc = rmcAt(position);
+  decoder.decode(formatRmc(rmc));
+  const auto fixOf = [&](int quality, double hdop) {
+    GgaSentence gga;
+    gga.time_of_day_ns = rmc.time_of_day_ns;
+    gga.fix_quality = quality;
+    gga.hdop = hdop;
+    gga.latitude_deg = position.latitude_deg;
+    gga.longitude_deg = position.longitude_deg;
+    const GpsReading reading = decoder.decode(formatGga(gga));
+    EXPECT_TRUE(std::holds_alternative<GpsFix>(reading)) << quality;
+    return std::holds_alternative<GpsFix>(reading) ? std::get<GpsFix>(reading) : GpsFix{};
+  };
+  const GpsFix rtk = fixOf(4, 0.8);
+  EXPECT_NEAR(rtk.horizontal_sigma_m, 0.016, 1e-9);
+  EXPECT_NEAR(rtk.vertical_sigma_m, 0.032, 1e-9);
+  EXPECT_NEAR(fixOf(2, 0.9).horizontal_sigma_m, 0.9 * errors.dgps_sigma_m, 1e-9);
+  EXPECT_NEAR(fixOf(1, 2.0).horizontal_sigma_m, 2.0 * errors.gps_sigma_m, 1e-9);
+  EXPECT_NEAR(fixOf(5, 1.0).vertical_sigma_m, 2.0 * errors.rtk_float_sigma_m, 1e-9);
+  EXPECT_EQ(fixOf(6, 1.0).horizontal_sigma_m, 0.0);  // dead reckoning: no word on its error
+  EXPECT_EQ(fixOf(2, 0.0).horizontal_sigma_m, 0.0);  // no HDOP
+  GnssErrorModel negative;
+  negative.dgps_sigma_m = -1.0;
+  try {
+    NmeaGpsDecoder refused(delftSite(), negative);
+    FAIL() << "a negative ranging error accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("gnss_dgps_sigma_m"), std::string::npos);
+  }
+}
+
 TEST(NmeaGpsDecoder, CountsBadSentencesAndDatesByReference) {
   NmeaGpsDecoder decoder(delftSite());
   std::string good = formatGga([] {

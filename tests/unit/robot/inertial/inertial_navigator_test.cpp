@@ -331,9 +331,20 @@ class DgpsAndCompassFeed {
                      bool with_velocities = true)
       : gps_(gps), compass_(compass), with_velocities_(with_velocities) {}
 
+  // Each fix reports these sigmas (GpsFix; 0: none).
+  void reportSigmas(double horizontal_m, double vertical_m) {
+    reported_horizontal_sigma_m_ = horizontal_m;
+    reported_vertical_sigma_m_ = vertical_m;
+  }
+
   void deliverUntil(InertialNavigator& navigator, int64_t stamp_ns) {
     for (; next_gps_ < gps_.size() && gps_[next_gps_].stamp_ns <= stamp_ns; ++next_gps_) {
-      navigator.addGps({gps_[next_gps_].stamp_ns, gps_[next_gps_].p_world_antenna});
+      GpsFix fix;
+      fix.stamp_ns = gps_[next_gps_].stamp_ns;
+      fix.p_world_antenna = gps_[next_gps_].p_world_antenna;
+      fix.horizontal_sigma_m = reported_horizontal_sigma_m_;
+      fix.vertical_sigma_m = reported_vertical_sigma_m_;
+      navigator.addGps(fix);
       if (with_velocities_) {
         navigator.addGpsVelocity({gps_[next_gps_].stamp_ns, gps_[next_gps_].v_world_antenna_mps});
       }
@@ -349,17 +360,18 @@ class DgpsAndCompassFeed {
   const std::vector<sim::SimGpsFix>& gps_;
   const std::vector<sim::SimCompassReading>& compass_;
   bool with_velocities_ = true;
+  double reported_horizontal_sigma_m_ = 0.0;
+  double reported_vertical_sigma_m_ = 0.0;
   size_t next_gps_ = 0;
   size_t next_compass_ = 0;
 };
 
 // DGPS errors are correlated over minutes: a robot standing still for a
 // minute of 1 Hz fixes knows its position no better than one fix tells it.
-TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
-  const SensedDrive drive(routeOf(4, 62.0, 60.0), 3);
-  const InertialNavigatorConfig config;
-  InertialNavigator navigator(config);
-  DgpsAndCompassFeed feed(drive.gps, drive.compass);
+// The smallest horizontal position sigma a navigator fed the drive's DGPS
+// and compass reaches (the square root of the smallest eigenvalue).
+double smallestHorizontalSigma(const SensedDrive& drive, DgpsAndCompassFeed& feed,
+                               InertialNavigator& navigator) {
   double smallest_sigma_m = std::numeric_limits<double>::infinity();
   for (const sim::SimImuSample& sample : drive.imu) {
     feed.deliverUntil(navigator, sample.stamp_ns);
@@ -371,7 +383,30 @@ TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
                    std::sqrt(horizontal.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff()));
     }
   }
-  EXPECT_GE(smallest_sigma_m, 0.99 * config.gps_horizontal_sigma_m);
+  return smallest_sigma_m;
+}
+
+TEST(InertialNavigator, RepeatedDgpsFixesBoundThePositionAtTheirOwnSigma) {
+  const SensedDrive drive(routeOf(4, 62.0, 60.0), 3);
+  const InertialNavigatorConfig config;
+  InertialNavigator navigator(config);
+  DgpsAndCompassFeed feed(drive.gps, drive.compass);
+  EXPECT_GE(smallestHorizontalSigma(drive, feed, navigator), 0.99 * config.gps_horizontal_sigma_m);
+  EXPECT_GT(navigator.health().gps.accepted, 10);
+}
+
+// A receiver that reports a fix's error (from its fix quality and HDOP,
+// gnss_error_model.h) is taken at its word: autonomous fixes at 8 m bound
+// the position there, not at the configured 5 m.
+TEST(InertialNavigator, FixesThatReportTheirSigmaBoundThePositionAtIt) {
+  const SensedDrive drive(routeOf(4, 62.0, 60.0), 3);
+  const InertialNavigatorConfig config;
+  InertialNavigator navigator(config);
+  DgpsAndCompassFeed feed(drive.gps, drive.compass);
+  feed.reportSigmas(8.0, 16.0);
+  const double smallest_sigma_m = smallestHorizontalSigma(drive, feed, navigator);
+  EXPECT_GE(smallest_sigma_m, 0.99 * 8.0);
+  EXPECT_LT(smallest_sigma_m, 8.5);
   EXPECT_GT(navigator.health().gps.accepted, 10);
 }
 

@@ -68,7 +68,8 @@ Measurement visionFixAt(int64_t stamp_ns, const NavigationFilter& filter, double
 
 Measurement gpsFixAt(int64_t stamp_ns, const NavigationFilter& filter) {
   return Measurement(
-      GpsPayload{historyUntil(stamp_ns, filter).predict(stamp_ns, filter).state.p_world_body});
+      GpsPayload{historyUntil(stamp_ns, filter).predict(stamp_ns, filter).state.p_world_body,
+                 Eigen::Vector3d(25.0, 25.0, 100.0).asDiagonal()});
 }
 
 void expectSameFilter(const FilterSnapshot& a, const FilterSnapshot& b) {

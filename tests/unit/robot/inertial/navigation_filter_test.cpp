@@ -85,7 +85,8 @@ TEST(NavigationFilter, ADgpsFixBoundsThePositionAtItsOwnSigma) {
   const NavigationFilter filter(config);
   FilterSnapshot snapshot = snapshotWithSigmas(20.0, 0.1, 2.0 * kDeg);
   snapshot.position_known = false;
-  Measurement fix(GpsPayload{snapshot.state.p_world_body});
+  const Eigen::Matrix3d five_by_ten = Eigen::Vector3d(25.0, 25.0, 100.0).asDiagonal();
+  Measurement fix(GpsPayload{snapshot.state.p_world_body, five_by_ten});
   EXPECT_EQ(filter.apply(fix, snapshot.imu, snapshot), MeasurementOutcome::kAccepted);
   EXPECT_TRUE(snapshot.position_known);
   EXPECT_NEAR(std::sqrt(snapshot.covariance(kPosition, kPosition)), 5.0, 1e-9);
@@ -94,7 +95,8 @@ TEST(NavigationFilter, ADgpsFixBoundsThePositionAtItsOwnSigma) {
   EXPECT_NEAR(std::sqrt(snapshot.covariance(kPosition, kPosition)), 5.0, 1e-9);
   FilterSnapshot tracked = snapshotWithSigmas(0.5, 0.1, 2.0 * kDeg);
   EXPECT_EQ(filter.apply(fix, tracked.imu, tracked), MeasurementOutcome::kSkipped);
-  Measurement far(GpsPayload{snapshot.state.p_world_body + Eigen::Vector3d(100.0, 0.0, 0.0)});
+  Measurement far(
+      GpsPayload{snapshot.state.p_world_body + Eigen::Vector3d(100.0, 0.0, 0.0), five_by_ten});
   EXPECT_EQ(filter.apply(far, snapshot.imu, snapshot), MeasurementOutcome::kGated);
 }
 

@@ -14,6 +14,7 @@ packages=(
   libhwy-dev libembree-dev
   libsimdjson-dev nlohmann-json3-dev libssl-dev openssl
   libcli11-dev libyaml-cpp-dev libspdlog-dev libfmt-dev
+  libgps-dev gpsd gpsd-clients python3-gps
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

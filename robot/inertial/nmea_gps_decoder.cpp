@@ -17,17 +17,35 @@ std::optional<GpsVelocity> velocityOf(const RmcSentence& rmc, const SiteProjecti
   if (!rmc.speed_knots || !(rmc.course_deg || *rmc.speed_knots == 0.0)) {
     return std::nullopt;
   }
-  const GeodeticPosition position{rmc.latitude_deg, rmc.longitude_deg, 0.0};
-  // v = s (sin beta, cos beta), beta the grid bearing = true course + grid
-  // bearing of true north.
-  const double grid_bearing_rad =
-      rmc.course_deg.value_or(0.0) * M_PI / 180.0 + projection.gridBearingOfTrueNorth_rad(position);
-  const double speed_mps = *rmc.speed_knots * kMetresPerSecondPerKnot;
-  return GpsVelocity{rmc.utcStamp_ns(), speed_mps * Eigen::Vector2d(std::sin(grid_bearing_rad),
-                                                                    std::cos(grid_bearing_rad))};
+  return siteVelocity(rmc.utcStamp_ns(), {rmc.latitude_deg, rmc.longitude_deg, 0.0},
+                      *rmc.speed_knots * kMetresPerSecondPerKnot, rmc.course_deg.value_or(0.0),
+                      projection);
 }
 
 }  // namespace
+
+GpsFix siteFix(int64_t stamp_ns, const GeodeticPosition& where, int quality, double hdop,
+               const SiteProjection& projection, const GnssErrorModel& errors) {
+  GpsFix fix;
+  fix.stamp_ns = stamp_ns;
+  fix.p_world_antenna = projection.toSite(where);
+  if (const std::optional<GnssSigmas> sigmas = gnssSigmas(quality, hdop, errors)) {
+    fix.horizontal_sigma_m = sigmas->horizontal_m;
+    fix.vertical_sigma_m = sigmas->vertical_m;
+  }
+  return fix;
+}
+
+GpsVelocity siteVelocity(int64_t stamp_ns, const GeodeticPosition& where, double speed_mps,
+                         double course_deg, const SiteProjection& projection) {
+  // v = s (sin beta, cos beta), beta the grid bearing = true course + grid
+  // bearing of true north.
+  const double grid_bearing_rad =
+      course_deg * M_PI / 180.0 + projection.gridBearingOfTrueNorth_rad(where);
+  return GpsVelocity{stamp_ns,
+                     speed_mps * Eigen::Vector2d(std::sin(grid_bearing_rad),
+                                                 std::cos(grid_bearing_rad))};
+}
 
 int64_t stampNearest(int64_t time_of_day_ns, int64_t reference_ns) {
   const double days = std::round(static_cast<double>(reference_ns - time_of_day_ns) /
@@ -78,19 +96,15 @@ GpsReading NmeaGpsDecoder::decode(std::string_view line, int64_t reference_stamp
     ++counters_.undated;
     return {};
   }
+  const int64_t stamp_ns = day_start_ns_ ? *day_start_ns_ + gga.time_of_day_ns
+                                         : stampNearest(gga.time_of_day_ns, reference_stamp_ns);
   GpsFix fix;
-  fix.stamp_ns = day_start_ns_ ? *day_start_ns_ + gga.time_of_day_ns
-                               : stampNearest(gga.time_of_day_ns, reference_stamp_ns);
   try {
-    fix.p_world_antenna =
-        projection_.toSite({gga.latitude_deg, gga.longitude_deg, gga.altitude_msl_m});
+    fix = siteFix(stamp_ns, {gga.latitude_deg, gga.longitude_deg, gga.altitude_msl_m},
+                  gga.fix_quality, gga.hdop, projection_, errors_);
   } catch (const std::domain_error&) {
     ++counters_.malformed;
     return {};
-  }
-  if (const std::optional<GnssSigmas> sigmas = gnssSigmas(gga.fix_quality, gga.hdop, errors_)) {
-    fix.horizontal_sigma_m = sigmas->horizontal_m;
-    fix.vertical_sigma_m = sigmas->vertical_m;
   }
   ++counters_.fixes;
   return fix;

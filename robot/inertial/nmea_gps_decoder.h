@@ -52,6 +52,19 @@ class NmeaGpsDecoder {
   NmeaCounters counters_;
 };
 
+// A fix at `where` of GGA fix quality `quality` at `hdop`, in the site frame
+// with its sigmas from `errors` (what a GGA sentence gives, and what gpsd
+// reports of one). Throws std::domain_error where the projection does not
+// reach.
+GpsFix siteFix(int64_t stamp_ns, const GeodeticPosition& where, int quality, double hdop,
+               const SiteProjection& projection, const GnssErrorModel& errors);
+
+// The velocity over ground of `speed_mps` along the true course `course_deg`
+// at `where`, in the site frame: v = s (sin beta, cos beta), beta the course
+// turned into the grid by the meridian convergence there.
+GpsVelocity siteVelocity(int64_t stamp_ns, const GeodeticPosition& where, double speed_mps,
+                         double course_deg, const SiteProjection& projection);
+
 // UTC nanoseconds of `time_of_day_ns` on the day that puts it nearest `reference_ns`.
 int64_t stampNearest(int64_t time_of_day_ns, int64_t reference_ns);
 

@@ -1,5 +1,6 @@
-// A program started by a test as a separate process (posix_spawn), with its
-// output sent to a log file; killed on destruction if still running.
+// A program started by a test as a separate process (posix_spawn) in a
+// process group of its own, with its output sent to a log file; on
+// destruction the group is killed, the program and whatever it started.
 #pragma once
 
 #include <sys/types.h>

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <pty.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -12,7 +13,7 @@
 #include "common/nmea/nmea_sentence.h"
 #include "robot/inertial/nmea_gps_decoder.h"
 #include "robot/inertial/sensor_csv.h"
-#include "robot/inertial/serial_line_reader.h"
+#include "robot/inertial/sensor_line_reader.h"
 
 namespace lineloc {
 namespace {
@@ -214,13 +215,13 @@ TEST(NmeaGpsDecoder, TurnsRmcSpeedAndCourseIntoTheSiteFrame) {
   EXPECT_EQ(decoder.counters().malformed, 0);
 }
 
-TEST(SerialLineReader, ReadsNmeaLinesFromAPseudoTerminal) {
+TEST(SensorLineReader, ReadsNmeaLinesFromAPseudoTerminal) {
   int master = -1;
   int slave = -1;
   char name[256] = {};
   ASSERT_EQ(::openpty(&master, &slave, name, nullptr, nullptr), 0);
   {
-    SerialLineReader reader(name, 9600);
+    SensorLineReader reader(name, 9600);
     const std::string sentence =
         "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
     const std::string data = sentence + "\r\n" + std::string(300, 'x') + "\n" + "$GPRMC,par";
@@ -239,8 +240,40 @@ TEST(SerialLineReader, ReadsNmeaLinesFromAPseudoTerminal) {
   }
   ::close(slave);
   ::close(master);
-  EXPECT_THROW(SerialLineReader(name, 12345), std::invalid_argument);
-  EXPECT_THROW(SerialLineReader("/nonexistent/ttyUSB9", 9600), std::runtime_error);
+  EXPECT_THROW(SensorLineReader(name, 12345), std::invalid_argument);
+  EXPECT_THROW(SensorLineReader("/nonexistent/ttyUSB9", 9600), std::runtime_error);
+}
+
+// A FIFO's feeder may close it and open it again: the stream goes on. A
+// file ends at its end.
+TEST(SensorLineReader, AFifoOutlivesItsFeederAndAFileEnds) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / fmt::format("line_reader_{}", ::getpid());
+  std::filesystem::create_directories(folder);
+  const std::string fifo = (folder / "imu").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  SensorLineReader reader(fifo, 115200);
+  for (const std::string line : {"1,0,0,0,0,0,9.8", "2,0,0,0,0,0,9.8"}) {
+    const int feeder = ::open(fifo.c_str(), O_WRONLY);
+    ASSERT_GE(feeder, 0);
+    const std::string data = line + "\n";
+    ASSERT_EQ(::write(feeder, data.data(), data.size()), static_cast<ssize_t>(data.size()));
+    ::close(feeder);
+    const std::vector<std::string> lines = reader.readLines(1000);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_EQ(lines[0], line);
+    EXPECT_FALSE(reader.ended());
+  }
+  EXPECT_TRUE(reader.readLines(10).empty());
+  EXPECT_FALSE(reader.ended());
+
+  const std::string file = (folder / "imu.csv").string();
+  std::ofstream(file) << "1,0,0,0,0,0,9.8\n2,0,0,0,0,0,9.8\n";
+  SensorLineReader from_file(file, 9600);
+  EXPECT_EQ(from_file.readLines(100).size(), 2u);
+  EXPECT_TRUE(from_file.readLines(100).empty());
+  EXPECT_TRUE(from_file.ended());
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
-#include "robot/inertial/serial_line_reader.h"
+#include "robot/inertial/sensor_line_reader.h"
 
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <poll.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -31,18 +32,23 @@ speed_t speedFor(int baud_rate) {
 
 }  // namespace
 
-SerialLineReader::SerialLineReader(const std::string& device, int baud_rate) : device_(device) {
+SensorLineReader::SensorLineReader(const std::string& device, int baud_rate) : device_(device) {
   const speed_t speed = speedFor(baud_rate);
-  fd_ = ::open(device.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  struct stat status {};
+  const bool fifo = ::stat(device.c_str(), &status) == 0 && S_ISFIFO(status.st_mode);
+  fd_ = ::open(device.c_str(), (fifo ? O_RDWR : O_RDONLY) | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) {
     throw std::runtime_error(
-        fmt::format("cannot open serial device '{}': {}", device, std::strerror(errno)));
+        fmt::format("cannot open sensor stream '{}': {}", device, std::strerror(errno)));
+  }
+  if (!::isatty(fd_)) {
+    return;  // a FIFO or a file: no line settings
   }
   termios options{};
   if (::tcgetattr(fd_, &options) != 0) {
     const std::string why = std::strerror(errno);
     ::close(fd_);
-    throw std::runtime_error(fmt::format("'{}' is not a terminal device: {}", device, why));
+    throw std::runtime_error(fmt::format("cannot read the settings of '{}': {}", device, why));
   }
   ::cfmakeraw(&options);
   options.c_cflag |= CLOCAL | CREAD;
@@ -56,23 +62,23 @@ SerialLineReader::SerialLineReader(const std::string& device, int baud_rate) : d
   }
 }
 
-SerialLineReader::~SerialLineReader() {
+SensorLineReader::~SensorLineReader() {
   if (fd_ >= 0) {
     ::close(fd_);
   }
 }
 
-std::vector<std::string> SerialLineReader::readLines(int timeout_ms) {
+std::vector<std::string> SensorLineReader::readLines(int timeout_ms) {
   std::vector<std::string> lines;
   pollfd request{fd_, POLLIN, 0};
-  while (lines.empty()) {
+  while (lines.empty() && !ended_) {
     const int ready = ::poll(&request, 1, timeout_ms);
     if (ready < 0 && errno == EINTR) {
       continue;
     }
     if (ready < 0) {
       throw std::runtime_error(
-          fmt::format("poll on serial device '{}': {}", device_, std::strerror(errno)));
+          fmt::format("poll on sensor stream '{}': {}", device_, std::strerror(errno)));
     }
     if (ready == 0) {
       break;
@@ -84,9 +90,10 @@ std::vector<std::string> SerialLineReader::readLines(int timeout_ms) {
     }
     if (count < 0) {
       throw std::runtime_error(
-          fmt::format("read from serial device '{}': {}", device_, std::strerror(errno)));
+          fmt::format("read from sensor stream '{}': {}", device_, std::strerror(errno)));
     }
-    if (count == 0 || (request.revents & POLLHUP) != 0) {
+    if (count == 0) {
+      ended_ = true;
       break;
     }
     appendBytes(buffer.data(), static_cast<size_t>(count), lines);
@@ -94,7 +101,7 @@ std::vector<std::string> SerialLineReader::readLines(int timeout_ms) {
   return lines;
 }
 
-void SerialLineReader::appendBytes(const char* data, size_t size, std::vector<std::string>& lines) {
+void SensorLineReader::appendBytes(const char* data, size_t size, std::vector<std::string>& lines) {
   for (size_t i = 0; i < size; ++i) {
     const char c = data[i];
     if (c == '\n') {
@@ -108,7 +115,7 @@ void SerialLineReader::appendBytes(const char* data, size_t size, std::vector<st
       discarding_ = false;
     } else if (!discarding_) {
       partial_.push_back(c);
-      if (partial_.size() > kMaxSerialLineLength) {
+      if (partial_.size() > kMaxSensorLineLength) {
         ++overlong_lines_;
         discarding_ = true;
         partial_.clear();

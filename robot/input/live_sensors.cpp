@@ -1,0 +1,252 @@
+#include "robot/input/live_sensors.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+#include "robot/inertial/sensor_csv.h"
+
+namespace lineloc {
+namespace {
+
+// How often a reading thread looks whether it is to stop.
+constexpr int kReadTimeoutMs = 100;
+constexpr std::string_view kGpsd = "gpsd";
+
+struct GpsdAddress {
+  std::string host = "localhost";
+  std::string port = "2947";
+};
+
+// "gpsd" or "gpsd:HOST:PORT"; nullopt for anything else (a device or a file).
+std::optional<GpsdAddress> gpsdAddress(const std::string& source) {
+  if (source == kGpsd) {
+    return GpsdAddress{};
+  }
+  if (!source.starts_with("gpsd:")) {
+    return std::nullopt;
+  }
+  const std::string rest = source.substr(kGpsd.size() + 1);
+  const size_t colon = rest.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == rest.size()) {
+    throw std::runtime_error(
+        fmt::format("gnss_source '{}': gpsd is named 'gpsd' or 'gpsd:HOST:PORT'", source));
+  }
+  return GpsdAddress{rest.substr(0, colon), rest.substr(colon + 1)};
+}
+
+int64_t& stampOf(LiveReading& reading) {
+  return std::visit(
+      [](auto& value) -> int64_t& {
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, LiveFrame>) {
+          return value.captured.stamp_ns;
+        } else {
+          return value.stamp_ns;
+        }
+      },
+      reading);
+}
+
+// The fix or velocity of a GNSS reading that holds one.
+std::optional<LiveReading> liveReading(const GpsReading& reading) {
+  if (const auto* fix = std::get_if<GpsFix>(&reading)) {
+    return *fix;
+  }
+  if (const auto* velocity = std::get_if<GpsVelocity>(&reading)) {
+    return *velocity;
+  }
+  return std::nullopt;
+}
+
+template <typename Opener>
+auto openSource(const char* option, const std::string& source, Opener open) {
+  try {
+    return open();
+  } catch (const std::exception& error) {
+    throw std::runtime_error(fmt::format("{} '{}': {}", option, source, error.what()));
+  }
+}
+
+}  // namespace
+
+LiveSensors::LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& time_base,
+                         const std::string& site_crs, const Eigen::Vector3d& site_origin,
+                         const GnssErrorModel& gnss_errors)
+    : time_base_(time_base) {
+  auto camera = std::make_unique<VideoCamera>(config.camera, time_base);
+  std::unique_ptr<SensorLineReader> imu;
+  if (!config.imu_source.empty()) {
+    imu = openSource("imu_source", config.imu_source, [&] {
+      return std::make_unique<SensorLineReader>(config.imu_source, config.imu_baud);
+    });
+  }
+  std::unique_ptr<SensorLineReader> nmea;
+  std::unique_ptr<NmeaGpsDecoder> decoder;
+  std::unique_ptr<GpsdClient> gpsd;
+  if (!config.gnss_source.empty()) {
+    if (site_crs.empty()) {
+      throw std::runtime_error(
+          fmt::format("gnss_source '{}' needs the site's CRS and origin (site_crs, site_origin)",
+                      config.gnss_source));
+    }
+    if (const std::optional<GpsdAddress> address = gpsdAddress(config.gnss_source)) {
+      gpsd = openSource("gnss_source", config.gnss_source, [&] {
+        return std::make_unique<GpsdClient>(address->host, address->port,
+                                            SiteProjection(site_crs, site_origin), gnss_errors);
+      });
+    } else {
+      nmea = openSource("gnss_source", config.gnss_source, [&] {
+        return std::make_unique<SensorLineReader>(config.gnss_source, config.gnss_baud);
+      });
+      decoder =
+          std::make_unique<NmeaGpsDecoder>(SiteProjection(site_crs, site_origin), gnss_errors);
+    }
+  }
+  threads_.emplace_back(&LiveSensors::readCamera, this, std::move(camera));
+  if (imu) {
+    threads_.emplace_back(&LiveSensors::readImu, this, std::move(imu));
+  }
+  if (nmea) {
+    threads_.emplace_back(&LiveSensors::readNmea, this, std::move(nmea), std::move(decoder));
+  }
+  if (gpsd) {
+    threads_.emplace_back(&LiveSensors::readGpsd, this, std::move(gpsd));
+  }
+}
+
+LiveSensors::~LiveSensors() {
+  stop_ = true;
+  for (std::thread& thread : threads_) {
+    thread.join();
+  }
+}
+
+std::vector<LiveReading> LiveSensors::take(int64_t timeout_ns) {
+  std::unique_lock lock(mutex_);
+  arrived_.wait_for(lock, std::chrono::nanoseconds(timeout_ns),
+                    [&] { return !readings_.empty() || camera_ended_; });
+  std::vector<LiveReading> taken(std::make_move_iterator(readings_.begin()),
+                                 std::make_move_iterator(readings_.end()));
+  readings_.clear();
+  waiting_frame_.reset();
+  return taken;
+}
+
+LiveSensorCounts LiveSensors::counts() const {
+  std::lock_guard lock(mutex_);
+  return counts_;
+}
+
+void LiveSensors::push(LiveReading reading) {
+  {
+    std::lock_guard lock(mutex_);
+    if (std::holds_alternative<LiveFrame>(reading)) {
+      ++counts_.frames;
+      if (waiting_frame_) {
+        readings_.erase(readings_.begin() + static_cast<std::ptrdiff_t>(*waiting_frame_));
+        ++counts_.frames_dropped;
+      }
+      waiting_frame_ = readings_.size();
+    } else if (std::holds_alternative<ImuSample>(reading)) {
+      ++counts_.imu_samples;
+    } else if (std::holds_alternative<GpsFix>(reading)) {
+      ++counts_.gnss_fixes;
+    } else {
+      ++counts_.gnss_velocities;
+    }
+    readings_.push_back(std::move(reading));
+  }
+  arrived_.notify_one();
+}
+
+void LiveSensors::pushMapped(std::vector<LiveReading> readings, DeviceClock& clock,
+                             int64_t arrival_ns) {
+  if (readings.empty()) {
+    return;
+  }
+  clock.observe(stampOf(readings.back()), arrival_ns);
+  for (LiveReading& reading : readings) {
+    stampOf(reading) = clock.map(stampOf(reading), arrival_ns);
+    push(std::move(reading));
+  }
+}
+
+void LiveSensors::readCamera(std::unique_ptr<VideoCamera> camera) {
+  uint32_t sequence = 0;
+  while (!stop_) {
+    std::optional<CapturedFrame> frame = camera->read();
+    if (!frame) {
+      break;
+    }
+    push(LiveFrame{sequence++, std::move(*frame)});
+  }
+  camera_ended_ = true;
+  arrived_.notify_one();
+}
+
+void LiveSensors::readImu(std::unique_ptr<SensorLineReader> stream) {
+  DeviceClock clock;
+  while (!stop_ && !stream->ended()) {
+    const std::vector<std::string> lines = stream->readLines(kReadTimeoutMs);
+    const int64_t arrival_ns = time_base_.now();
+    std::vector<LiveReading> samples;
+    for (const std::string& line : lines) {
+      const CsvLine<ImuSample> parsed = parseEurocImuLine(line);
+      if (parsed.kind == CsvLineKind::kRecord) {
+        samples.emplace_back(parsed.record);
+      } else if (parsed.kind == CsvLineKind::kMalformed) {
+        std::lock_guard lock(mutex_);
+        ++counts_.imu_lines_dropped;
+      }
+    }
+    pushMapped(std::move(samples), clock, arrival_ns);
+  }
+}
+
+void LiveSensors::readNmea(std::unique_ptr<SensorLineReader> stream,
+                           std::unique_ptr<NmeaGpsDecoder> decoder) {
+  DeviceClock clock;
+  while (!stop_ && !stream->ended()) {
+    const std::vector<std::string> lines = stream->readLines(kReadTimeoutMs);
+    const int64_t arrival_ns = time_base_.now();
+    std::vector<LiveReading> readings;
+    for (const std::string& line : lines) {
+      const NmeaCounters before = decoder->counters();
+      if (std::optional<LiveReading> reading = liveReading(decoder->decode(line))) {
+        readings.push_back(std::move(*reading));
+        continue;
+      }
+      const NmeaCounters& after = decoder->counters();
+      std::lock_guard lock(mutex_);
+      counts_.gnss_dropped += (after.malformed - before.malformed) +
+                              (after.bad_checksum - before.bad_checksum) +
+                              (after.undated - before.undated);
+    }
+    pushMapped(std::move(readings), clock, arrival_ns);
+  }
+}
+
+void LiveSensors::readGpsd(std::unique_ptr<GpsdClient> gpsd) {
+  DeviceClock clock;
+  while (!stop_) {
+    GpsdReports reports;
+    try {
+      reports = gpsd->read(kReadTimeoutMs);
+    } catch (const std::exception& error) {
+      spdlog::error("GNSS: {}; no more fixes", error.what());
+      return;
+    }
+    std::vector<LiveReading> readings;
+    for (const GpsReading& reading : reports.readings) {
+      if (std::optional<LiveReading> live = liveReading(reading)) {
+        readings.push_back(std::move(*live));
+      }
+    }
+    pushMapped(std::move(readings), clock, time_base_.now());
+    std::lock_guard lock(mutex_);
+    counts_.gnss_dropped += reports.without_fix;
+  }
+}
+
+}  // namespace lineloc

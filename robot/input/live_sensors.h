@@ -1,0 +1,110 @@
+// The robot's live sensors, each read on its own thread and stamped on the
+// robot's time base (device_clock.h): a camera (video_camera.h); GNSS from
+// gpsd (gpsd_client.h) or NMEA 0183 from a serial port, a FIFO or a file
+// (nmea_gps_decoder.h); an IMU streaming EuRoC CSV rows ("timestamp_ns, w_x,
+// w_y, w_z, a_x, a_y, a_z", sensor_csv.h) on a serial port, a FIFO or a file.
+// Each device's stamps (the IMU's counter, the receiver's UTC, the camera's
+// buffer time) are mapped by a DeviceClock of its own.
+//
+// Readings wait in arrival order until taken; of the camera's frames only
+// the newest waits: a frame the robot could not take before the next came is
+// dropped and counted, as a camera driver overwrites its buffer. An NMEA GGA
+// before the first RMC has no date and is dropped (counted).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "common/geodesy/site_projection.h"
+#include "robot/inertial/gnss_error_model.h"
+#include "robot/inertial/imu_sample.h"
+#include "robot/inertial/navigator_measurements.h"
+#include "robot/inertial/nmea_gps_decoder.h"
+#include "robot/inertial/sensor_line_reader.h"
+#include "robot/input/device_clock.h"
+#include "robot/input/gpsd_client.h"
+#include "robot/input/video_camera.h"
+
+namespace lineloc {
+
+struct LiveSensorConfig {
+  VideoCameraOptions camera;
+  // "gpsd" (localhost:2947) or "gpsd:HOST:PORT", or a serial device, FIFO or
+  // file of NMEA 0183; empty: none.
+  std::string gnss_source;
+  int gnss_baud = 9600;
+  // A serial device, FIFO or file of EuRoC CSV rows; empty: none.
+  std::string imu_source;
+  int imu_baud = 115200;
+};
+
+struct LiveFrame {
+  uint32_t sequence = 0;
+  CapturedFrame captured;
+};
+
+using LiveReading = std::variant<ImuSample, GpsFix, GpsVelocity, LiveFrame>;
+
+struct LiveSensorCounts {
+  int64_t frames = 0;
+  int64_t frames_dropped = 0;
+  int64_t imu_samples = 0;
+  int64_t imu_lines_dropped = 0;
+  int64_t gnss_fixes = 0;
+  int64_t gnss_velocities = 0;
+  // NMEA sentences that were malformed, failed their checksum or were undated,
+  // and gpsd reports without a 3D fix.
+  int64_t gnss_dropped = 0;
+};
+
+class LiveSensors {
+ public:
+  // Opens every configured source and starts reading. The site frame (its
+  // CRS, empty: none, and origin), needed with a GNSS source, is where its
+  // fixes are projected. Throws std::runtime_error naming the option and the
+  // source that cannot be opened.
+  LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& time_base,
+              const std::string& site_crs, const Eigen::Vector3d& site_origin,
+              const GnssErrorModel& gnss_errors);
+  ~LiveSensors();
+  LiveSensors(const LiveSensors&) = delete;
+  LiveSensors& operator=(const LiveSensors&) = delete;
+
+  // The readings that arrived, waiting up to `timeout_ns` for one.
+  std::vector<LiveReading> take(int64_t timeout_ns);
+
+  // True once the camera delivers no more (a file played out, a device gone).
+  bool cameraEnded() const { return camera_ended_; }
+  LiveSensorCounts counts() const;
+
+ private:
+  void push(LiveReading reading);
+  // Pushes readings that arrived together, stamped by the device's clock.
+  void pushMapped(std::vector<LiveReading> readings, DeviceClock& clock, int64_t arrival_ns);
+  void readCamera(std::unique_ptr<VideoCamera> camera);
+  void readImu(std::unique_ptr<SensorLineReader> stream);
+  void readNmea(std::unique_ptr<SensorLineReader> stream, std::unique_ptr<NmeaGpsDecoder> decoder);
+  void readGpsd(std::unique_ptr<GpsdClient> gpsd);
+
+  const RobotTimeBase& time_base_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> camera_ended_{false};
+  mutable std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::deque<LiveReading> readings_;
+  std::optional<size_t> waiting_frame_;
+  LiveSensorCounts counts_;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace lineloc

@@ -47,6 +47,21 @@ int main(int argc, char** argv) {
   options.add("robot_id", config.robot_id, "this robot's id, [A-Za-z0-9][A-Za-z0-9_.-]*");
   options.add("images", config.images,
               "EuRoC/ASL dataset (cam0/, imu0/, gps0/, compass0/), cam0/ folder or image folder");
+  options.add("camera_source", config.live.camera.source,
+              "live camera instead of `images`: a device index or path (V4L2), a GStreamer "
+              "pipeline ending in appsink, a stream URL or a video file, played in real time");
+  options.add("camera_exposure", config.live.camera.exposure,
+              "live camera's exposure in its own units (V4L2: 100 us); negative: the device's");
+  options.add("camera_gain", config.live.camera.gain,
+              "live camera's gain in its own units; negative: the device's");
+  options.add("gnss_source", config.live.gnss_source,
+              "live GNSS: 'gpsd', 'gpsd:HOST:PORT', or a serial device, FIFO or file of NMEA "
+              "0183 (empty: none)");
+  options.add("gnss_baud", config.live.gnss_baud, "baud rate of a serial GNSS receiver");
+  options.add("imu_source", config.live.imu_source,
+              "live IMU: a serial device, FIFO or file of EuRoC CSV rows, timestamp_ns, w_x, "
+              "w_y, w_z (rad/s), a_x, a_y, a_z (m/s^2) (empty: none)");
+  options.add("imu_baud", config.live.imu_baud, "baud rate of a serial IMU");
   options.add("camera_calibration", config.camera_calibration,
               "camera calibration (OpenCV YAML layout)");
   addPoseOption(options, "predicted", config.predicted_pose, config.predicted_position_sigma_m,

@@ -1,13 +1,13 @@
-// The robot's side of the loop (paper §1.2): replay the camera, IMU, DGPS and
-// compass as they were measured; keep the pose with the inertial navigator
-// (robot/inertial) started from DGPS and compass; for each camera frame send
-// the pose predicted at its exposure time at once (ExposureTopic,
-// common/messages/topics.h), then the extracted segments and corners with it;
-// apply each PoseFix that comes back (late) at its frame's time; publish
-// the fused state (RobotState) at a fixed rate.
+// The robot's side of the loop (paper §1.2): its camera, IMU, DGPS and
+// compass, replayed from a dataset as they were measured or read live
+// (robot/input/live_sensors.h), go through the robot's loop
+// (robot_loop.h): the inertial navigator (robot/inertial) started from DGPS
+// and compass keeps the pose; each camera frame sends the pose predicted at
+// its exposure, then its segments and corners; each PoseFix that comes back
+// is applied at its frame's time.
 //
-// Without IMU data (a plain image folder) the prediction is the configured
-// pose, and the loop only exercises the link.
+// Without IMU data (a plain image folder, a live camera alone) the
+// prediction is the configured pose, and the loop only exercises the link.
 #pragma once
 
 #include <atomic>
@@ -18,13 +18,17 @@
 
 #include "common/geometry/pose.h"
 #include "robot/agent/sensor_setup.h"
+#include "robot/input/live_sensors.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
 
 struct RobotConfig {
   std::string robot_id = "robot1";
+  // A dataset replayed: EuRoC/ASL folder, cam0/ folder or folder of images.
   std::string images;
+  // Live sensors instead (camera_source set): camera, GNSS and IMU sources.
+  LiveSensorConfig live;
   std::string camera_calibration;
   // Without IMU data: the predicted T_world_camera, tx ty tz qx qy qz qw (site frame).
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};

@@ -60,14 +60,16 @@ RobotConfig strongEdgesOnly() {
 
 TEST(FrontEndOptions, TheDefaultsKeepTheStepBetweenTwoWallsInShade) {
   const cv::Mat image = shadedCorner(16.0, kSimulatedNoiseSigma);
-  FeatureExtractor defaults(idealCamera(), frontEndOptions(RobotConfig{}));
+  const RobotConfig config;
+  FeatureExtractor defaults(idealCamera(), frontEndOptions(config));
   EXPECT_EQ(stepSegments(defaults.extract(image), 200.0f), 1);
   FeatureExtractor strong(idealCamera(), frontEndOptions(strongEdgesOnly()));
   EXPECT_EQ(stepSegments(strong.extract(image), 20.0f), 0);
 }
 
 TEST(FrontEndOptions, TheDefaultsFindNoSegmentInNoiseTwiceTheSimulatedCamerasAlone) {
-  FeatureExtractor defaults(idealCamera(), frontEndOptions(RobotConfig{}));
+  const RobotConfig config;
+  FeatureExtractor defaults(idealCamera(), frontEndOptions(config));
   EXPECT_TRUE(defaults.extract(shadedCorner(0.0, 2.0 * kSimulatedNoiseSigma)).segments.empty());
 }
 

@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
               "live IMU: a serial device, FIFO or file of EuRoC CSV rows, timestamp_ns, w_x, "
               "w_y, w_z (rad/s), a_x, a_y, a_z (m/s^2) (empty: none)");
   options.add("imu_baud", config.live.imu_baud, "baud rate of a serial IMU");
+  options.add("compass_source", config.live.compass_source,
+              "live compass: a serial device, FIFO or file of CSV rows, timestamp_ns, magnetic "
+              "heading (rad, clockwise from magnetic north) (empty: none)");
+  options.add("compass_baud", config.live.compass_baud, "baud rate of a serial compass");
   options.add("camera_calibration", config.camera_calibration,
               "camera calibration (OpenCV YAML layout)");
   addPoseOption(options, "predicted", config.predicted_pose, config.predicted_position_sigma_m,

@@ -221,12 +221,13 @@ void runLive(const RobotConfig& config, LiveSensors& sensors, const RobotTimeBas
         loop.addGps(*fix);
       } else if (const auto* velocity = std::get_if<GpsVelocity>(&reading)) {
         loop.addGpsVelocity(*velocity);
+      } else if (const auto* heading = std::get_if<CompassReading>(&reading)) {
+        loop.addCompass(*heading);
       } else if (auto* frame = std::get_if<LiveFrame>(&reading)) {
         ++frames_done;
         if (std::optional<LineSetData> line_set =
                 loop.expose(frame->sequence, frame->captured.stamp_ns)) {
-          loop.send(*line_set, frame->captured.image,
-                    time_base.toSteady(frame->captured.stamp_ns));
+          loop.send(*line_set, frame->captured.image, time_base.toSteady(frame->captured.stamp_ns));
         }
       }
     }
@@ -299,12 +300,13 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     runFrontEndRealtime(config.realtime_priority, true);
     runLive(config, sensors, time_base, loop, stop);
     const LiveSensorCounts counts = sensors.counts();
-    summary.sensor_lines_dropped += static_cast<int>(counts.imu_lines_dropped + counts.gnss_dropped);
+    summary.sensor_lines_dropped += static_cast<int>(
+        counts.imu_lines_dropped + counts.compass_lines_dropped + counts.gnss_dropped);
     spdlog::info(
-        "live sensors: {} frames ({} dropped unread), {} IMU samples, {} GNSS fixes, {} GNSS "
-        "velocities",
-        counts.frames, counts.frames_dropped, counts.imu_samples, counts.gnss_fixes,
-        counts.gnss_velocities);
+        "live sensors: {} frames ({} dropped unread), {} IMU samples, {} compass readings, {} "
+        "GNSS fixes, {} GNSS velocities",
+        counts.frames, counts.frames_dropped, counts.imu_samples, counts.compass_readings,
+        counts.gnss_fixes, counts.gnss_velocities);
   } else {
     loop.waitForBackbone(stop);
     runReplay(config, streams, loop, summary, stop);

@@ -181,20 +181,20 @@ struct RobotLoop::Links {
         InertialNavigator* navigator, RobotRunSummary& summary)
       : domain(config.domain_id, config.dds_config),
         participant(domain),
-        receiver(participant, config, summary,
-                 [navigator, &summary](const PoseFixData& fix) {
-                   if (navigator == nullptr) {
-                     return;
-                   }
-                   const MeasurementOutcome outcome = navigator->applyVisionFix(
-                       fix.stamp_ns, fix.T_world_camera,
-                       diagonalPoseCovariance(fix.unproven_position_sigma_m,
-                                              fix.unproven_rotation_sigma_rad));
-                   ++(outcome == MeasurementOutcome::kAccepted ||
-                              outcome == MeasurementOutcome::kPending
-                          ? summary.fixes_applied
-                          : summary.fixes_rejected);
-                 }),
+        receiver(
+            participant, config, summary,
+            [navigator, &summary](const PoseFixData& fix) {
+              if (navigator == nullptr) {
+                return;
+              }
+              const MeasurementOutcome outcome = navigator->applyVisionFix(
+                  fix.stamp_ns, fix.T_world_camera,
+                  diagonalPoseCovariance(fix.unproven_position_sigma_m,
+                                         fix.unproven_rotation_sigma_rad));
+              ++(outcome == MeasurementOutcome::kAccepted || outcome == MeasurementOutcome::kPending
+                     ? summary.fixes_applied
+                     : summary.fixes_rejected);
+            }),
         line_sets(participant, dds::Qos(dds::kHistoryDepth), robotPartition(config.robot_id)),
         exposures(participant, dds::Qos(dds::kHistoryDepth), robotPartition(config.robot_id)),
         states(participant, dds::Qos(dds::kHistoryDepth), robotPartition(config.robot_id)),
@@ -231,8 +231,11 @@ RobotLoop::RobotLoop(const RobotConfig& config, const CameraCalibration& calibra
 RobotLoop::~RobotLoop() = default;
 
 void RobotLoop::waitForBackbone(const std::atomic<bool>& stop) {
-  const int64_t deadline = steadyClockNs() + static_cast<int64_t>(config_.wait_for_backbone_s * 1e9);
-  const auto matched = [&] { return backboneMatched(links_->line_sets, links_->receiver.reader()); };
+  const int64_t deadline =
+      steadyClockNs() + static_cast<int64_t>(config_.wait_for_backbone_s * 1e9);
+  const auto matched = [&] {
+    return backboneMatched(links_->line_sets, links_->receiver.reader());
+  };
   while (!matched() && steadyClockNs() < deadline && !stop) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -334,7 +337,8 @@ void RobotLoop::finish(const std::atomic<bool>& stop) {
   while (links_->receiver.outstanding() > 0 && steadyClockNs() < deadline && !stop) {
     links_->receiver.poll(kPollNs);
   }
-  summary_.health = navigator_ != nullptr ? describe(navigator_->health()) : "no IMU: fixed prediction";
+  summary_.health =
+      navigator_ != nullptr ? describe(navigator_->health()) : "no IMU: fixed prediction";
 }
 
 }  // namespace lineloc

@@ -10,9 +10,8 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
-#include <optional>
-
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "common/camera/camera_calibration.h"
 #include "common/messages/messages.h"

@@ -5,8 +5,6 @@
 
 #include <stdexcept>
 
-#include "robot/inertial/sensor_csv.h"
-
 namespace lineloc {
 namespace {
 
@@ -74,52 +72,60 @@ LiveSensors::LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& ti
                          const std::string& site_crs, const Eigen::Vector3d& site_origin,
                          const GnssErrorModel& gnss_errors)
     : time_base_(time_base) {
-  auto camera = std::make_unique<VideoCamera>(config.camera, time_base);
-  std::unique_ptr<SensorLineReader> imu;
-  if (!config.imu_source.empty()) {
-    imu = openSource("imu_source", config.imu_source, [&] {
-      return std::make_unique<SensorLineReader>(config.imu_source, config.imu_baud);
-    });
+  if (!config.gnss_source.empty() && site_crs.empty()) {
+    throw std::runtime_error(
+        fmt::format("gnss_source '{}' needs the site's CRS and origin (site_crs, site_origin)",
+                    config.gnss_source));
   }
-  std::unique_ptr<SensorLineReader> nmea;
-  std::unique_ptr<NmeaGpsDecoder> decoder;
-  std::unique_ptr<GpsdClient> gpsd;
-  if (!config.gnss_source.empty()) {
-    if (site_crs.empty()) {
-      throw std::runtime_error(
-          fmt::format("gnss_source '{}' needs the site's CRS and origin (site_crs, site_origin)",
-                      config.gnss_source));
+  const std::optional<GpsdAddress> gpsd_address =
+      config.gnss_source.empty() ? std::nullopt : gpsdAddress(config.gnss_source);
+  threads_.emplace_back(&LiveSensors::readCamera, this,
+                        std::make_unique<VideoCamera>(config.camera, time_base));
+  try {
+    if (!config.imu_source.empty()) {
+      auto imu = openSource("imu_source", config.imu_source, [&] {
+        return std::make_unique<SensorLineReader>(config.imu_source, config.imu_baud);
+      });
+      threads_.emplace_back(&LiveSensors::readCsv<ImuSample>, this, std::move(imu),
+                            &parseEurocImuLine, &LiveSensorCounts::imu_lines_dropped);
     }
-    if (const std::optional<GpsdAddress> address = gpsdAddress(config.gnss_source)) {
-      gpsd = openSource("gnss_source", config.gnss_source, [&] {
-        return std::make_unique<GpsdClient>(address->host, address->port,
+    if (!config.compass_source.empty()) {
+      auto compass = openSource("compass_source", config.compass_source, [&] {
+        return std::make_unique<SensorLineReader>(config.compass_source, config.compass_baud);
+      });
+      threads_.emplace_back(&LiveSensors::readCsv<CompassReading>, this, std::move(compass),
+                            &parseCompassLine, &LiveSensorCounts::compass_lines_dropped);
+    }
+    if (gpsd_address) {
+      auto gpsd = openSource("gnss_source", config.gnss_source, [&] {
+        return std::make_unique<GpsdClient>(gpsd_address->host, gpsd_address->port,
                                             SiteProjection(site_crs, site_origin), gnss_errors);
       });
-    } else {
-      nmea = openSource("gnss_source", config.gnss_source, [&] {
+      threads_.emplace_back(&LiveSensors::readGpsd, this, std::move(gpsd));
+    } else if (!config.gnss_source.empty()) {
+      auto nmea = openSource("gnss_source", config.gnss_source, [&] {
         return std::make_unique<SensorLineReader>(config.gnss_source, config.gnss_baud);
       });
-      decoder =
-          std::make_unique<NmeaGpsDecoder>(SiteProjection(site_crs, site_origin), gnss_errors);
+      threads_.emplace_back(
+          &LiveSensors::readNmea, this, std::move(nmea),
+          std::make_unique<NmeaGpsDecoder>(SiteProjection(site_crs, site_origin), gnss_errors));
     }
-  }
-  threads_.emplace_back(&LiveSensors::readCamera, this, std::move(camera));
-  if (imu) {
-    threads_.emplace_back(&LiveSensors::readImu, this, std::move(imu));
-  }
-  if (nmea) {
-    threads_.emplace_back(&LiveSensors::readNmea, this, std::move(nmea), std::move(decoder));
-  }
-  if (gpsd) {
-    threads_.emplace_back(&LiveSensors::readGpsd, this, std::move(gpsd));
+  } catch (...) {
+    stopThreads();
+    throw;
   }
 }
 
 LiveSensors::~LiveSensors() {
+  stopThreads();
+}
+
+void LiveSensors::stopThreads() {
   stop_ = true;
   for (std::thread& thread : threads_) {
     thread.join();
   }
+  threads_.clear();
 }
 
 std::vector<LiveReading> LiveSensors::take(int64_t timeout_ns) {
@@ -150,6 +156,8 @@ void LiveSensors::push(LiveReading reading) {
       waiting_frame_ = readings_.size();
     } else if (std::holds_alternative<ImuSample>(reading)) {
       ++counts_.imu_samples;
+    } else if (std::holds_alternative<CompassReading>(reading)) {
+      ++counts_.compass_readings;
     } else if (std::holds_alternative<GpsFix>(reading)) {
       ++counts_.gnss_fixes;
     } else {
@@ -185,22 +193,25 @@ void LiveSensors::readCamera(std::unique_ptr<VideoCamera> camera) {
   arrived_.notify_one();
 }
 
-void LiveSensors::readImu(std::unique_ptr<SensorLineReader> stream) {
+template <typename Record>
+void LiveSensors::readCsv(std::unique_ptr<SensorLineReader> stream,
+                          CsvLine<Record> (*parse)(std::string_view),
+                          int64_t LiveSensorCounts::*dropped) {
   DeviceClock clock;
   while (!stop_ && !stream->ended()) {
     const std::vector<std::string> lines = stream->readLines(kReadTimeoutMs);
     const int64_t arrival_ns = time_base_.now();
-    std::vector<LiveReading> samples;
+    std::vector<LiveReading> records;
     for (const std::string& line : lines) {
-      const CsvLine<ImuSample> parsed = parseEurocImuLine(line);
+      const CsvLine<Record> parsed = parse(line);
       if (parsed.kind == CsvLineKind::kRecord) {
-        samples.emplace_back(parsed.record);
+        records.emplace_back(parsed.record);
       } else if (parsed.kind == CsvLineKind::kMalformed) {
         std::lock_guard lock(mutex_);
-        ++counts_.imu_lines_dropped;
+        ++(counts_.*dropped);
       }
     }
-    pushMapped(std::move(samples), clock, arrival_ns);
+    pushMapped(std::move(records), clock, arrival_ns);
   }
 }
 

@@ -1,10 +1,15 @@
 // The robot's live sensors, each read on its own thread and stamped on the
 // robot's time base (device_clock.h): a camera (video_camera.h); GNSS from
 // gpsd (gpsd_client.h) or NMEA 0183 from a serial port, a FIFO or a file
-// (nmea_gps_decoder.h); an IMU streaming EuRoC CSV rows ("timestamp_ns, w_x,
-// w_y, w_z, a_x, a_y, a_z", sensor_csv.h) on a serial port, a FIFO or a file.
-// Each device's stamps (the IMU's counter, the receiver's UTC, the camera's
-// buffer time) are mapped by a DeviceClock of its own.
+// (nmea_gps_decoder.h); an IMU and a compass streaming CSV rows as their
+// EuRoC files hold them (sensor_csv.h: "timestamp_ns, w_x, w_y, w_z, a_x,
+// a_y, a_z"; "timestamp_ns, magnetic heading rad") on a serial port, a FIFO
+// or a file. Each device's stamps (the IMU's counter, the receiver's UTC, the
+// camera's buffer time) are mapped by a DeviceClock of its own.
+//
+// The camera starts first, and the line sources are opened once it runs: a
+// program feeding a FIFO in step with a video file (a replay through the
+// live path) starts when its FIFO is opened.
 //
 // Readings wait in arrival order until taken; of the camera's frames only
 // the newest waits: a frame the robot could not take before the next came is
@@ -30,6 +35,7 @@
 #include "robot/inertial/imu_sample.h"
 #include "robot/inertial/navigator_measurements.h"
 #include "robot/inertial/nmea_gps_decoder.h"
+#include "robot/inertial/sensor_csv.h"
 #include "robot/inertial/sensor_line_reader.h"
 #include "robot/input/device_clock.h"
 #include "robot/input/gpsd_client.h"
@@ -46,6 +52,9 @@ struct LiveSensorConfig {
   // A serial device, FIFO or file of EuRoC CSV rows; empty: none.
   std::string imu_source;
   int imu_baud = 115200;
+  // A serial device, FIFO or file of compass CSV rows; empty: none.
+  std::string compass_source;
+  int compass_baud = 9600;
 };
 
 struct LiveFrame {
@@ -53,13 +62,15 @@ struct LiveFrame {
   CapturedFrame captured;
 };
 
-using LiveReading = std::variant<ImuSample, GpsFix, GpsVelocity, LiveFrame>;
+using LiveReading = std::variant<ImuSample, GpsFix, GpsVelocity, CompassReading, LiveFrame>;
 
 struct LiveSensorCounts {
   int64_t frames = 0;
   int64_t frames_dropped = 0;
   int64_t imu_samples = 0;
   int64_t imu_lines_dropped = 0;
+  int64_t compass_readings = 0;
+  int64_t compass_lines_dropped = 0;
   int64_t gnss_fixes = 0;
   int64_t gnss_velocities = 0;
   // NMEA sentences that were malformed, failed their checksum or were undated,
@@ -88,11 +99,15 @@ class LiveSensors {
   LiveSensorCounts counts() const;
 
  private:
+  void stopThreads();
   void push(LiveReading reading);
   // Pushes readings that arrived together, stamped by the device's clock.
   void pushMapped(std::vector<LiveReading> readings, DeviceClock& clock, int64_t arrival_ns);
   void readCamera(std::unique_ptr<VideoCamera> camera);
-  void readImu(std::unique_ptr<SensorLineReader> stream);
+  // Rows parsed by `parse` (sensor_csv.h), malformed ones counted in `dropped`.
+  template <typename Record>
+  void readCsv(std::unique_ptr<SensorLineReader> stream, CsvLine<Record> (*parse)(std::string_view),
+               int64_t LiveSensorCounts::*dropped);
   void readNmea(std::unique_ptr<SensorLineReader> stream, std::unique_ptr<NmeaGpsDecoder> decoder);
   void readGpsd(std::unique_ptr<GpsdClient> gpsd);
 

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/videoio.hpp>
 #include <thread>
 
@@ -50,10 +51,16 @@ TEST(LiveSensors, ReadsEachSensorAsItIsMeasuredOnTheRobotsTime) {
   ASSERT_EQ(::mkfifo(imu_fifo.c_str(), 0600), 0);
   ASSERT_EQ(::mkfifo(gnss_fifo.c_str(), 0600), 0);
 
+  // A compass's log as a file: read to its end at once.
+  const std::string compass_file = (folder / "compass.csv").string();
+  std::ofstream(compass_file) << "# timestamp_ns, heading_rad\n1000000000,0.5\nbad,row\n"
+                                 "1100000000,0.52\n";
+
   LiveSensorConfig config;
   config.camera.source = video;
   config.imu_source = imu_fifo;
   config.gnss_source = gnss_fifo;
+  config.compass_source = compass_file;
   const RobotTimeBase time_base;
   LiveSensors sensors(config, time_base, "UTM:31N", kSiteOrigin, GnssErrorModel{});
 
@@ -94,6 +101,7 @@ TEST(LiveSensors, ReadsEachSensorAsItIsMeasuredOnTheRobotsTime) {
   std::vector<ImuSample> imu;
   std::vector<LiveFrame> frames;
   std::vector<GpsFix> fixes;
+  std::vector<CompassReading> headings;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while ((!sensors.cameraEnded() || static_cast<int>(imu.size()) < kImuSamples) &&
          std::chrono::steady_clock::now() < deadline) {
@@ -104,6 +112,8 @@ TEST(LiveSensors, ReadsEachSensorAsItIsMeasuredOnTheRobotsTime) {
         frames.push_back(std::move(*frame));
       } else if (auto* fix = std::get_if<GpsFix>(&reading)) {
         fixes.push_back(*fix);
+      } else if (auto* heading = std::get_if<CompassReading>(&reading)) {
+        headings.push_back(*heading);
       }
     }
     // The robot is slow to take frames now and then: only the newest waits.
@@ -118,6 +128,10 @@ TEST(LiveSensors, ReadsEachSensorAsItIsMeasuredOnTheRobotsTime) {
     EXPECT_GT(imu[i].stamp_ns, imu[i - 1].stamp_ns);
   }
   EXPECT_EQ(counts.imu_lines_dropped, 1);
+  ASSERT_EQ(headings.size(), 2u);
+  EXPECT_EQ(headings[1].stamp_ns - headings[0].stamp_ns, 100 * kMs);
+  EXPECT_DOUBLE_EQ(headings[1].magnetic_heading_rad, 0.52);
+  EXPECT_EQ(counts.compass_lines_dropped, 1);
   ASSERT_EQ(fixes.size(), 1u);
   EXPECT_LT((fixes[0].p_world_antenna - Eigen::Vector3d(3.0, 4.0, 1.0)).norm(), 2e-3);
   EXPECT_NEAR(fixes[0].horizontal_sigma_m, GnssErrorModel{}.dgps_sigma_m, 1e-9);

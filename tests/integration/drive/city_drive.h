@@ -249,20 +249,29 @@ class CityDrive : public ::testing::Test {
   std::unique_ptr<ChildProcess> startRobot(const std::string& robot_id = "drive",
                                            const fs::path& dataset = "dataset",
                                            const std::vector<std::string>& options = {}) const {
-    std::vector<std::string> args = dds("robot", robot_id);
-    args.insert(args.end(), options.begin(), options.end());
-    args.insert(
-        args.end(),
-        {"--robot-id", robot_id, "--images", (work_ / dataset).string(), "--camera-calibration",
-         (work_ / dataset / "cam0" / "calibration.yaml").string(), "--site-crs", "EPSG:7415",
-         "--camera-height-m", fmt::format("{}", city_.camera_height_m), "--trajectory-out",
-         (work_ / (robot_id + "-fixes.tum")).string(), "--fused-trajectory-out",
-         (work_ / (robot_id + "-fused.tum")).string(), "--fix-log-out",
-         (work_ / (robot_id + "-fixes.txt")).string(), "--state-log-out",
-         (work_ / (robot_id + "-states.txt")).string(), "--site-origin"});
-    args.insert(args.end(), city_.origin.begin(), city_.origin.end());
+    std::vector<std::string> args = robotArgs(robot_id, dataset, options);
+    args.insert(args.end(), {"--images", (work_ / dataset).string()});
     return std::make_unique<ChildProcess>(std::string(LINELOC_BIN_DIR) + "/lineloc-robot", args,
                                           (work_ / (robot_id + ".log")).string(), environment_);
+  }
+
+  // lineloc-robot's arguments for robot `robot_id` with the camera of
+  // `dataset`, its outputs under work_ (<robot_id>-fixes.tum ...), and
+  // `options`; without its input.
+  std::vector<std::string> robotArgs(const std::string& robot_id, const fs::path& dataset,
+                                     const std::vector<std::string>& options) const {
+    std::vector<std::string> args = dds("robot", robot_id);
+    args.insert(args.end(), options.begin(), options.end());
+    args.insert(args.end(),
+                {"--robot-id", robot_id, "--camera-calibration",
+                 (work_ / dataset / "cam0" / "calibration.yaml").string(), "--site-crs",
+                 "EPSG:7415", "--camera-height-m", fmt::format("{}", city_.camera_height_m),
+                 "--trajectory-out", (work_ / (robot_id + "-fixes.tum")).string(),
+                 "--fused-trajectory-out", (work_ / (robot_id + "-fused.tum")).string(),
+                 "--fix-log-out", (work_ / (robot_id + "-fixes.txt")).string(), "--state-log-out",
+                 (work_ / (robot_id + "-states.txt")).string(), "--site-origin"});
+    args.insert(args.end(), city_.origin.begin(), city_.origin.end());
+    return args;
   }
 
   void waitForRobot(ChildProcess& robot, const std::string& robot_id = "drive",

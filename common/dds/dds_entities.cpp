@@ -216,14 +216,19 @@ Qos Qos::keptForLateReaders(int32_t history_depth, int64_t lifespan_ns) {
   return Qos(history_depth, DDS_DURABILITY_TRANSIENT_LOCAL, lifespan_ns);
 }
 
+Qos Qos::anyReliability(int32_t history_depth) {
+  return Qos(history_depth, DDS_DURABILITY_VOLATILE, DDS_INFINITY, DDS_INFINITY,
+             DDS_RELIABILITY_BEST_EFFORT);
+}
+
 Qos Qos::presence(int64_t lease_ns) {
   return Qos(1, DDS_DURABILITY_TRANSIENT_LOCAL, DDS_INFINITY, lease_ns);
 }
 
 Qos::Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns,
-         int64_t liveliness_lease_ns)
+         int64_t liveliness_lease_ns, dds_reliability_kind_t reliability)
     : qos_(dds_create_qos()) {
-  dds_qset_reliability(qos_, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+  dds_qset_reliability(qos_, reliability, DDS_MSECS(100));
   dds_qset_durability(qos_, durability);
   dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, history_depth);
   // What a transient-local writer keeps for late readers (Cyclone's default: 1 sample).

@@ -99,6 +99,9 @@ class Qos {
   // before the writer knows the reader, and what is written in between would
   // reach nobody.
   static Qos keptForLateReaders(int32_t history_depth, int64_t lifespan_ns);
+  // Volatile and best effort: a reader with it matches reliable and
+  // best-effort writers alike (ROS 2's sensor drivers publish best effort).
+  static Qos anyReliability(int32_t history_depth);
   // A presence: each instance's last sample, transient-local, its writer's
   // liveliness asserted automatically by its participant and lost
   // `lease_ns` after the participant falls silent (killed, paused,
@@ -112,7 +115,8 @@ class Qos {
 
  private:
   Qos(int32_t history_depth, dds_durability_kind_t durability, int64_t lifespan_ns,
-      int64_t liveliness_lease_ns = DDS_INFINITY);
+      int64_t liveliness_lease_ns = DDS_INFINITY,
+      dds_reliability_kind_t reliability = DDS_RELIABILITY_RELIABLE);
 
   dds_qos_t* qos_;
 };
@@ -154,12 +158,15 @@ uint32_t serializedSizeBytes(const Message& sample) {
   return serializedSizeBytes(&sample, *TopicTraits<Message>::descriptor());
 }
 
+// A writer of Topic's type on Topic's topic, or on `topic_name` (a topic
+// named at run time, as a ROS 2 topic is).
 template <typename Message, typename Topic = TopicTraits<Message>>
 class Writer {
  public:
-  Writer(const Participant& participant, const Qos& qos, const std::string& partition = {})
-      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
-                                nullptr),
+  Writer(const Participant& participant, const Qos& qos, const std::string& partition = {},
+         const std::string& topic_name = Topic::kName)
+      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), topic_name.c_str(),
+                                nullptr, nullptr),
                "topic"),
         publisher_(createGroup(participant, GroupKind::kPublisher, partition)),
         writer_(dds_create_writer(parentOf(publisher_, participant), topic_.handle(), qos.get(),
@@ -198,9 +205,10 @@ struct SampleInfo {
 template <typename Message, typename Topic = TopicTraits<Message>>
 class Reader {
  public:
-  Reader(const Participant& participant, const Qos& qos, const std::string& partition = {})
-      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), Topic::kName, nullptr,
-                                nullptr),
+  Reader(const Participant& participant, const Qos& qos, const std::string& partition = {},
+         const std::string& topic_name = Topic::kName)
+      : topic_(dds_create_topic(participant.handle(), Topic::descriptor(), topic_name.c_str(),
+                                nullptr, nullptr),
                "topic"),
         subscriber_(createGroup(participant, GroupKind::kSubscriber, partition)),
         reader_(dds_create_reader(parentOf(subscriber_, participant), topic_.handle(), qos.get(),

@@ -273,7 +273,11 @@ std::optional<NavigatorEstimate> InertialNavigator::state() const {
     return std::nullopt;
   }
   const FilterSnapshot& latest = history_.latest();
-  return NavigatorEstimate{latest.state, filter_.reportedCovariance(latest)};
+  const std::optional<ImuSample> sample = history_.latestImu();
+  return NavigatorEstimate{latest.state, filter_.reportedCovariance(latest),
+                           sample
+                               ? Eigen::Vector3d(sample->gyro_radps - latest.state.gyro_bias_radps)
+                               : Eigen::Vector3d::Zero()};
 }
 
 PoseWithCovariance InertialNavigator::cameraPose(const NavigatorEstimate& estimate) const {

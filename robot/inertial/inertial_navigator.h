@@ -86,6 +86,9 @@ struct NavigatorHealth {
 struct NavigatorEstimate {
   NavigationState state;
   ErrorCovariance covariance = ErrorCovariance::Identity();
+  // The body's rate of turn in its own frame: the last IMU sample's, less the
+  // gyro bias (its covariance is the bias's, covariance's kGyroBias block).
+  Eigen::Vector3d omega_body_radps = Eigen::Vector3d::Zero();
 };
 
 enum class PredictionStatus { kOk, kNotInitialised, kBeforeHistory };

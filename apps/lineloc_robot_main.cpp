@@ -66,6 +66,29 @@ int main(int argc, char** argv) {
               "live compass: a serial device, FIFO or file of CSV rows, timestamp_ns, magnetic "
               "heading (rad, clockwise from magnetic north) (empty: none)");
   options.add("compass_baud", config.live.compass_baud, "baud rate of a serial compass");
+  options.add("ros_domain_id", config.ros_domain_id,
+              "ROS 2 domain (ROS_DOMAIN_ID) the robot publishes its state on and reads ROS 2 "
+              "sensor topics from; -1: no ROS 2");
+  options.add("ros_dds_config", config.ros_dds_config,
+              "Cyclone DDS configuration files of the ROS 2 domain (empty: CYCLONEDDS_URI)");
+  options.add("ros_pose_topic", config.ros_state.pose,
+              "ROS 2 topic of base_link's pose in map (PoseWithCovarianceStamped; empty: none)");
+  options.add("ros_odometry_topic", config.ros_state.odometry,
+              "ROS 2 topic of the odometry (nav_msgs/Odometry; empty: none)");
+  options.add("ros_tf_topic", config.ros_state.tf,
+              "ROS 2 topic of the map -> base_link transform (tf2_msgs/TFMessage; empty: none)");
+  options.add("ros_map_frame", config.ros_state.map_frame, "ROS 2 frame of the site frame");
+  options.add("ros_base_frame", config.ros_state.base_frame, "ROS 2 frame of the robot's body");
+  options.add("ros_imu_topic", config.ros_sensors.imu,
+              "live IMU from a ROS 2 sensor_msgs/Imu topic (empty: none)");
+  options.add("ros_navsat_topic", config.ros_sensors.navsat,
+              "live GNSS from a ROS 2 sensor_msgs/NavSatFix topic (empty: none)");
+  options.add("ros_image_topic", config.ros_sensors.image,
+              "live camera from a ROS 2 sensor_msgs/Image topic, or CompressedImage on a topic "
+              "ending in /compressed (empty: none)");
+  options.add("geoid_height_m", config.ros_sensors.geoid_height_m,
+              "the geoid's height above the WGS84 ellipsoid at the site (m), subtracted from "
+              "NavSatFix altitudes");
   options.add("camera_calibration", config.camera_calibration,
               "camera calibration (OpenCV YAML layout)");
   addPoseOption(options, "predicted", config.predicted_pose, config.predicted_position_sigma_m,

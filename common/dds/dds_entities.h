@@ -283,6 +283,9 @@ class Reader {
     }
   }
 
+  // The reader's handle, for a waitset of several readers.
+  dds_entity_t handle() const { return reader_.handle(); }
+
   // Writers currently matched with this reader.
   uint32_t matchedWriters() const {
     dds_subscription_matched_status_t status;

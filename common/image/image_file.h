@@ -21,4 +21,10 @@ constexpr int64_t kDefaultMaxImagePixels = 64'000'000;
 cv::Mat readImageFile(const std::string& path, int imread_flags,
                       int64_t max_pixels = kDefaultMaxImagePixels);
 
+// The same for an encoded image in memory (a message's JPEG or PNG), named
+// `source` in errors: cv::imdecode once its header claims at most
+// `max_pixels`.
+cv::Mat decodeImageBytes(const uint8_t* data, size_t size, int imread_flags,
+                         const std::string& source, int64_t max_pixels = kDefaultMaxImagePixels);
+
 }  // namespace lineloc

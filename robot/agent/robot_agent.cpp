@@ -54,15 +54,42 @@ std::unique_ptr<NmeaGpsDecoder> gpsDecoder(const RobotConfig& config) {
                                           config.sensors.gnss_errors);
 }
 
-// Live, the IMU carries the pose between fixes only from a first position:
-// GNSS (gnss_source) or a start pose.
-void requireLiveNavigationSensors(const RobotConfig& config, bool start_pose_given) {
-  if (!config.live.imu_source.empty() && config.live.gnss_source.empty() && !start_pose_given) {
-    throw std::runtime_error(fmt::format(
-        "imu_source '{}' without gnss_source or start_pose: without a first position the robot "
-        "never localises",
-        config.live.imu_source));
+bool rosSensors(const RobotConfig& config) {
+  const Ros2SensorTopics& topics = config.ros_sensors;
+  return !topics.imu.empty() || !topics.navsat.empty() || !topics.image.empty();
+}
+
+// Live: a camera, and with an IMU, which carries the pose between fixes only
+// from a first position, GNSS or a start pose.
+void requireLiveSensors(const RobotConfig& config, bool start_pose_given) {
+  if (rosSensors(config) && config.ros_domain_id < 0) {
+    throw std::runtime_error("ROS 2 sensor topics need ros_domain_id, the ROS 2 domain");
   }
+  if (config.live.camera.source.empty() && config.ros_sensors.image.empty()) {
+    throw std::runtime_error(
+        "live sensors need a camera: camera_source, or ros_image_topic with ros_domain_id");
+  }
+  const bool imu = !config.live.imu_source.empty() || !config.ros_sensors.imu.empty();
+  const bool gnss = !config.live.gnss_source.empty() || !config.ros_sensors.navsat.empty();
+  if (imu && !gnss && !start_pose_given) {
+    throw std::runtime_error(
+        "a live IMU without GNSS (gnss_source, ros_navsat_topic) or start_pose: without a first "
+        "position the robot never localises");
+  }
+}
+
+// The ROS 2 sensor source, when topics are given.
+std::vector<std::unique_ptr<LiveSource>> rosSources(const RobotConfig& config,
+                                                    const dds::Participant* ros) {
+  std::vector<std::unique_ptr<LiveSource>> sources;
+  if (ros != nullptr && rosSensors(config)) {
+    sources.push_back(std::make_unique<Ros2SensorSource>(
+        *ros, config.ros_sensors,
+        config.site_crs.empty()
+            ? nullptr
+            : std::make_unique<SiteProjection>(config.site_crs, siteOrigin(config))));
+  }
+  return sources;
 }
 
 InertialNavigatorConfig navigatorConfig(const RobotConfig& config, const NmeaGpsDecoder* gps,
@@ -269,10 +296,10 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
           : std::optional(poseOption(config.start_pose, config.start_position_sigma_m,
                                      config.start_rotation_sigma_deg, "start_pose"));
   const std::unique_ptr<NmeaGpsDecoder> gps = gpsDecoder(config);
-  const bool live = !config.live.camera.source.empty();
+  const bool live = !config.live.camera.source.empty() || rosSensors(config);
   SensorStreams streams;
   if (live) {
-    requireLiveNavigationSensors(config, start_pose.has_value());
+    requireLiveSensors(config, start_pose.has_value());
   } else {
     streams = loadSensorStreams(config.images, gps.get(),
                                 {static_cast<int64_t>(config.start_at_s * 1e9),
@@ -283,7 +310,8 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     }
   }
   std::optional<InertialNavigator> navigator;
-  if (live ? !config.live.imu_source.empty() : !streams.imu.empty()) {
+  if (live ? !config.live.imu_source.empty() || !config.ros_sensors.imu.empty()
+           : !streams.imu.empty()) {
     navigator.emplace(navigatorConfig(config, gps.get(), streams, camchain));
     if (start_pose) {
       navigator->setStartPose(*start_pose);
@@ -291,11 +319,18 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
   }
   RobotRunSummary summary;
   summary.sensor_lines_dropped = streams.dropped_lines;
-  RobotLoop loop(config, calibration, navigator ? &*navigator : nullptr, summary);
+  std::optional<dds::Domain> ros_domain;
+  std::optional<dds::Participant> ros;
+  if (config.ros_domain_id >= 0) {
+    ros_domain.emplace(static_cast<uint32_t>(config.ros_domain_id), config.ros_dds_config);
+    ros.emplace(*ros_domain);
+  }
+  RobotLoop loop(config, calibration, navigator ? &*navigator : nullptr, ros ? &*ros : nullptr,
+                 summary);
   if (live) {
     const RobotTimeBase time_base;
     LiveSensors sensors(config.live, time_base, config.site_crs, siteOrigin(config),
-                        config.sensors.gnss_errors);
+                        config.sensors.gnss_errors, rosSources(config, ros ? &*ros : nullptr));
     loop.waitForBackbone(stop);
     runFrontEndRealtime(config.realtime_priority, true);
     runLive(config, sensors, time_base, loop, stop);

@@ -19,6 +19,8 @@
 #include "common/geometry/pose.h"
 #include "robot/agent/sensor_setup.h"
 #include "robot/input/live_sensors.h"
+#include "robot/ros2/ros2_sensor_source.h"
+#include "robot/ros2/ros2_state_publisher.h"
 #include "robot/vision/features/feature_extractor.h"
 
 namespace lineloc {
@@ -29,6 +31,14 @@ struct RobotConfig {
   std::string images;
   // Live sensors instead (camera_source set): camera, GNSS and IMU sources.
   LiveSensorConfig live;
+  // ROS 2 (robot/ros2): the domain it speaks on (-1: none), its Cyclone DDS
+  // configuration files, the topics the robot's state goes to and the
+  // sensors' topics it reads (live, as the sources above: an image topic
+  // stands for camera_source).
+  int ros_domain_id = -1;
+  std::string ros_dds_config;
+  Ros2StateTopics ros_state;
+  Ros2SensorTopics ros_sensors;
   std::string camera_calibration;
   // Without IMU data: the predicted T_world_camera, tx ty tz qx qy qz qw (site frame).
   std::vector<double> predicted_pose = {0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 1.0};

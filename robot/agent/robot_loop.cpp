@@ -174,6 +174,19 @@ bool backboneMatched(const dds::Writer<lineloc_msg_LineSet>& line_sets,
   });
 }
 
+// The state as ROS 2 takes it: base_link's pose and velocity in the map.
+BodyState bodyState(const NavigatorEstimate& estimate) {
+  BodyState body;
+  body.stamp_ns = estimate.state.stamp_ns;
+  body.T_map_base = {makePose(estimate.state.p_world_body, estimate.state.q_world_body),
+                     poseBlock(estimate.covariance)};
+  body.v_map_mps = estimate.state.v_world_body;
+  body.v_map_covariance = estimate.covariance.block<3, 3>(kVelocity, kVelocity);
+  body.omega_base_radps = estimate.omega_body_radps;
+  body.omega_base_covariance = estimate.covariance.block<3, 3>(kGyroBias, kGyroBias);
+  return body;
+}
+
 }  // namespace
 
 struct RobotLoop::Links {
@@ -217,14 +230,17 @@ struct RobotLoop::Links {
 };
 
 RobotLoop::RobotLoop(const RobotConfig& config, const CameraCalibration& calibration,
-                     InertialNavigator* navigator, RobotRunSummary& summary)
+                     InertialNavigator* navigator, const dds::Participant* ros,
+                     RobotRunSummary& summary)
     : config_(config),
       calibration_(calibration),
       navigator_(navigator),
       summary_(summary),
       configured_(poseOption(config.predicted_pose, config.predicted_position_sigma_m,
                              config.predicted_rotation_sigma_deg, "predicted_pose")),
-      links_(std::make_unique<Links>(config, calibration, navigator, summary)) {
+      links_(std::make_unique<Links>(config, calibration, navigator, summary)),
+      ros_(ros != nullptr ? std::make_unique<Ros2StatePublisher>(*ros, config.ros_state)
+                          : nullptr) {
   dds::logSecurity(links_->domain);
 }
 
@@ -322,6 +338,9 @@ void RobotLoop::publishStateIfDue() {
   }
   if (const std::optional<NavigatorEstimate> estimate = navigator_->state()) {
     links_->states.write(robotState(*estimate, navigator_->health(), config_.robot_id));
+    if (ros_) {
+      ros_->publish(bodyState(*estimate));
+    }
     ++summary_.states_published;
     if (links_->state_log) {
       links_->state_log->write({estimate->state.stamp_ns, navigator_->cameraPose(*estimate)});

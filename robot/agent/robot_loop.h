@@ -3,7 +3,9 @@
 // the navigator predicts at its exposure, sent at once (ExposureTopic,
 // common/messages/topics.h), then its segments and corners, extracted by the
 // front end; each PoseFix that comes back (late) is applied at its frame's
-// time; the fused state (RobotState) is published at a fixed rate. Without a
+// time; the fused state (RobotState, and for ROS 2 base_link's pose,
+// odometry and transform, ros2_state_publisher.h) is published at a fixed
+// rate. Without a
 // navigator (no IMU) every frame carries the configured prediction.
 #pragma once
 
@@ -22,9 +24,10 @@ namespace lineloc {
 
 class RobotLoop {
  public:
-  // `navigator` (null: none) outlives the loop. Joins the DDS domain.
+  // `navigator` (null: none) and `ros` (null: none), where the fused state is
+  // published for ROS 2 too, outlive the loop. Joins the DDS domain.
   RobotLoop(const RobotConfig& config, const CameraCalibration& calibration,
-            InertialNavigator* navigator, RobotRunSummary& summary);
+            InertialNavigator* navigator, const dds::Participant* ros, RobotRunSummary& summary);
   ~RobotLoop();
   RobotLoop(const RobotLoop&) = delete;
   RobotLoop& operator=(const RobotLoop&) = delete;
@@ -61,6 +64,7 @@ class RobotLoop {
   RobotRunSummary& summary_;
   PoseWithCovariance configured_;
   std::unique_ptr<Links> links_;
+  std::unique_ptr<Ros2StatePublisher> ros_;
   int64_t next_state_ns_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace lineloc {
@@ -70,7 +71,8 @@ auto openSource(const char* option, const std::string& source, Opener open) {
 
 LiveSensors::LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& time_base,
                          const std::string& site_crs, const Eigen::Vector3d& site_origin,
-                         const GnssErrorModel& gnss_errors)
+                         const GnssErrorModel& gnss_errors,
+                         std::vector<std::unique_ptr<LiveSource>> sources)
     : time_base_(time_base) {
   if (!config.gnss_source.empty() && site_crs.empty()) {
     throw std::runtime_error(
@@ -79,9 +81,17 @@ LiveSensors::LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& ti
   }
   const std::optional<GpsdAddress> gpsd_address =
       config.gnss_source.empty() ? std::nullopt : gpsdAddress(config.gnss_source);
-  threads_.emplace_back(&LiveSensors::readCamera, this,
-                        std::make_unique<VideoCamera>(config.camera, time_base));
+  const bool frames_from_sources = std::any_of(
+      sources.begin(), sources.end(),
+      [](const std::unique_ptr<LiveSource>& source) { return source->deliversFrames(); });
+  if (!frames_from_sources) {
+    threads_.emplace_back(&LiveSensors::readCamera, this,
+                          std::make_unique<VideoCamera>(config.camera, time_base));
+  }
   try {
+    for (std::unique_ptr<LiveSource>& source : sources) {
+      threads_.emplace_back(&LiveSensors::readSource, this, std::move(source));
+    }
     if (!config.imu_source.empty()) {
       auto imu = openSource("imu_source", config.imu_source, [&] {
         return std::make_unique<SensorLineReader>(config.imu_source, config.imu_baud);
@@ -176,6 +186,9 @@ void LiveSensors::pushMapped(std::vector<LiveReading> readings, DeviceClock& clo
   clock.observe(stampOf(readings.back()), arrival_ns);
   for (LiveReading& reading : readings) {
     stampOf(reading) = clock.map(stampOf(reading), arrival_ns);
+    if (auto* frame = std::get_if<LiveFrame>(&reading)) {
+      frame->captured.arrival_ns = arrival_ns;
+    }
     push(std::move(reading));
   }
 }
@@ -236,6 +249,15 @@ void LiveSensors::readNmea(std::unique_ptr<SensorLineReader> stream,
     }
     pushMapped(std::move(readings), clock, arrival_ns);
   }
+}
+
+void LiveSensors::readSource(std::unique_ptr<LiveSource> source) {
+  DeviceClock clock;
+  source->run(
+      [&](std::vector<LiveReading> readings) {
+        pushMapped(std::move(readings), clock, time_base_.now());
+      },
+      stop_);
 }
 
 void LiveSensors::readGpsd(std::unique_ptr<GpsdClient> gpsd) {

@@ -21,6 +21,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -64,6 +65,19 @@ struct LiveFrame {
 
 using LiveReading = std::variant<ImuSample, GpsFix, GpsVelocity, CompassReading, LiveFrame>;
 
+// A source of live readings besides those configured above (ROS 2 topics,
+// robot/ros2/ros2_sensor_source.h), run by LiveSensors on a thread of its own:
+// it hands over what arrives, each reading stamped on its device's clock
+// (mapped by a DeviceClock of the source's own), until `stop`.
+class LiveSource {
+ public:
+  virtual ~LiveSource() = default;
+  virtual void run(const std::function<void(std::vector<LiveReading>)>& arrived,
+                   const std::atomic<bool>& stop) = 0;
+  // True when it delivers camera frames, with sequence numbers of its own.
+  virtual bool deliversFrames() const = 0;
+};
+
 struct LiveSensorCounts {
   int64_t frames = 0;
   int64_t frames_dropped = 0;
@@ -80,13 +94,15 @@ struct LiveSensorCounts {
 
 class LiveSensors {
  public:
-  // Opens every configured source and starts reading. The site frame (its
-  // CRS, empty: none, and origin), needed with a GNSS source, is where its
-  // fixes are projected. Throws std::runtime_error naming the option and the
-  // source that cannot be opened.
+  // Opens every configured source, and starts reading them and `sources`.
+  // The camera is config.camera's unless a source delivers frames. The site
+  // frame (its CRS, empty: none, and origin), needed with a GNSS source, is
+  // where its fixes are projected. Throws std::runtime_error naming the option
+  // and the source that cannot be opened.
   LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& time_base,
               const std::string& site_crs, const Eigen::Vector3d& site_origin,
-              const GnssErrorModel& gnss_errors);
+              const GnssErrorModel& gnss_errors,
+              std::vector<std::unique_ptr<LiveSource>> sources = {});
   ~LiveSensors();
   LiveSensors(const LiveSensors&) = delete;
   LiveSensors& operator=(const LiveSensors&) = delete;
@@ -94,7 +110,8 @@ class LiveSensors {
   // The readings that arrived, waiting up to `timeout_ns` for one.
   std::vector<LiveReading> take(int64_t timeout_ns);
 
-  // True once the camera delivers no more (a file played out, a device gone).
+  // True once the camera delivers no more (a file played out, a device gone;
+  // never for a source's).
   bool cameraEnded() const { return camera_ended_; }
   LiveSensorCounts counts() const;
 
@@ -110,6 +127,7 @@ class LiveSensors {
                int64_t LiveSensorCounts::*dropped);
   void readNmea(std::unique_ptr<SensorLineReader> stream, std::unique_ptr<NmeaGpsDecoder> decoder);
   void readGpsd(std::unique_ptr<GpsdClient> gpsd);
+  void readSource(std::unique_ptr<LiveSource> source);
 
   const RobotTimeBase& time_base_;
   std::atomic<bool> stop_{false};

@@ -31,7 +31,11 @@
 #include "common/time/clock.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "robot/inertial/inertial_navigator_config.h"
+#include "robot/ros2/ros2_topics.h"
+#include "robot/ros2/ros2_wire.h"
 #include "tests/support/child_process.h"
+#include "tests/support/foxglove_cdr.h"
+#include "tests/support/serialized_samples.h"
 #include "tests/support/test_database.h"
 #include "tests/support/test_dds.h"
 
@@ -530,6 +534,95 @@ TEST_F(RobotBackboneLoop, ARobotWithoutGnssStartsFromTheStartPoseItIsGiven) {
   EXPECT_LT(
       Eigen::AngleAxisd(fused.front().pose.linear().transpose() * T_world_camera.linear()).angle(),
       1e-3);
+}
+
+// A robot on ROS 2: its IMU and camera from ROS 2 topics (sensor_msgs/Imu,
+// sensor_msgs/Image), told where it starts; its state published for ROS 2,
+// base_link's pose in map as Foxglove's ROS 2 implementation decodes it,
+// where the robot stands.
+TEST_F(RobotBackboneLoop, ARobotOnRos2TopicsTakesItsSensorsAndPublishesItsState) {
+  const dds::Domain domain(test::testDomainId(), test::testDdsConfig());
+  const dds::Participant participant(domain);
+  dds::Writer<sensor_msgs_msg_dds__Imu_> imu(participant, dds::Qos(64), "", "rt/imu/data");
+  dds::Writer<sensor_msgs_msg_dds__Image_> camera(participant, dds::Qos(8), "",
+                                                  "rt/camera/image_raw");
+  test::SerializedReader poses(participant, geometry_msgs_msg_dds__PoseWithCovarianceStamped__desc,
+                               "rt/lineloc/pose");
+  const Eigen::Isometry3d T_world_camera =
+      makePose({5.0, -20.0, 0.3}, Eigen::Quaterniond::Identity()) *
+      InertialNavigatorConfig::defaultBodyCamera();
+  const Eigen::Quaterniond q(T_world_camera.linear());
+  std::vector<std::string> options = {"--robot-id",
+                                      "robot-r",
+                                      "--camera-calibration",
+                                      (work_ / "camera.yml").string(),
+                                      "--ros-domain-id",
+                                      std::to_string(test::testDomainId()),
+                                      "--ros-dds-config",
+                                      test::testDdsConfig(),
+                                      "--ros-imu-topic",
+                                      "/imu/data",
+                                      "--ros-image-topic",
+                                      "/camera/image_raw",
+                                      "--max-frames",
+                                      "5",
+                                      "--wait-for-backbone-s",
+                                      "0",
+                                      "--fix-timeout-s",
+                                      "0.1",
+                                      "--fused-trajectory-out",
+                                      (work_ / "robot-r-fused.tum").string(),
+                                      "--trajectory-out",
+                                      (work_ / "robot-r.tum").string(),
+                                      "--start-pose"};
+  for (const double value : {T_world_camera.translation().x(), T_world_camera.translation().y(),
+                             T_world_camera.translation().z(), q.x(), q.y(), q.z(), q.w()}) {
+    options.push_back(fmt::format("{:.17g}", value));
+  }
+  auto robot = start("lineloc-robot", "robot-robot-r", "robot-r.log", options, {});
+
+  // Standing: 200 Hz of level IMU, and after the 2 s alignment window a
+  // frame every 100 ms, until the robot has taken its five.
+  const cv::Mat frame =
+      cv::imread((work_ / "images" / "frame000.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(frame.empty());
+  std::vector<uint8_t> pixels(frame.datastart, frame.dataend);
+  const auto start_time = std::chrono::steady_clock::now();
+  for (int tick = 0; robot->running() && tick < 200 * 20; ++tick) {
+    std::this_thread::sleep_until(start_time + std::chrono::milliseconds(5 * tick));
+    const int64_t stamp_ns = wallClockNs();
+    sensor_msgs_msg_dds__Imu_ sample{};
+    sample.header.stamp = rosTime(stamp_ns);
+    sample.header.frame_id = const_cast<char*>("imu");
+    sample.linear_acceleration.z = 9.80665;
+    imu.write(sample);
+    if (tick >= 500 && tick % 20 == 0) {
+      sensor_msgs_msg_dds__Image_ image{};
+      image.header.stamp = rosTime(stamp_ns);
+      image.header.frame_id = const_cast<char*>("camera");
+      image.width = static_cast<uint32_t>(frame.cols);
+      image.height = static_cast<uint32_t>(frame.rows);
+      image.encoding = const_cast<char*>("mono8");
+      image.step = static_cast<uint32_t>(frame.cols);
+      image.data._buffer = pixels.data();
+      image.data._length = static_cast<uint32_t>(pixels.size());
+      image.data._maximum = image.data._length;
+      camera.write(image);
+    }
+  }
+  ASSERT_EQ(robot->wait(kTimeoutMs), 0) << log("robot-r.log");
+  EXPECT_EQ(readTumFile((work_ / "robot-r-fused.tum").string()).size(), 5u) << log("robot-r.log");
+  const std::vector<std::vector<uint8_t>> published = poses.take(1'000'000'000);
+  ASSERT_FALSE(published.empty()) << log("robot-r.log");
+  const nlohmann::json pose =
+      test::decodedByFoxglove("geometry_msgs/PoseWithCovarianceStamped", published.back());
+  EXPECT_EQ(pose["header"]["frame_id"], "map");
+  const nlohmann::json& position = pose["pose"]["pose"]["position"];
+  EXPECT_LT((Eigen::Vector3d(position["x"], position["y"], position["z"]) -
+             Eigen::Vector3d(5.0, -20.0, 0.3))
+                .norm(),
+            0.05)
+      << pose.dump();
 }
 
 TEST_F(RobotBackboneLoop, ARealtimePriorityOutsideOneToNinetyNineFailsTheRobotsStart) {

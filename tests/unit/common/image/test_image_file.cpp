@@ -104,5 +104,29 @@ TEST_F(ImageFileTest, MissingGarbageAndCorruptFilesAreNamedErrors) {
   EXPECT_EQ(errorOf(corrupt, kDefaultMaxImagePixels), "cannot read image '" + corrupt + "'");
 }
 
+// An image in memory (a message's JPEG) is bounded and named alike.
+TEST_F(ImageFileTest, BytesInMemoryAreBoundedByTheirHeaderAndNamed) {
+  const std::string png = encoded(".png");
+  const auto decode = [](const std::string& bytes, int64_t max_pixels) {
+    return decodeImageBytes(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(),
+                            cv::IMREAD_UNCHANGED, "camera frame 7", max_pixels);
+  };
+  EXPECT_EQ(cv::norm(decode(png, kDefaultMaxImagePixels), image_, cv::NORM_INF), 0.0);
+  const auto errorOfBytes = [&](const std::string& bytes, int64_t max_pixels) -> std::string {
+    try {
+      decode(bytes, max_pixels);
+    } catch (const std::runtime_error& error) {
+      return error.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(errorOfBytes(png, 64 * 48 - 1).find("image 'camera frame 7': its PNG header claims"),
+            std::string::npos);
+  EXPECT_NE(errorOfBytes("garbage", kDefaultMaxImagePixels).find("camera frame 7"),
+            std::string::npos);
+  EXPECT_EQ(errorOfBytes(png.substr(0, 40), kDefaultMaxImagePixels),
+            "cannot decode image 'camera frame 7'");
+}
+
 }  // namespace
 }  // namespace lineloc

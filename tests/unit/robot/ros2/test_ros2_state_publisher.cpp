@@ -6,45 +6,20 @@
 // onto DDS as rmw_cyclonedds maps them.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 
 #include "robot/ros2/ros2_state_publisher.h"
 #include "robot/ros2/ros2_topics.h"
 #include "robot/ros2/ros2_wire.h"
-#include "tests/support/child_process.h"
+#include "tests/support/foxglove_cdr.h"
 #include "tests/support/serialized_samples.h"
 #include "tests/support/test_dds.h"
 
 namespace lineloc {
 namespace {
 
-namespace fs = std::filesystem;
+using test::decodedByFoxglove;
 
 constexpr int64_t kSecondNs = 1'000'000'000;
-
-// Foxglove's decoding of `bytes` as ROS 2 message `type`.
-nlohmann::json decodedByFoxglove(const std::string& type, const std::vector<uint8_t>& bytes) {
-  const fs::path folder = fs::temp_directory_path() / fmt::format("ros2_cdr_{}", getpid());
-  fs::create_directories(folder);
-  std::ofstream(folder / "sample.cdr", std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-  test::ChildProcess node(
-      "/usr/bin/node", {LINELOC_ROS2_CDR_SCRIPT, "decode", type, (folder / "sample.cdr").string()},
-      (folder / "decoded.json").string(), {std::string("NODE_PATH=") + LINELOC_ROS2_CDR_MODULES});
-  const std::optional<int> exit_code = node.wait(30'000);
-  std::ifstream decoded(folder / "decoded.json");
-  const std::string text{std::istreambuf_iterator<char>(decoded), {}};
-  fs::remove_all(folder);
-  if (exit_code != 0) {
-    throw std::runtime_error("ros2_cdr.js: " + text);
-  }
-  return nlohmann::json::parse(text);
-}
 
 BodyState exampleState() {
   BodyState state;

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "common/camera/image_undistortion.h"
 
 namespace lineloc {
 namespace {
@@ -24,14 +24,7 @@ cv::Mat undistortedColour(const cv::Mat& image, const CameraCalibration& calibra
   } else {
     colour = image;
   }
-  if (calibration.distortion.empty()) {
-    return colour.clone();
-  }
-  cv::Mat K;
-  cv::eigen2cv(calibration.camera.K(), K);
-  cv::Mat undistorted;
-  cv::undistort(colour, undistorted, K, calibration.distortion);
-  return undistorted;
+  return undistortImage(colour, calibration);
 }
 
 }  // namespace

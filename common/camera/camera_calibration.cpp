@@ -93,7 +93,24 @@ CameraCalibration readOpenCvCalibration(const YAML::Node& root, const std::strin
   }
   camera.width = readPositiveInt(root, "image_width", path);
   camera.height = readPositiveInt(root, "image_height", path);
+  if (const YAML::Node model = root["distortion_model"]) {
+    const std::string name = model.IsScalar() ? model.as<std::string>() : "";
+    if (name == "equidistant" || name == "fisheye") {
+      calibration.lens = LensModel::kEquidistant;
+    } else if (name != "radial-tangential" && name != "plumb_bob" && name != "radtan" &&
+               name != "k1k2" && name != "opencv5") {
+      // k1k2 and opencv5: lineloc-calibrate's radial-tangential coefficient sets.
+      throw std::runtime_error(fmt::format(
+          "{}: distortion_model '{}' is not radial-tangential (plumb_bob, k1k2, opencv5) or "
+          "equidistant (fisheye)",
+          path, name));
+    }
+  }
   calibration.distortion = readCoefficients(root, "distortion_coefficients", path);
+  if (calibration.lens == LensModel::kEquidistant && calibration.distortion.size() != 4) {
+    throw std::runtime_error(
+        fmt::format("{}: an equidistant lens has 4 distortion_coefficients (k1 k2 k3 k4)", path));
+  }
   return calibration;
 }
 
@@ -119,9 +136,15 @@ void writeCameraCalibration(cv::FileStorage& storage, const CameraCalibration& c
                      camera.cy, 0.0, 0.0, 1.0);
   storage << "camera_matrix" << K;
   // No distortion is written as five zeros, the shortest list OpenCV reads.
-  const std::vector<double> distortion =
-      calibration.distortion.empty() ? std::vector<double>(5, 0.0) : calibration.distortion;
+  const bool equidistant = calibration.lens == LensModel::kEquidistant;
+  const std::vector<double> distortion = calibration.distortion.empty()
+                                             ? std::vector<double>(equidistant ? 4 : 5, 0.0)
+                                             : calibration.distortion;
   storage << "distortion_coefficients" << cv::Mat(distortion, true);
+  if (equidistant) {
+    storage << "distortion_model"
+            << "equidistant";
+  }
 }
 
 cv::FileStorage openCalibrationFileForWriting(const std::string& path) {

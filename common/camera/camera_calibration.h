@@ -31,14 +31,25 @@ struct PinholeCamera {
   bool operator==(const PinholeCamera&) const = default;
 };
 
+// How the lens bends rays (lens_distortion.h).
+enum class LensModel { kRadialTangential, kEquidistant };
+
+// Undistorted image points, lines and corners are in `camera`, the pinhole
+// camera with the lens's focal length and principal point, for either lens:
+// a fisheye keeps its angular resolution at the centre, and its rays further
+// off the axis than the image's rectangle reaches (atan of half the width
+// over f) are left out.
 struct CameraCalibration {
   PinholeCamera camera;
-  // OpenCV order: k1 k2 p1 p2 [k3 [k4 k5 k6]]; empty means no distortion.
+  // Radial-tangential: OpenCV order, k1 k2 p1 p2 [k3 [k4 k5 k6]]; equidistant:
+  // k1 k2 k3 k4. Empty means no distortion.
   std::vector<double> distortion;
+  LensModel lens = LensModel::kRadialTangential;
 };
 
 // Reads OpenCV's YAML or JSON (camera_matrix, distortion_coefficients,
-// image_width, image_height, as writeCameraCalibration writes them), a
+// image_width, image_height, as writeCameraCalibration writes them, and
+// distortion_model: "equidistant" or "fisheye" for a fisheye lens), a
 // Kalibr camchain.yaml (its cam0) or an EuRoC sensor.yaml (kalibr_camera.h),
 // all with yaml-cpp; OpenCV's XML is refused, as its parser crashes on some
 // damaged files. Throws std::runtime_error naming the file and the missing

@@ -82,13 +82,15 @@ KalibrCamera readCamera(const YAML::Node& camera, bool camchain, const std::stri
         fmt::format("{}: camera_model '{}' is not supported (only pinhole)", source, model));
   }
   const std::string distortion_model = text(camera, "distortion_model", source);
-  if (distortion_model != "radtan" && distortion_model != "radial-tangential") {
+  KalibrCamera result;
+  if (distortion_model == "equidistant" || distortion_model == "equi") {
+    result.calibration.lens = LensModel::kEquidistant;
+  } else if (distortion_model != "radtan" && distortion_model != "radial-tangential") {
     throw std::runtime_error(
-        fmt::format("{}: distortion_model '{}' is not supported (only radtan, "
-                    "radial-tangential; an equidistant fisheye lens is not yet)",
+        fmt::format("{}: distortion_model '{}' is not supported (radtan, radial-tangential, "
+                    "equidistant)",
                     source, distortion_model));
   }
-  KalibrCamera result;
   const std::vector<double> intrinsics = numbers(camera, "intrinsics", 4, source);
   const std::vector<double> resolution = numbers(camera, "resolution", 2, source);
   PinholeCamera& pinhole = result.calibration.camera;
@@ -107,8 +109,10 @@ KalibrCamera readCamera(const YAML::Node& camera, bool camchain, const std::stri
   }
   pinhole.width = static_cast<int>(resolution[0]);
   pinhole.height = static_cast<int>(resolution[1]);
-  result.calibration.distortion = distortionCoefficients(
-      camera, camchain ? "distortion_coeffs" : "distortion_coefficients", source);
+  const std::string coefficients = camchain ? "distortion_coeffs" : "distortion_coefficients";
+  result.calibration.distortion = result.calibration.lens == LensModel::kEquidistant
+                                      ? numbers(camera, coefficients, 4, source)
+                                      : distortionCoefficients(camera, coefficients, source);
   if (camchain && camera["T_cam_imu"]) {
     result.T_cam_imu = cameraImuPose(camera["T_cam_imu"], source);
   }

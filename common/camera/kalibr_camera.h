@@ -3,7 +3,8 @@
 // keys: camera_model (pinhole), intrinsics [fu, fv, cu, cv], resolution
 // [width, height], distortion_model (radtan, or EuRoC's radial-tangential:
 // k1 k2 p1 p2, OpenCV's first four, or more of OpenCV's, as lineloc-sim
-// writes them) and its coefficients (Kalibr's distortion_coeffs, EuRoC's
+// writes them; equidistant, Kalibr's pinhole-equi fisheye: k1 k2 k3 k4) and
+// its coefficients (Kalibr's distortion_coeffs, EuRoC's
 // distortion_coefficients). A camchain's cam0
 // also holds the IMU's pose in the camera frame (T_cam_imu, 4x4) and the
 // camera clock's shift (timeshift_cam_imu, s: t_imu = t_cam + shift).
@@ -42,9 +43,10 @@ YAML::Node calibrationDocument(const std::string& path);
 // cam0 block, no intrinsics key), so another format may hold it. Throws
 // std::runtime_error naming `source` and the key when the camera is
 // incomplete or invalid: not a pinhole, a distortion model other than
-// radial-tangential (an equidistant fisheye lens is not supported), a
-// non-positive focal length or size, fewer than 4 or more than 8
-// coefficients, a T_cam_imu that is not a rigid transform.
+// radial-tangential (radtan) or equidistant (equi, Kalibr's pinhole-equi
+// fisheye), a non-positive focal length or size, radial-tangential
+// coefficients fewer than 4 or more than 8, equidistant ones other than 4, a
+// T_cam_imu that is not a rigid transform.
 std::optional<KalibrCamera> kalibrCamera(const YAML::Node& root, const std::string& source);
 
 // The same of YAML text, and of the file at `path` (calibrationDocument).

@@ -9,6 +9,16 @@
 //
 // Coefficients are in OpenCV's order k1 k2 p1 p2 [k3 [k4 k5 k6]]; missing ones
 // are zero, so Zhang's radial model (eq. 3 of §3.3) is {k1, k2}.
+//
+// A fisheye lens in the equidistant model (Kannala & Brandt, "A generic
+// camera model and calibration method for conventional, wide-angle, and
+// fish-eye lenses", PAMI 28(8), 2006, eq. 6; OpenCV's cv::fisheye, Kalibr's
+// pinhole-equi) maps a ray at angle theta from the axis, in the direction
+// (X, Y)/|(X, Y)|, to the normalised radius
+//
+//   theta_d = theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8)
+//
+// so that rays beyond 90 degrees have an image too.
 #pragma once
 
 #include <Eigen/Core>
@@ -43,5 +53,16 @@ Eigen::Vector2d distortNormalised(const Eigen::Vector2d& undistorted,
 // outside the region where the model is invertible).
 std::optional<Eigen::Vector2d> undistortNormalised(const Eigen::Vector2d& distorted,
                                                    const std::vector<double>& coefficients);
+
+// The fisheye's normalised image point (x_d, y_d) = theta_d (X, Y)/|(X, Y)| of
+// the ray `ray` (any length, not along -Z); coefficients k1 k2 k3 k4.
+Eigen::Vector2d distortEquidistant(const Eigen::Vector3d& ray,
+                                   const std::vector<double>& coefficients);
+
+// The unit ray of a fisheye's normalised image point, theta found from
+// theta_d by Newton's method; nothing where theta_d is not reached by a theta
+// in [0, pi) on which the model increases.
+std::optional<Eigen::Vector3d> undistortEquidistant(const Eigen::Vector2d& distorted,
+                                                    const std::vector<double>& coefficients);
 
 }  // namespace lineloc

@@ -50,29 +50,20 @@ void writeCameraFiles(const fs::path& folder, const EurocDatasetSpec& spec) {
   const PinholeCamera& camera = spec.camera.camera;
   std::vector<double> distortion = spec.camera.distortion;
   distortion.resize(std::max<size_t>(distortion.size(), 4), 0.0);
-  writeText(folder / "sensor.yaml",
-            fmt::format("sensor_type: camera\n"
-                        "comment: lineloc-sim rendered camera, OpenCV's distortion model "
-                        "(k1 k2 p1 p2 k3 ...)\n"
-                        "{}rate_hz: {:.6f}\nresolution: [{}, {}]\ncamera_model: pinhole\n"
-                        "intrinsics: [{:.9f}, {:.9f}, {:.9f}, {:.9f}]\n"
-                        "distortion_model: radial-tangential\n"
-                        "distortion_coefficients: [{:.17g}]\n",
-                        transformYaml(spec.T_body_camera), spec.camera_rate_hz, camera.width,
-                        camera.height, camera.fx, camera.fy, camera.cx, camera.cy,
-                        fmt::join(distortion, ", ")));
-  cv::FileStorage storage((folder / "calibration.yaml").string(),
-                          cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-  storage << "image_width" << camera.width << "image_height" << camera.height;
-  cv::Mat K(3, 3, CV_64F);
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col) {
-      K.at<double>(row, col) = camera.K()(row, col);
-    }
-  }
-  storage << "camera_matrix" << K;
-  distortion.resize(std::max<size_t>(distortion.size(), 5), 0.0);
-  storage << "distortion_coefficients" << cv::Mat(distortion).reshape(1, 1);
+  writeText(
+      folder / "sensor.yaml",
+      fmt::format("sensor_type: camera\n"
+                  "comment: lineloc-sim rendered camera, its lens model as calibration.yaml "
+                  "holds it\n"
+                  "{}rate_hz: {:.6f}\nresolution: [{}, {}]\ncamera_model: pinhole\n"
+                  "intrinsics: [{:.9f}, {:.9f}, {:.9f}, {:.9f}]\n"
+                  "distortion_model: {}\n"
+                  "distortion_coefficients: [{:.17g}]\n",
+                  transformYaml(spec.T_body_camera), spec.camera_rate_hz, camera.width,
+                  camera.height, camera.fx, camera.fy, camera.cx, camera.cy,
+                  spec.camera.lens == LensModel::kEquidistant ? "equidistant" : "radial-tangential",
+                  fmt::join(distortion, ", ")));
+  writeCameraCalibration((folder / "calibration.yaml").string(), spec.camera);
 }
 
 void writeImuFile(const fs::path& folder, const EurocDatasetSpec& spec) {

@@ -9,8 +9,28 @@
 #include "common/camera/lens_distortion.h"
 
 namespace lineloc {
+namespace {
+
+// The ray of a distorted normalised point, for the calibration's lens.
+std::optional<Eigen::Vector3d> rayOf(const Eigen::Vector2d& distorted,
+                                     const CameraCalibration& calibration) {
+  if (calibration.lens == LensModel::kEquidistant) {
+    return undistortEquidistant(distorted, calibration.distortion);
+  }
+  const std::optional<Eigen::Vector2d> undistorted =
+      undistortNormalised(distorted, calibration.distortion);
+  if (!undistorted) {
+    return std::nullopt;
+  }
+  return Eigen::Vector3d(undistorted->x(), undistorted->y(), 1.0);
+}
+
+}  // namespace
+
 CameraRays::CameraRays(const CameraCalibration& calibration)
-    : width_(calibration.camera.width), height_(calibration.camera.height) {
+    : lens_(calibration.lens),
+      width_(calibration.camera.width),
+      height_(calibration.camera.height) {
   const PinholeCamera& camera = calibration.camera;
   if (width_ <= 0 || height_ <= 0 || !(camera.fx > 0.0) || !(camera.fy > 0.0)) {
     throw std::invalid_argument(fmt::format("CameraRays: invalid camera {}x{} fx {} fy {}", width_,
@@ -22,14 +42,12 @@ CameraRays::CameraRays(const CameraCalibration& calibration)
     const double y_d = (v - camera.cy) / camera.fy;
     for (int u = 0; u < width_; ++u) {
       const double x_d = (u - camera.cx - camera.skew * y_d) / camera.fx;
-      const std::optional<Eigen::Vector2d> undistorted =
-          undistortNormalised({x_d, y_d}, calibration.distortion);
-      if (!undistorted) {
+      const std::optional<Eigen::Vector3d> ray = rayOf({x_d, y_d}, calibration);
+      if (!ray) {
         ++invalid_count_;
         continue;
       }
-      directions_[v * width_ + u] =
-          Eigen::Vector3d(undistorted->x(), undistorted->y(), 1.0).normalized().cast<float>();
+      directions_[v * width_ + u] = ray->normalized().cast<float>();
     }
   }
 }

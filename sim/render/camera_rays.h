@@ -7,8 +7,10 @@
 //   y_d = y s + p1 (r^2 + 2 y^2) + 2 p2 x y,
 //   u = fx x_d + skew y_d + cx,  v = fy y_d + cy
 // (the model of cv::projectPoints, common/camera/lens_distortion.h; Zhang's
-// radial k1 k2 of Persa & Jonker §2.1 is the case p = k3..k6 = 0). The inverse
-// has no closed form: each pixel is solved by Gauss-Newton, once per camera.
+// radial k1 k2 of Persa & Jonker §2.1 is the case p = k3..k6 = 0); for a
+// fisheye, the ray whose equidistant image (lens_distortion.h) is the pixel,
+// up to and beyond 90 degrees off the axis. The inverses have no closed
+// form: each pixel is solved iteratively, once per camera.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,6 +28,7 @@ class CameraRays {
   explicit CameraRays(const CameraCalibration& calibration);
 
   int width() const { return width_; }
+  LensModel lens() const { return lens_; }
   int height() const { return height_; }
   const Eigen::Vector3f& direction(int u, int v) const { return directions_[v * width_ + u]; }
   // Unit direction through the sub-pixel point (u, v): bilinear between the
@@ -38,6 +41,7 @@ class CameraRays {
   int invalidCount() const { return invalid_count_; }
 
  private:
+  LensModel lens_ = LensModel::kRadialTangential;
   int width_ = 0;
   int height_ = 0;
   int invalid_count_ = 0;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string_view>
@@ -26,21 +28,59 @@ const CameraSensorOptions& validated(const CameraSensorOptions& options) {
   return options;
 }
 
-cv::Mat cosineFourth(const CameraRays& rays) {
-  cv::Mat vignetting(rays.height(), rays.width(), CV_32FC1);
-  for (int v = 0; v < rays.height(); ++v) {
-    for (int u = 0; u < rays.width(); ++u) {
-      const float cos_theta = rays.direction(u, v).z();
-      vignetting.at<float>(v, u) = cos_theta * cos_theta * cos_theta * cos_theta;
+// Omega at (u, v): |d_u x d_v . d| by central differences (one-sided at the
+// border); 0 where a neighbour has no ray.
+float solidAngle(const CameraRays& rays, int u, int v) {
+  const int u0 = std::max(u - 1, 0), u1 = std::min(u + 1, rays.width() - 1);
+  const int v0 = std::max(v - 1, 0), v1 = std::min(v + 1, rays.height() - 1);
+  const Eigen::Vector3f& d = rays.direction(u, v);
+  for (const Eigen::Vector3f* neighbour : {&rays.direction(u0, v), &rays.direction(u1, v),
+                                           &rays.direction(u, v0), &rays.direction(u, v1)}) {
+    if (neighbour->isZero() || d.isZero()) {
+      return 0.0f;
     }
   }
-  return vignetting;
+  const Eigen::Vector3f d_u =
+      (rays.direction(u1, v) - rays.direction(u0, v)) / static_cast<float>(u1 - u0);
+  const Eigen::Vector3f d_v =
+      (rays.direction(u, v1) - rays.direction(u, v0)) / static_cast<float>(v1 - v0);
+  return std::abs(d_u.cross(d_v).dot(d));
+}
+
+cv::Mat relativeIllumination(const CameraRays& rays) {
+  cv::Mat vignetting(rays.height(), rays.width(), CV_32FC1);
+  if (rays.lens() == LensModel::kRadialTangential) {
+    for (int v = 0; v < rays.height(); ++v) {
+      for (int u = 0; u < rays.width(); ++u) {
+        const float cos_theta = rays.direction(u, v).z();
+        vignetting.at<float>(v, u) = cos_theta * cos_theta * cos_theta * cos_theta;
+      }
+    }
+    return vignetting;
+  }
+  float on_axis = 0.0f;
+  for (int v = 0; v < rays.height(); ++v) {
+    for (int u = 0; u < rays.width(); ++u) {
+      const float cos_theta = std::max(rays.direction(u, v).z(), 0.0f);
+      const float omega = solidAngle(rays, u, v);
+      vignetting.at<float>(v, u) = cos_theta * omega;
+      on_axis = std::max(on_axis, cos_theta > 0.9999f ? omega : 0.0f);
+    }
+  }
+  // The principal point need not fall on a pixel: the brightest pixel near
+  // the axis stands for Omega_0 when none is within 0.8 degrees of it.
+  if (on_axis == 0.0f) {
+    double largest = 0.0;
+    cv::minMaxLoc(vignetting, nullptr, &largest);
+    return vignetting / largest;
+  }
+  return vignetting / on_axis;
 }
 
 }  // namespace
 
 CameraSensor::CameraSensor(const CameraRays& rays, const CameraSensorOptions& options)
-    : options_(validated(options)), vignetting_(cosineFourth(rays)) {}
+    : options_(validated(options)), vignetting_(relativeIllumination(rays)) {}
 
 double CameraSensor::systemGain_dn_per_e(double gain_db) const {
   return std::pow(10.0, gain_db / 20.0) * kMaxDn / options_.full_well_e;

@@ -24,11 +24,18 @@
 // s and m^2, so a 11.9 um^2 pixel at QE 0.7 collects 1.3e7 e-/s and fills its
 // well in 0.8 ms: saturation_exposure_time_s.
 //
-// Vignetting is the natural cos^4 falloff of a lens (Kerr, "Derivation of the
-// cosine fourth law for falloff of illuminance across a camera image", 2007):
-//   V = cos^4(theta),  cos(theta) = d_z,
+// Vignetting is a lens's natural falloff: a pixel collects the light of the
+// solid angle Omega it sees, through the entrance pupil foreshortened by
+// cos(theta) (Kerr, "Derivation of the cosine fourth law for falloff of
+// illuminance across a camera image", 2007):
+//   V = cos(theta) Omega / Omega_0,  cos(theta) = d_z,
 // theta the angle between the pixel's unit ray d (CameraRays, the calibrated
-// lens model) and the optical axis.
+// lens model) and the optical axis, Omega_0 the solid angle on the axis. A
+// rectilinear lens (radial-tangential) sees Omega = cos^3(theta) / f^2, the
+// cosine-fourth law V = cos^4(theta), which the sensor applies (its
+// distortion's change of Omega left out); a fisheye (equidistant) spreads
+// its solid angle more evenly and falls off far less: its Omega = |d_u x d_v
+// . d| is taken from the rays' change across each pixel.
 #pragma once
 
 #include <cstdint>
@@ -71,7 +78,7 @@ class CameraSensor {
   double meanSignal_dn(const cv::Mat& radiance, const ExposureSettings& settings) const;
   // K (DN per electron) at an analogue gain.
   double systemGain_dn_per_e(double gain_db) const;
-  // V per pixel (CV_32FC1): cos^4 of the ray's angle to the optical axis, 0
+  // V per pixel (CV_32FC1): the falloff above, 0
   // where the lens model has no ray.
   const cv::Mat& vignetting() const { return vignetting_; }
 

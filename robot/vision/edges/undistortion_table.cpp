@@ -2,11 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <optional>
 #include <stdexcept>
+
+#include "common/camera/lens_distortion.h"
 
 namespace lineloc {
 namespace {
@@ -19,6 +24,10 @@ bool hasDistortion(const std::vector<double>& coefficients) {
 
 UndistortionTable::UndistortionTable(const CameraCalibration& calibration)
     : width_(calibration.camera.width), height_(calibration.camera.height) {
+  if (calibration.lens == LensModel::kEquidistant && width_ >= 2 && height_ >= 2) {
+    fillEquidistant(calibration);
+    return;
+  }
   if (!hasDistortion(calibration.distortion) || width_ < 2 || height_ < 2) {
     return;
   }
@@ -43,6 +52,30 @@ UndistortionTable::UndistortionTable(const CameraCalibration& calibration)
                       at % width_, at / width_));
     }
     table_.emplace_back(u.x, u.y);
+  }
+}
+
+void UndistortionTable::fillEquidistant(const CameraCalibration& calibration) {
+  const Eigen::Matrix3d K = calibration.camera.K();
+  const Eigen::Matrix3d K_inverse = K.inverse();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  table_.reserve(static_cast<size_t>(width_) * height_);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      const Eigen::Vector3d normalised = K_inverse * Eigen::Vector3d(x, y, 1.0);
+      const std::optional<Eigen::Vector3d> ray =
+          undistortEquidistant(normalised.head<2>(), calibration.distortion);
+      if (!ray || !(ray->z() > 0.0)) {
+        table_.emplace_back(nan, nan);
+        continue;
+      }
+      const Eigen::Vector3d u = K * (*ray / ray->z());
+      const bool inside =
+          u.x() >= 0.0 && u.x() <= width_ - 1 && u.y() >= 0.0 && u.y() <= height_ - 1;
+      table_.push_back(inside
+                           ? Eigen::Vector2f(static_cast<float>(u.x()), static_cast<float>(u.y()))
+                           : Eigen::Vector2f(nan, nan));
+    }
   }
 }
 

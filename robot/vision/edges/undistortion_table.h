@@ -7,6 +7,11 @@
 // k1 k2 p1 p2 [k3..k6] model, projected again with the same K), and is read
 // by bilinear interpolation, which is exact to second order in the pixel
 // spacing: the error is below 1/8 of the model's second derivative times px^2.
+//
+// A fisheye's (equidistant, lens_distortion.h) u(p) is its ray projected by
+// the same K; where that falls outside the image, or the ray is 90 degrees
+// or more off the axis, u(p) is not finite (NaN): the point is not in the
+// undistorted view (camera_calibration.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -26,7 +31,8 @@ class UndistortionTable {
   bool isIdentity() const { return table_.empty(); }
 
   // u(p) for a distorted pixel position p (bilinear in the table; positions
-  // outside the image are extrapolated linearly from the border cells).
+  // outside the image are extrapolated linearly from the border cells); NaN
+  // next to a fisheye's pixel outside the undistorted view.
   Eigen::Vector2f undistort(const Eigen::Vector2f& distorted) const;
 
   // J = du/dp at p, to carry a covariance across: Sigma_u = J Sigma_p J^T.
@@ -37,6 +43,7 @@ class UndistortionTable {
     int x0, y0;
     float ax, ay;
   };
+  void fillEquidistant(const CameraCalibration& calibration);
   Cell cellOf(const Eigen::Vector2f& p) const;
   const Eigen::Vector2f& at(int x, int y) const { return table_[y * width_ + x]; }
 

@@ -143,6 +143,9 @@ void FeatureExtractor::exportCorners() {
     const Eigen::Matrix2f J = undistortion_.jacobian(found.position);
     ImageCorner corner;
     corner.position = undistortion_.undistort(found.position);
+    if (!corner.position.allFinite() || !J.allFinite()) {
+      continue;  // a fisheye's corner outside the undistorted view
+    }
     // J C J^T, symmetric as a covariance is (float products round apart).
     const Eigen::Matrix2f covariance = J * found.covariance * J.transpose();
     corner.covariance = 0.5f * (covariance + covariance.transpose());

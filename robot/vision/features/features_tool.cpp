@@ -1,11 +1,10 @@
 #include "robot/vision/features/features_tool.h"
 
 #include <algorithm>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "common/camera/image_undistortion.h"
 #include "robot/input/image_sequence.h"
 #include "robot/vision/features/feature_report.h"
 
@@ -25,17 +24,6 @@ CameraCalibration calibrationFor(const FeaturesToolConfig& config, const cv::Mat
   return calibration;
 }
 
-cv::Mat undistortForDisplay(const cv::Mat& image, const CameraCalibration& calibration) {
-  if (calibration.distortion.empty()) {
-    return image;
-  }
-  cv::Mat K;
-  cv::eigen2cv(calibration.camera.K(), K);
-  cv::Mat undistorted;
-  cv::undistort(image, undistorted, K, calibration.distortion);
-  return undistorted;
-}
-
 }  // namespace
 
 FeaturesToolSummary runFeaturesTool(const FeaturesToolConfig& config, std::ostream& out) {
@@ -45,7 +33,7 @@ FeaturesToolSummary runFeaturesTool(const FeaturesToolConfig& config, std::ostre
   const FrameFeatures& features = extractor.extract(image);
   writeFeaturesText(out, features);
   if (!config.out.empty() &&
-      !cv::imwrite(config.out, drawFeatures(undistortForDisplay(image, calibration), features))) {
+      !cv::imwrite(config.out, drawFeatures(undistortImage(image, calibration), features))) {
     throw std::runtime_error("cannot write overlay '" + config.out + "'");
   }
   return {features.noise_sigma, features.segments.size(), features.rejected_segments,

@@ -39,7 +39,16 @@ void LineExtractor::extract(const std::vector<EdgePoint>& points, const EdgeLink
   }
   segments_.clear();
   for (const PointRange& chain : chains.chains()) {
-    fitPieces(points, chain_points, chain);
+    // A fisheye's points outside the undistorted view split their chain.
+    int run_begin = chain.begin;
+    for (int i = chain.begin; i <= chain.end; ++i) {
+      if (i == chain.end || !undistorted_[i].allFinite()) {
+        if (i - run_begin >= 2) {
+          fitPieces(points, chain_points, {run_begin, i});
+        }
+        run_begin = i + 1;
+      }
+    }
   }
   merger_.merge(segments_, options_.fit);
   rejected_segments_ = 0;

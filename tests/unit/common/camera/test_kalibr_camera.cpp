@@ -100,7 +100,10 @@ TEST(KalibrCamera, OtherYamlIsNeither) {
 
 TEST(KalibrCamera, AnIncompleteOrUnsupportedCameraNamesTheKey) {
   for (const auto& [text, key] : {
-           std::pair{replaced(kKalibrCamchain, "radtan", "equidistant"), "distortion_model"},
+           std::pair{replaced(kKalibrCamchain, "radtan", "fov"), "distortion_model"},
+           std::pair{replaced(replaced(kKalibrCamchain, "radtan", "equidistant"),
+                              ", 1.76187114e-05]", ", 1.76187114e-05, 0.1]"),
+                     "distortion_coeffs"},
            std::pair{replaced(kKalibrCamchain, "camera_model: pinhole", "camera_model: omni"),
                      "camera_model"},
            std::pair{replaced(kKalibrCamchain, "[458.654, 457.296, 367.215, 248.375]",
@@ -148,8 +151,16 @@ TEST(KalibrCamera, ReadCameraCalibrationTakesEachFormat) {
   expectCamera(from_sensor);
   writeCameraCalibration((folder / "opencv.yaml").string(), from_sensor);
   expectCamera(readCameraCalibration((folder / "opencv.yaml").string()));
+  // Kalibr's pinhole-equi fisheye, read and written back as one.
   std::ofstream(folder / "fisheye.yaml") << replaced(kKalibrCamchain, "radtan", "equidistant");
-  EXPECT_THROW(readCameraCalibration((folder / "fisheye.yaml").string()), std::runtime_error);
+  const CameraCalibration fisheye = readCameraCalibration((folder / "fisheye.yaml").string());
+  expectCamera(fisheye);
+  EXPECT_EQ(fisheye.lens, LensModel::kEquidistant);
+  EXPECT_EQ(fisheye.distortion.size(), 4u);
+  writeCameraCalibration((folder / "fisheye_opencv.yaml").string(), fisheye);
+  const CameraCalibration again = readCameraCalibration((folder / "fisheye_opencv.yaml").string());
+  EXPECT_EQ(again.lens, LensModel::kEquidistant);
+  EXPECT_EQ(again.distortion, fisheye.distortion);
   std::filesystem::remove_all(folder);
 }
 

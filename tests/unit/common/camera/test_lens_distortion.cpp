@@ -59,5 +59,29 @@ TEST(LensDistortion, UndistortReportsPointsOutsideTheInvertibleRegion) {
   EXPECT_FALSE(undistortNormalised(Eigen::Vector2d(NAN, 0.0), {-0.1, 0.0}).has_value());
 }
 
+// The equidistant model (Kannala & Brandt eq. 6) as cv::fisheye projects,
+// inverted to the ray, out to rays beyond 90 degrees off the axis.
+TEST(LensDistortion, EquidistantMatchesOpenCvsFisheyeAndInverts) {
+  const std::vector<double> k = {0.015, -0.006, 0.001, -0.0002};
+  for (const Eigen::Vector3d& ray :
+       {Eigen::Vector3d(0.2, -0.1, 1.0), Eigen::Vector3d(1.0, 0.5, 0.3),
+        Eigen::Vector3d(-0.4, 0.9, 0.05)}) {
+    std::vector<cv::Point2d> projected;
+    cv::fisheye::projectPoints(std::vector<cv::Point3d>{{ray.x(), ray.y(), ray.z()}}, projected,
+                               cv::Vec3d::all(0.0), cv::Vec3d::all(0.0), cv::Matx33d::eye(), k);
+    const Eigen::Vector2d distorted = distortEquidistant(ray, k);
+    EXPECT_NEAR(distorted.x(), projected[0].x, 1e-12);
+    EXPECT_NEAR(distorted.y(), projected[0].y, 1e-12);
+    const std::optional<Eigen::Vector3d> back = undistortEquidistant(distorted, k);
+    ASSERT_TRUE(back);
+    EXPECT_LT((*back - ray.normalized()).norm(), 1e-9);
+  }
+  const Eigen::Vector2d behind = distortEquidistant(Eigen::Vector3d(1.0, 0.0, -0.2), k);
+  const std::optional<Eigen::Vector3d> back = undistortEquidistant(behind, k);
+  ASSERT_TRUE(back);
+  EXPECT_LT(back->z(), 0.0);
+  EXPECT_FALSE(undistortEquidistant({40.0, 0.0}, k));  // beyond where the model increases
+}
+
 }  // namespace
 }  // namespace lineloc

@@ -67,5 +67,46 @@ TEST(UndistortionTable, JacobianIsTheSlopeOfTheTable) {
   EXPECT_GT((J - Eigen::Matrix2f::Identity()).norm(), 1e-3f);  // distortion is felt
 }
 
+// A fisheye's table agrees with OpenCV's cv::fisheye inverse onto the same
+// K within the undistorted view (tolerance as above, its second derivative
+// being larger towards the view's edge), and holds NaN where a ray lies
+// outside the image's rectangle or 90 degrees or more off the axis, and only
+// near or beyond the view's edge.
+TEST(UndistortionTable, AFisheyeMatchesOpenCvsFisheyeWithinItsView) {
+  CameraCalibration fisheye;
+  fisheye.camera = {200.0, 200.0, 319.5, 239.5, 0.0, 640, 480};
+  fisheye.distortion = {0.015, -0.006, 0.001, -0.0002};
+  fisheye.lens = LensModel::kEquidistant;
+  const UndistortionTable table(fisheye);
+  ASSERT_FALSE(table.isIdentity());
+  const cv::Matx33d K(200.0, 0.0, 319.5, 0.0, 200.0, 239.5, 0.0, 0.0, 1.0);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> x(0.0f, 639.0f), y(0.0f, 479.0f);
+  int inside = 0, outside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const cv::Point2f p(x(random), y(random));
+    std::vector<cv::Point2f> expected;
+    cv::fisheye::undistortPoints(std::vector<cv::Point2f>{p}, expected, K, fisheye.distortion,
+                                 cv::noArray(), K);
+    const Eigen::Vector2f u = table.undistort({p.x, p.y});
+    const double offset_deg = std::hypot(p.x - 319.5, p.y - 239.5) / 200.0 * 180.0 / M_PI;
+    // Well inside: a pixel of the lens next to the view's edge spreads over
+    // many of the undistorted view's there, and a cell with a NaN corner
+    // interpolates to NaN.
+    const bool in_view = expected[0].x > 20.0f && expected[0].x < 619.0f && expected[0].y > 20.0f &&
+                         expected[0].y < 459.0f && offset_deg < 80.0;
+    if (u.allFinite()) {
+      ++inside;
+      EXPECT_NEAR(u.x(), expected[0].x, 2e-2) << p;
+      EXPECT_NEAR(u.y(), expected[0].y, 2e-2) << p;
+    } else {
+      ++outside;
+      EXPECT_FALSE(in_view) << p << " -> " << expected[0];
+    }
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 500);
+}
+
 }  // namespace
 }  // namespace lineloc

@@ -17,6 +17,11 @@ packages=(
   libgps-dev gpsd gpsd-clients python3-gps
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+# The tests check the ROS 2 wire format against an npm package (tests/support/ros2_cdr):
+# Node.js and npm from Debian where the machine has none.
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

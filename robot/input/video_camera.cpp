@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -17,6 +18,22 @@ namespace {
 bool isDeviceIndex(const std::string& source) {
   return !source.empty() && source.size() <= 3 &&
          std::all_of(source.begin(), source.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// The backend a source names: a device index or /dev path V4L2, a pipeline
+// (elements joined by '!') GStreamer, a file or URL FFmpeg. Nothing for a path
+// that is none of these: no backend is asked to guess.
+std::optional<int> backendOf(const std::string& source, bool file) {
+  if (isDeviceIndex(source) || source.starts_with("/dev/")) {
+    return cv::CAP_V4L2;
+  }
+  if (source.find('!') != std::string::npos) {
+    return cv::CAP_GSTREAMER;
+  }
+  if (file || source.find("://") != std::string::npos) {
+    return cv::CAP_FFMPEG;
+  }
+  return std::nullopt;
 }
 
 void setControl(cv::VideoCapture& capture, int property, double value, const char* name,
@@ -38,8 +55,15 @@ VideoCamera::VideoCamera(const VideoCameraOptions& options, const RobotTimeBase&
       time_base_(time_base),
       capture_(std::make_unique<cv::VideoCapture>()),
       file_(std::filesystem::is_regular_file(options.source)) {
-  const bool opened = isDeviceIndex(source_) ? capture_->open(std::stoi(source_), cv::CAP_ANY)
-                                             : capture_->open(source_, cv::CAP_ANY);
+  const std::optional<int> backend = backendOf(source_, file_);
+  if (!backend) {
+    throw std::runtime_error(fmt::format(
+        "camera_source '{}': no such file, and not a device (an index, /dev/...), a GStreamer "
+        "pipeline (elements joined by '!') or a URL",
+        source_));
+  }
+  const bool opened = isDeviceIndex(source_) ? capture_->open(std::stoi(source_), *backend)
+                                             : capture_->open(source_, *backend);
   if (!opened || !capture_->isOpened()) {
     throw std::runtime_error(fmt::format(
         "camera_source '{}': cannot be opened (not a camera device, a GStreamer pipeline, a "

@@ -1,7 +1,8 @@
 // A live camera through OpenCV's VideoCapture: a V4L2 device ("0" or
-// "/dev/video0"), a GStreamer pipeline ending in appsink, a network stream or
-// a video file, with the exposure and gain set where the device has those
-// controls (the paper adjusts shutter, gain and iris as the light changes).
+// "/dev/video0"), a GStreamer pipeline ending in appsink, a network stream
+// (FFmpeg) or a video file (FFmpeg), each opened by the backend it names,
+// with the exposure and gain set where the device has those controls (the
+// paper adjusts shutter, gain and iris as the light changes).
 //
 // Each frame is stamped by the device where it can be (the capture's
 // CAP_PROP_POS_MSEC: a V4L2 buffer's time, a file's presentation time),

@@ -60,9 +60,10 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
 }
 
 ChildProcess::~ChildProcess() {
-  // The whole process group: the program and whatever it started.
-  kill(-pid_, SIGKILL);
+  // While the program runs its group is its own: killed whole, with whatever
+  // it started. Once it has ended its id may be another's.
   if (running()) {
+    kill(-pid_, SIGKILL);
     wait(5000);
   }
 }

@@ -1,6 +1,6 @@
 // A program started by a test as a separate process (posix_spawn) in a
-// process group of its own, with its output sent to a log file; on
-// destruction the group is killed, the program and whatever it started.
+// process group of its own, with its output sent to a log file; destroyed
+// while it runs, its group is killed, the program and whatever it started.
 #pragma once
 
 #include <sys/types.h>

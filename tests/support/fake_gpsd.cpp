@@ -48,7 +48,7 @@ FakeGpsd::FakeGpsd(const std::string& nmea_log, double cycle_s, const std::strin
       "/usr/bin/gpsfake",
       std::vector<std::string>{"-q", "-P", port_, "-c", fmt::format("{}", cycle_s), nmea_log},
       log_path);
-  for (int attempt = 0; attempt < 100; ++attempt) {
+  for (int attempt = 0; attempt < 600; ++attempt) {
     if (listening(port)) {
       return;
     }

@@ -14,7 +14,7 @@ class FakeGpsd {
  public:
   // Starts gpsfake on `nmea_log`, one sentence every `cycle_s` seconds, over
   // and over; gpsd waits for its first client before the log starts. Throws
-  // std::runtime_error when gpsd does not listen within a few seconds.
+  // std::runtime_error when gpsd does not listen within 30 s.
   FakeGpsd(const std::string& nmea_log, double cycle_s, const std::string& log_path);
 
   const std::string& port() const { return port_; }

@@ -16,6 +16,9 @@ namespace {
 
 template <typename Message, typename Take>
 void deliver(const dds_topic_descriptor_t& type, const uint8_t* data, size_t size, Take take) {
+  if (size == 0) {
+    return;  // no sample is empty
+  }
   std::vector<char> body(data, data + size);
   uint32_t offset = 0;
   if (dds_stream_normalize_data(body.data(), &offset, static_cast<uint32_t>(body.size()), false,

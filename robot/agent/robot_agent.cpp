@@ -335,8 +335,9 @@ RobotRunSummary runRobot(const RobotConfig& config, const std::atomic<bool>& sto
     runFrontEndRealtime(config.realtime_priority, true);
     runLive(config, sensors, time_base, loop, stop);
     const LiveSensorCounts counts = sensors.counts();
-    summary.sensor_lines_dropped += static_cast<int>(
-        counts.imu_lines_dropped + counts.compass_lines_dropped + counts.gnss_dropped);
+    summary.sensor_lines_dropped +=
+        static_cast<int>(counts.imu_lines_dropped + counts.compass_lines_dropped +
+                         counts.gnss_dropped + counts.source_dropped);
     spdlog::info(
         "live sensors: {} frames ({} dropped unread), {} IMU samples, {} compass readings, {} "
         "GNSS fixes, {} GNSS velocities",

@@ -33,8 +33,4 @@ int64_t DeviceClock::map(int64_t device_ns, int64_t arrival_ns) {
   return mapped_ns;
 }
 
-std::optional<int64_t> DeviceClock::offsetNs() const {
-  return known_ ? std::optional(offset_ns_) : std::nullopt;
-}
-
 }  // namespace lineloc

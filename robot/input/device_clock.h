@@ -52,9 +52,6 @@ class DeviceClock {
   // more than the readings' spacing).
   int64_t map(int64_t device_ns, int64_t arrival_ns);
 
-  // The current offset (robot time - device time); nullopt before a reading.
-  std::optional<int64_t> offsetNs() const;
-
  private:
   double max_drift_;
   bool known_ = false;

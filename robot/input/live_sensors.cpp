@@ -89,8 +89,9 @@ LiveSensors::LiveSensors(const LiveSensorConfig& config, const RobotTimeBase& ti
                           std::make_unique<VideoCamera>(config.camera, time_base));
   }
   try {
-    for (std::unique_ptr<LiveSource>& source : sources) {
-      threads_.emplace_back(&LiveSensors::readSource, this, std::move(source));
+    sources_ = std::move(sources);
+    for (std::unique_ptr<LiveSource>& source : sources_) {
+      threads_.emplace_back(&LiveSensors::readSource, this, std::ref(*source));
     }
     if (!config.imu_source.empty()) {
       auto imu = openSource("imu_source", config.imu_source, [&] {
@@ -151,7 +152,11 @@ std::vector<LiveReading> LiveSensors::take(int64_t timeout_ns) {
 
 LiveSensorCounts LiveSensors::counts() const {
   std::lock_guard lock(mutex_);
-  return counts_;
+  LiveSensorCounts counts = counts_;
+  for (const std::unique_ptr<LiveSource>& source : sources_) {
+    counts.source_dropped += source->dropped();
+  }
+  return counts;
 }
 
 void LiveSensors::push(LiveReading reading) {
@@ -251,9 +256,9 @@ void LiveSensors::readNmea(std::unique_ptr<SensorLineReader> stream,
   }
 }
 
-void LiveSensors::readSource(std::unique_ptr<LiveSource> source) {
+void LiveSensors::readSource(LiveSource& source) {
   DeviceClock clock;
-  source->run(
+  source.run(
       [&](std::vector<LiveReading> readings) {
         pushMapped(std::move(readings), clock, time_base_.now());
       },

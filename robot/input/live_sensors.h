@@ -76,6 +76,8 @@ class LiveSource {
                    const std::atomic<bool>& stop) = 0;
   // True when it delivers camera frames, with sequence numbers of its own.
   virtual bool deliversFrames() const = 0;
+  // Messages it could not take and dropped.
+  virtual int64_t dropped() const = 0;
 };
 
 struct LiveSensorCounts {
@@ -90,6 +92,8 @@ struct LiveSensorCounts {
   // NMEA sentences that were malformed, failed their checksum or were undated,
   // and gpsd reports without a 3D fix.
   int64_t gnss_dropped = 0;
+  // Dropped by the sources besides (LiveSource::dropped).
+  int64_t source_dropped = 0;
 };
 
 class LiveSensors {
@@ -127,7 +131,7 @@ class LiveSensors {
                int64_t LiveSensorCounts::*dropped);
   void readNmea(std::unique_ptr<SensorLineReader> stream, std::unique_ptr<NmeaGpsDecoder> decoder);
   void readGpsd(std::unique_ptr<GpsdClient> gpsd);
-  void readSource(std::unique_ptr<LiveSource> source);
+  void readSource(LiveSource& source);
 
   const RobotTimeBase& time_base_;
   std::atomic<bool> stop_{false};
@@ -137,6 +141,7 @@ class LiveSensors {
   std::deque<LiveReading> readings_;
   std::optional<size_t> waiting_frame_;
   LiveSensorCounts counts_;
+  std::vector<std::unique_ptr<LiveSource>> sources_;
   std::vector<std::thread> threads_;
 };
 

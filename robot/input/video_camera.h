@@ -56,9 +56,6 @@ class VideoCamera {
   // device stops delivering.
   std::optional<CapturedFrame> read();
 
-  // True for a file, which plays in real time.
-  bool isFile() const { return file_; }
-
  private:
   std::string source_;
   const RobotTimeBase& time_base_;

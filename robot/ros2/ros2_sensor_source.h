@@ -28,10 +28,6 @@ struct Ros2SensorTopics {
   double geoid_height_m = 0.0;
 };
 
-struct Ros2SensorCounts {
-  int64_t dropped = 0;
-};
-
 class Ros2SensorSource : public LiveSource {
  public:
   // `site` projects the fixes (nullptr: a NavSatFix topic is refused).
@@ -43,7 +39,7 @@ class Ros2SensorSource : public LiveSource {
   void run(const std::function<void(std::vector<LiveReading>)>& arrived,
            const std::atomic<bool>& stop) override;
   bool deliversFrames() const override;
-  int64_t dropped() const { return dropped_; }
+  int64_t dropped() const override { return dropped_; }
 
  private:
   struct Readers;

@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
   options.add("max_speed_m_s", config.drive.max_speed_m_s, "fastest cruise speed (m/s)");
   options.add("stop_probability", config.drive.stop_probability,
               "probability that a leg is a stop");
+  options.add("control_spacing_m", config.drive.control_spacing_m,
+              "spacing of the path's spline control points along the route: the path rounds "
+              "the route's corners over about this length (m)");
   options.add("cars_per_100m", config.clutter.cars_per_100m, "parked cars per 100 m of route");
   options.add("trees_per_100m", config.clutter.trees_per_100m, "trees per 100 m of route");
   options.add("poles_per_100m", config.clutter.poles_per_100m, "lamp posts per 100 m of route");
@@ -76,6 +79,9 @@ int main(int argc, char** argv) {
               "camera clock minus true time (s)");
   options.add("imu_time_offset_s", config.imu_time_offset_s, "IMU clock minus true time (s)");
   options.add("shadows", config.shadows, "cast sun shadows");
+  options.add("facade_detail", config.facade_detail,
+              "paint windows, doors, signs and brick on the walls (false: bare walls, each of one "
+              "albedo, as an object model's faces)");
   options.add(
       "motion_blur_samples", config.motion_blur_samples,
       fmt::format("at most this many renders averaged over each frame's exposure, as many as its "

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   lineloc::ProgramOptions options("lineloc-track",
                                   "Model-based camera tracking in a city model, offline");
   lineloc::addRecordedDriveOptions(options, config.drive);
+  options.add("model_up_axis", config.model_up_axis,
+              "axis the model file holds up: z, or y (as many object models in OBJ)");
   options.addFixedSize("predicted_pose", config.predicted_pose, 7,
                        "first frame's predicted T_world_camera: tx ty tz qx qy qz qw");
   options.add("predicted_position_sigma_m", config.predicted_position_sigma_m,

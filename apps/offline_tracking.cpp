@@ -22,26 +22,47 @@
 namespace lineloc {
 namespace {
 
-TrackerOptions trackerOptionsOf(const OfflineTrackingConfig& config) {
+citymodel::UpAxis upAxisOption(const std::string& axis) {
+  try {
+    return citymodel::parseUpAxis(axis);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(fmt::format("model_up_axis: {}", error.what()));
+  }
+}
+
+TrackerOptions trackerOptionsOf(const OfflineTrackingConfig& config, bool local_frame) {
   TrackerOptions options;
   options.localizer.visibility.sunlight = driveSun(config.drive);
+  // A model in its own frame is an object's, of any size: tracked in scene
+  // units, and with no terrain to take its base from, its foot as exact as
+  // the rest of it.
+  options.scale_to_scene = local_frame;
+  if (local_frame) {
+    options.localizer.alignment.ground_line_sigma_m = options.localizer.alignment.model_sigma_m;
+    options.localizer.acquisition.alignment.ground_line_sigma_m =
+        options.localizer.acquisition.alignment.model_sigma_m;
+  }
   return options;
 }
 
 }  // namespace
 
 OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, std::ostream& out) {
-  const LocalModel local = readDriveModel(config.drive);
+  const LocalModel local = readDriveModel(config.drive, upAxisOption(config.model_up_axis));
   out << fmt::format(
-      "lineloc-track: {} buildings, {} lines, {} faces; frame = model CRS minus site origin "
+      "lineloc-track: {} buildings, {} lines, {} faces; frame = model {} minus site origin "
       "({:.3f}, {:.3f}, {:.3f})\n",
-      local.buildings, local.model.lines.size(), local.model.faces.size(), local.origin.x(),
-      local.origin.y(), local.origin.z());
+      local.buildings, local.model.lines.size(), local.model.faces.size(),
+      local.local_frame ? "frame" : "CRS", local.origin.x(), local.origin.y(), local.origin.z());
   const CameraCalibration calibration = readCameraCalibration(config.drive.camera_calibration);
+  const PoseWithCovariance predicted_T_model_camera =
+      poseOption(config.predicted_pose, config.predicted_position_sigma_m,
+                 config.predicted_rotation_sigma_deg, "predicted_pose");
   ModelTracker tracker(local.model, calibration.camera,
-                       poseOption(config.predicted_pose, config.predicted_position_sigma_m,
-                                  config.predicted_rotation_sigma_deg, "predicted_pose"),
-                       trackerOptionsOf(config));
+                       changeWorldFrame(local.R_model_local.inverse(), predicted_T_model_camera),
+                       trackerOptionsOf(config, local.local_frame));
+  out << fmt::format("lineloc-track: tracking in units of {:.4g} m (scene scale)\n",
+                     tracker.metresPerUnit());
   FeatureExtractor extractor(calibration, config.extractor);
   TumWriter trajectory(config.out);
   std::optional<FixLogWriter> fix_log;
@@ -62,11 +83,13 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
                  frame.acquired ? " after a search" : "", frame.alignment.inliers,
                  frame.alignment.message.empty() ? "" : ": " + frame.alignment.message);
     const int64_t stamp_ns = frame_ref.stamp_ns.value_or(summary.frames);
-    trajectory.write({stamp_ns, frame.T_world_camera.pose});
+    const PoseWithCovariance T_model_camera =
+        changeWorldFrame(local.R_model_local, frame.T_world_camera);
+    trajectory.write({stamp_ns, T_model_camera.pose});
     if (fix_log) {
       LoggedFix fix;
       fix.stamp_ns = stamp_ns;
-      fix.T_world_camera = frame.T_world_camera;
+      fix.T_world_camera = T_model_camera;
       fix.status = toString(frame.alignment.status);
       fix.inliers = static_cast<uint32_t>(frame.alignment.inliers);
       fix.model_lines = static_cast<uint32_t>(frame.visible.size());
@@ -74,8 +97,9 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
       fix_log->write(fix);
     }
     if (!config.overlay_dir.empty()) {
-      cv::imwrite(fmt::format("{}/frame_{:06d}.png", config.overlay_dir, summary.frames),
-                  drawTrackingOverlay(image, features.segments, frame, calibration));
+      cv::imwrite(
+          fmt::format("{}/frame_{:06d}.png", config.overlay_dir, summary.frames),
+          drawTrackingOverlay(image, features.segments, features.corners, frame, calibration));
     }
     ++summary.frames;
   }

@@ -1,11 +1,13 @@
 // What lineloc-track does: model-based tracking of a camera in a city model,
-// offline. The robot's front end (robot/vision/features) extracts each
-// image's segments and corners; the backbone's ModelTracker
+// or in an object's model in its own frame, offline. The robot's front end (robot/vision/features)
+// extracts each image's segments and corners; the backbone's ModelTracker
 // (backbone/tracker/model_tracker.h) aligns the model's lines to them from
 // the previous frame's pose, searching when it loses the camera. No DDS, no
 // database: a model file, a folder of images (or an EuRoC/ASL camera folder)
 // and the first frame's predicted pose in; one pose per frame (TUM) out, and
-// an overlay PNG per frame and a fix log when asked.
+// an overlay PNG per frame and a fix log when asked. Poses in and out are in
+// the model's own axes (y-up for a y-up model) minus the site origin; the
+// tracker works z-up.
 //
 // It composes the robot's and the backbone's libraries, so it belongs to
 // neither: backbone/ never includes robot/.
@@ -22,6 +24,8 @@ namespace lineloc {
 
 struct OfflineTrackingConfig {
   RecordedDrive drive;
+  // The axis the model file holds up: "z" or "y".
+  std::string model_up_axis = "z";
   // The first frame's T_world_camera: tx ty tz qx qy qz qw.
   std::vector<double> predicted_pose = {0, 0, 1.5, 0, 0, 0, 1};
   double predicted_position_sigma_m = 0.5;

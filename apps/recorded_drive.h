@@ -11,16 +11,19 @@
 #include "backbone/tracker/model_file.h"
 #include "common/config/program_options.h"
 #include "common/geometry/sunlight.h"
+#include "db/citymodel/city_model.h"
 
 namespace lineloc {
 
 struct RecordedDrive {
   // CityJSON, CityJSON Lines, OBJ or GeoJSON footprints.
   std::string city_model;
-  // "EPSG:N" for a model file that names no CRS.
+  // "EPSG:N" for a model file that names no CRS; empty for such a file: the
+  // model is an object in its own metric frame.
   std::string city_model_crs;
-  // Model coordinates x y z of the site origin: poses are in the model's CRS
-  // minus it. Empty: the model's lowest corner, rounded down.
+  // Model coordinates x y z of the site origin: poses are in the model's
+  // frame minus it. Empty: the model's lowest corner, rounded down, for a
+  // model with a CRS; zero for one in its own frame.
   std::vector<double> site_origin;
   // Image folder or EuRoC/ASL camera folder.
   std::string images;
@@ -36,9 +39,11 @@ struct RecordedDrive {
 // camera_calibration, sun and ambient.
 void addRecordedDriveOptions(ProgramOptions& options, RecordedDrive& drive);
 
-// The model in its site frame. Throws std::runtime_error naming the option
-// or file that is malformed or unreadable.
-LocalModel readDriveModel(const RecordedDrive& drive);
+// The model in its site frame, z-up (its file's coordinates held `up_axis`
+// up). Throws std::runtime_error naming the option or file that is malformed
+// or unreadable.
+LocalModel readDriveModel(const RecordedDrive& drive,
+                          citymodel::UpAxis up_axis = citymodel::UpAxis::kZ);
 
 // The sun of `sun` and `ambient`, when given; throws naming them when
 // malformed.

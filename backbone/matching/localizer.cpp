@@ -100,15 +100,27 @@ std::vector<double> coverageScores(const std::vector<Alignment>& aligned,
   return scores;
 }
 
-// The index of the best covered OK alignment, by coverage `scores`.
-size_t bestCovered(const std::vector<Alignment>& aligned, const std::vector<double>& scores) {
+// The index of the best covered OK alignment, by coverage `scores`, or of the
+// OK alignment with the most inliers in its basin (each within the other's
+// covariance): the scores of one basin's alignments differ by noise, and the
+// one that kept more matches estimated the pose from more of the evidence.
+size_t bestCovered(const std::vector<Alignment>& aligned, const std::vector<double>& scores,
+                   const LocalizerOptions& options) {
   size_t best = aligned.size();
   for (size_t i = 0; i < aligned.size(); ++i) {
     if (isOk(aligned[i]) && (best == aligned.size() || scores[i] > scores[best])) {
       best = i;
     }
   }
-  return best;
+  size_t chosen = best;
+  for (size_t i = 0; i < aligned.size() && best < aligned.size(); ++i) {
+    if (isOk(aligned[i]) && aligned[i].inliers > aligned[chosen].inliers &&
+        !outside(aligned[best], aligned[i], options) &&
+        !outside(aligned[i], aligned[best], options)) {
+      chosen = i;
+    }
+  }
+  return chosen;
 }
 
 // The answer, its covariance grown by d d^T for every settled rival covered
@@ -228,7 +240,8 @@ Alignment track(const AlignmentFeatures& features, const PoseWithCovariance& pri
               : coverageScores(aligned, features.image_segments, features.model_segments, camera,
                                options);
     matching_ns += steadyClockNs() - scoring_start_ns;
-    const size_t chosen = agree ? first_ok - aligned.begin() : bestCovered(aligned, scores);
+    const size_t chosen =
+        agree ? first_ok - aligned.begin() : bestCovered(aligned, scores, options);
     answer = leaveOutFacadeSideDetail(aligned[chosen], features.image_segments,
                                       features.model_segments, camera, options.alignment);
     matching_ns += answer.matching_ns - aligned[chosen].matching_ns;

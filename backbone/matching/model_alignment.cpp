@@ -235,12 +235,17 @@ bool alignRound(const AlignmentFeatures& features, const PoseWithCovariance& gat
     return false;
   }
   alignment.inliers = 0;
+  alignment.inlier_corners.clear();
   double inlier_chi2 = 0.0;
   for (const auto* residuals : {&estimate.line_residuals, &estimate.point_residuals}) {
-    for (const CorrespondenceResidual& residual : *residuals) {
-      if (residual.normalized_residual < options.inlier_threshold_sigma) {
+    for (size_t i = 0; i < residuals->size(); ++i) {
+      const double normalized = (*residuals)[i].normalized_residual;
+      if (normalized < options.inlier_threshold_sigma) {
         ++alignment.inliers;
-        inlier_chi2 += residual.normalized_residual * residual.normalized_residual;
+        inlier_chi2 += normalized * normalized;
+        if (residuals == &estimate.point_residuals) {
+          alignment.inlier_corners.push_back(matched.corner_matches[i].image_index);
+        }
       }
     }
   }

@@ -157,6 +157,9 @@ struct Alignment {
   PoseWithCovariance T_world_camera;
   int matches = 0;
   int inliers = 0;
+  // The image corners (indices into the image's) among the inliers: the
+  // corners a completion with corners used.
+  std::vector<int> inlier_corners;
   double rms_residual_px = 0.0;
   int rounds = 0;
   // Where a further round would gate: the prediction fused with the last

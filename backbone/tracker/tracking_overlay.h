@@ -1,6 +1,7 @@
 // A picture of one tracked frame: the model lines projected with the frame's
-// pose (green when aligned, orange when only predicted) and the image segments
-// the front end found (red), over the image undistorted with the calibration —
+// pose (green when aligned, orange when only predicted), the image segments
+// the front end found (red) and its corners (yellow rings, filled cyan where
+// the alignment used them), over the image undistorted with the calibration —
 // segments and projections live in undistorted pixels — so a user sees at a
 // glance whether the model sits on the buildings.
 #pragma once
@@ -15,6 +16,7 @@
 namespace lineloc {
 
 cv::Mat drawTrackingOverlay(const cv::Mat& image, const std::vector<ImageSegment>& segments,
-                            const TrackedFrame& frame, const CameraCalibration& calibration);
+                            const std::vector<ImageCorner>& corners, const TrackedFrame& frame,
+                            const CameraCalibration& calibration);
 
 }  // namespace lineloc

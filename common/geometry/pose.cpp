@@ -53,6 +53,23 @@ PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
   return {T_world_a.pose * T_a_b, jacobian * T_world_a.covariance * jacobian.transpose()};
 }
 
+PoseWithCovariance changeWorldFrame(const Eigen::Isometry3d& T_b_a,
+                                    const PoseWithCovariance& T_a_c) {
+  Matrix6d rotation = Matrix6d::Zero();
+  rotation.topLeftCorner<3, 3>() = T_b_a.linear();
+  rotation.bottomRightCorner<3, 3>() = T_b_a.linear();
+  return {T_b_a * T_a_c.pose, rotation * T_a_c.covariance * rotation.transpose()};
+}
+
+PoseWithCovariance scaledWorld(const PoseWithCovariance& pose, double factor) {
+  Eigen::Matrix<double, 6, 1> scale;
+  scale << factor, factor, factor, 1.0, 1.0, 1.0;
+  PoseWithCovariance scaled = pose;
+  scaled.pose.translation() *= factor;
+  scaled.covariance = scale.asDiagonal() * pose.covariance * scale.asDiagonal();
+  return scaled;
+}
+
 PoseWithCovariance fusePoses(const PoseWithCovariance& a, const PoseWithCovariance& b) {
   const Matrix6d information_a = a.covariance.ldlt().solve(Matrix6d::Identity());
   const Matrix6d information_b = b.covariance.ldlt().solve(Matrix6d::Identity());

@@ -45,6 +45,17 @@ Eigen::Isometry3d applyPoseError(const Eigen::Isometry3d& pose,
 PoseWithCovariance composeExactMotion(const PoseWithCovariance& T_world_a,
                                       const Eigen::Isometry3d& T_a_b);
 
+// T_b_a T_a_c for an exactly known change of world frame T_b_a: with t_c in
+// b = R_b_a t_c + t_b_a and R = R_b_a Exp(dtheta) R_a_c = Exp(R_b_a dtheta)
+// R_b_a R_a_c, the error turns with the frame, e_b = diag(R_b_a, R_b_a) e_a.
+PoseWithCovariance changeWorldFrame(const Eigen::Isometry3d& T_b_a,
+                                    const PoseWithCovariance& T_a_c);
+
+// The pose in a world scaled by `factor` about its origin: t -> factor t, so
+// dp -> factor dp and the position rows and columns of the covariance scale by
+// factor (its position block by factor^2); the rotation is unchanged.
+PoseWithCovariance scaledWorld(const PoseWithCovariance& pose, double factor);
+
 // Two independent estimates of one pose combined by their information,
 // linearised at `a`: Sigma = (Sigma_a^-1 + Sigma_b^-1)^-1 and the pose a moved
 // by Sigma Sigma_b^-1 e, e = poseError(a, b) (the Kalman update with b as the

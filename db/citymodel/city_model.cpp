@@ -96,6 +96,21 @@ void handleInvalidObject(const ModelError& error, InvalidObjectPolicy policy,
   skipped.add(error.reason(), error.what());
 }
 
+Eigen::Vector3d zUpPoint(const Eigen::Vector3d& file_point, UpAxis up_axis) {
+  return up_axis == UpAxis::kZ ? file_point
+                               : Eigen::Vector3d(file_point.x(), -file_point.z(), file_point.y());
+}
+
+UpAxis parseUpAxis(const std::string& axis) {
+  if (axis == "z") {
+    return UpAxis::kZ;
+  }
+  if (axis == "y") {
+    return UpAxis::kY;
+  }
+  throw std::invalid_argument(fmt::format("unknown up axis '{}': expected z or y", axis));
+}
+
 int parseEpsgCode(const std::string& crs) {
   const std::string_view digits = epsgDigits(crs);
   if (digits.empty()) {

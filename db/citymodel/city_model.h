@@ -74,6 +74,17 @@ class ModelError : public std::runtime_error {
 // What to do with an object that fails validation.
 enum class InvalidObjectPolicy { kAbort, kSkip };
 
+// The axis a file's coordinates hold up. lineloc's frames are z-up; many
+// object models (OBJ from CAD and 3D tools) are y-up.
+enum class UpAxis { kZ, kY };
+
+// A file's point in lineloc's z-up frame: itself for kZ, (x, -z, y) for kY
+// (a turn of +90 degrees about x, which takes the file's y to z).
+Eigen::Vector3d zUpPoint(const Eigen::Vector3d& file_point, UpAxis up_axis);
+
+// "z" or "y"; throws std::invalid_argument naming the string otherwise.
+UpAxis parseUpAxis(const std::string& axis);
+
 struct ReadOptions {
   // Level of detail to read ("2.2", "1"); empty: the highest present in the file.
   std::string lod;
@@ -82,6 +93,9 @@ struct ReadOptions {
   // CityJSON or GeoJSON document nests about 10 levels); deeper input is
   // refused before it is parsed.
   int max_json_nesting = 256;
+  // Up axis of CityJSON and OBJ coordinates (GeoJSON footprints are maps:
+  // always z-up).
+  UpAxis up_axis = UpAxis::kZ;
 };
 
 // Records `error` in `skipped` under kSkip, rethrows it under kAbort.

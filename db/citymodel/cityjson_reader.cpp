@@ -76,7 +76,7 @@ std::optional<int> readEpsg(const Json& document, const std::string& source) {
 }
 
 std::vector<Eigen::Vector3d> readVertices(const Json& vertices, const Transform& transform,
-                                          const std::string& source) {
+                                          UpAxis up_axis, const std::string& source) {
   if (!vertices.is_array()) {
     throw ModelError(source, "", "malformed vertices", "'vertices' must be an array");
   }
@@ -95,7 +95,7 @@ std::vector<Eigen::Vector3d> readVertices(const Json& vertices, const Transform&
       throw ModelError(source, "", "non-finite vertex coordinate",
                        fmt::format("vertex {}", points.size()));
     }
-    points.push_back(point);
+    points.push_back(zUpPoint(point, up_axis));
   }
   return points;
 }
@@ -447,7 +447,8 @@ CityModel readDocument(std::string_view text, const std::string& source,
   if (vertices == document.end() || city_objects == document.end()) {
     throw ModelError(source, "", "malformed CityJSON", "needs 'vertices' and 'CityObjects'");
   }
-  const std::vector<Eigen::Vector3d> points = readVertices(*vertices, transform, source);
+  const std::vector<Eigen::Vector3d> points =
+      readVertices(*vertices, transform, options.up_axis, source);
   std::vector<ParsedObject> objects;
   parseObjects(*city_objects, points, source, options, objects, model);
   return assemble(std::move(objects), source, options, std::move(model));
@@ -487,7 +488,7 @@ CityModel readLines(std::string_view text, const std::string& source, const Read
                          "needs 'CityObjects' and 'vertices'");
       }
       const std::vector<Eigen::Vector3d> points =
-          readVertices(feature["vertices"], *transform, feature_source);
+          readVertices(feature["vertices"], *transform, options.up_axis, feature_source);
       parseObjects(feature["CityObjects"], points, feature_source, options, objects, model);
     } catch (const ModelError& error) {
       handleInvalidObject(error, options.invalid_objects, model.skipped);

@@ -95,10 +95,10 @@ class ObjParser {
     if (statement.arguments.size() < 3) {
       throw std::invalid_argument("a vertex needs x y z");
     }
-    vertices_.emplace_back(Eigen::Vector3d(parseNumber(statement.arguments[0]),
-                                           parseNumber(statement.arguments[1]),
-                                           parseNumber(statement.arguments[2])) +
-                           offset_);
+    const Eigen::Vector3d file_point(parseNumber(statement.arguments[0]),
+                                     parseNumber(statement.arguments[1]),
+                                     parseNumber(statement.arguments[2]));
+    vertices_.push_back(zUpPoint(file_point, options_.up_axis) + offset_);
   }
 
   void face(const Statement& statement) {

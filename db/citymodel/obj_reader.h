@@ -1,8 +1,8 @@
-// Reader of Wavefront OBJ building models: `v x y z` vertices (plus `offset`,
-// since OBJ files carry neither CRS nor georeference), `f` faces (1-based or
-// negative relative indices, `v/vt/vn` forms), one building per `o` object (per
-// `g` group when the file has no `o`). Face kinds come from the normals; the
-// z axis is up.
+// Reader of Wavefront OBJ building models: `v x y z` vertices (turned z-up
+// from options.up_axis, then plus `offset`, since OBJ files carry neither CRS
+// nor georeference), `f` faces (1-based or negative relative indices, `v/vt/vn`
+// forms), one building per `o` object (per `g` group when the file has no
+// `o`). Face kinds come from the normals of the z-up faces.
 #pragma once
 
 #include <Eigen/Core>

@@ -138,15 +138,24 @@ PreparedModel prepareModel(std::string_view text, const std::string& source_name
                            std::optional<int> target_epsg) {
   PreparedModel prepared;
   prepared.model = readModel(text, source_name, format, options);
-  prepared.source_epsg = resolveSourceCrs(prepared.model, source_name, options);
-  std::unique_ptr<citymodel::CrsTransform> transform;
-  try {
-    transform = std::make_unique<citymodel::CrsTransform>(
-        prepared.source_epsg, target_epsg.value_or(prepared.source_epsg));
-  } catch (const std::invalid_argument& error) {
-    throw ModelError(source_name, "", "unknown CRS", error.what());
+  const bool local_frame =
+      options.local_frame_allowed && !prepared.model.epsg && !options.file_epsg;
+  if (local_frame && target_epsg) {
+    throw ModelError(
+        source_name, "", "no CRS",
+        fmt::format("a model in a local frame cannot be transformed into EPSG:{}", *target_epsg));
   }
-  transform->apply(prepared.model, source_name, options.read.invalid_objects);
+  if (!local_frame) {
+    prepared.source_epsg = resolveSourceCrs(prepared.model, source_name, options);
+    std::unique_ptr<citymodel::CrsTransform> transform;
+    try {
+      transform = std::make_unique<citymodel::CrsTransform>(
+          prepared.source_epsg, target_epsg.value_or(prepared.source_epsg));
+    } catch (const std::invalid_argument& error) {
+      throw ModelError(source_name, "", "unknown CRS", error.what());
+    }
+    transform->apply(prepared.model, source_name, options.read.invalid_objects);
+  }
   validateAndExtract(prepared, source_name, options);
   return prepared;
 }

@@ -37,6 +37,10 @@ struct LoadOptions {
   Eigen::Vector3d obj_offset = Eigen::Vector3d::Zero();
   citymodel::FaceValidation validation;
   citymodel::LineExtractionOptions lines;
+  // A file that names no CRS and is given none is kept in its own local
+  // metric frame, untransformed (an object model for lineloc-track); false:
+  // refused, as a site's database needs a CRS.
+  bool local_frame_allowed = false;
   bool dry_run = false;
 };
 
@@ -57,6 +61,7 @@ struct LoadReport {
 struct PreparedModel {
   citymodel::CityModel model;
   std::vector<std::vector<citymodel::ExtractedLine>> lines;
+  // 0: a local frame (LoadOptions::local_frame_allowed).
   int source_epsg = 0;
 };
 

@@ -94,6 +94,7 @@ RenderOptions renderOptions(const DriveSimulationConfig& config, const Sunlight&
   RenderOptions options;
   options.shading.sun_direction = sun.direction_world.cast<float>();
   options.shading.ambient = static_cast<float>(sun.ambient_fraction);
+  options.shading.facade_detail = config.facade_detail;
   options.ground_z_m = static_cast<float>(ground_z_m);
   options.shadows = config.shadows;
   options.noise_sigma = static_cast<float>(config.noise_sigma);
@@ -167,8 +168,9 @@ void writeFacadeEdgeFile(const DriveSimulationConfig& config, const CityMesh& ci
        stamp_ns += kSpacing_ns) {
     positions.push_back(trajectory.at(stamp_ns).p_world_body.head<2>());
   }
-  writeFacadeEdges((std::filesystem::path(config.output) / "facade_edges.txt").string(),
-                   facadeDetailEdges(city, positions));
+  writeFacadeEdges(
+      (std::filesystem::path(config.output) / "facade_edges.txt").string(),
+      config.facade_detail ? facadeDetailEdges(city, positions) : std::vector<FacadeEdge>{});
 }
 
 void writeSensors(const DriveSimulationConfig& config, const RouteTrajectory& trajectory,

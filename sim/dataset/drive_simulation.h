@@ -61,6 +61,9 @@ struct DriveSimulationConfig {
   double imu_time_offset_s = 0.0;
   // Render options.
   bool shadows = true;
+  // False: bare walls without windows, doors, signs or brick, and no façade
+  // detail edges written.
+  bool facade_detail = true;
   int edge_pixel_samples = RenderOptions{}.edge_pixel_samples;
   // At most this many renders averaged over each frame's exposure, as many as
   // its motion needs (CityRenderer::renderExposureRadiance); 0: kRealisticMotionBlurSamples

@@ -72,6 +72,9 @@ SurfaceShader::SurfaceShader(const ShadingOptions& options) : options_(options) 
 float SurfaceShader::facadeAlbedo(const SurfaceTag& tag, const Eigen::Vector3f& p,
                                   const Eigen::Vector3f& n, float footprint_m) const {
   const FacadeLayout layout(tag.object_id, tag.base_z, tag.top_z);
+  if (!options_.facade_detail) {
+    return layout.wallAlbedo();
+  }
   const float u = FacadeLayout::wallU(p, n);
   const float v = p.z() - tag.base_z;
   const FacadeLayout::Paint paint = layout.at(u, v);

@@ -20,6 +20,9 @@ struct ShadingOptions {
   Eigen::Vector3f sun_direction = Eigen::Vector3f(0.55f, -0.45f, 0.70f).normalized();
   // Fraction of the light that reaches surfaces facing away or in shadow.
   float ambient = 0.35f;
+  // False: walls are bare, each its building's one albedo, with no windows,
+  // doors, signs or brick (an object model's painted faces).
+  bool facade_detail = true;
 };
 
 class SurfaceShader {

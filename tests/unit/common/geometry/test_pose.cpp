@@ -90,6 +90,41 @@ TEST(Pose, ComposingAnExactMotionCarriesTheCovarianceItPredicts) {
 }
 
 // With a diagonal covariance the NEES is the sum of squared errors in sigmas.
+// A pose and its truth carried into another world frame, or into a scaled
+// world, keep their error in the estimate's covariance: the normalized error
+// is invariant, for errors along every axis of a correlated covariance.
+TEST(Pose, AChangeOfWorldFrameOrScaleKeepsTheErrorInItsCovariance) {
+  const Eigen::Isometry3d estimate = makePose(
+      {4.0, -2.0, 1.5}, Eigen::Quaterniond(Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ())));
+  Eigen::Matrix<double, 6, 6> root = Eigen::Matrix<double, 6, 6>::Identity() * 0.02;
+  root(0, 4) = 0.01;
+  root(5, 1) = 0.004;
+  const PoseWithCovariance T_a_c{estimate, root * root.transpose()};
+  const Eigen::Isometry3d T_b_a =
+      makePose({10.0, 0.5, -3.0},
+               Eigen::Quaterniond(Eigen::AngleAxisd(-M_PI / 2.0, Eigen::Vector3d::UnitX())));
+  for (int axis = 0; axis < 6; ++axis) {
+    Eigen::Matrix<double, 6, 1> error = Eigen::Matrix<double, 6, 1>::Zero();
+    error(axis) = 0.01;
+    const Eigen::Isometry3d truth = applyPoseError(estimate, error);
+    const double nees = normalizedErrorSquared(T_a_c, truth);
+    EXPECT_NEAR(normalizedErrorSquared(changeWorldFrame(T_b_a, T_a_c), T_b_a * truth), nees,
+                1e-6 * nees)
+        << axis;
+    Eigen::Isometry3d truth_scaled = truth;
+    truth_scaled.translation() *= 0.05;
+    EXPECT_NEAR(normalizedErrorSquared(scaledWorld(T_a_c, 0.05), truth_scaled), nees, 1e-6 * nees)
+        << axis;
+  }
+  const PoseWithCovariance turned = changeWorldFrame(T_b_a, T_a_c);
+  EXPECT_TRUE(turned.pose.isApprox(T_b_a * estimate));
+  const PoseWithCovariance scaled = scaledWorld(T_a_c, 0.05);
+  EXPECT_TRUE(scaled.pose.translation().isApprox(0.05 * estimate.translation()));
+  EXPECT_TRUE(scaled.pose.linear().isApprox(estimate.linear()));
+  EXPECT_NEAR(scaled.covariance(5, 5), T_a_c.covariance(5, 5), 1e-18);
+  EXPECT_NEAR(scaled.covariance(0, 0), 0.0025 * T_a_c.covariance(0, 0), 1e-18);
+}
+
 TEST(Pose, NormalizedErrorIsTheErrorInItsOwnSigmas) {
   PoseWithCovariance estimate;
   estimate.covariance = diagonalPoseCovariance(0.02, 0.001);

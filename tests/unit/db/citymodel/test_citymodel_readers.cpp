@@ -199,6 +199,51 @@ TEST(CrsTransform, Wgs84ToUtmAgreesWithGeographicLib) {
   EXPECT_THROW(CrsTransform(4326, 999999), std::invalid_argument);
 }
 
+TEST(UpAxis, AYUpFileIsTurnedZUpAndNothingElseIsAnAxis) {
+  EXPECT_EQ(zUpPoint({1, 2, 3}, UpAxis::kZ), Eigen::Vector3d(1, 2, 3));
+  // +90 degrees about x: the file's up (y) becomes z, its z (towards the
+  // viewer) becomes -y, and the frame stays right-handed.
+  EXPECT_EQ(zUpPoint({1, 2, 3}, UpAxis::kY), Eigen::Vector3d(1, -3, 2));
+  EXPECT_EQ(zUpPoint({1, 0, 0}, UpAxis::kY).cross(zUpPoint({0, 1, 0}, UpAxis::kY)),
+            zUpPoint({0, 0, 1}, UpAxis::kY));
+  EXPECT_EQ(parseUpAxis("z"), UpAxis::kZ);
+  EXPECT_EQ(parseUpAxis("y"), UpAxis::kY);
+  for (const char* bad : {"Y", "x", "-z", "", "zy"}) {
+    try {
+      parseUpAxis(bad);
+      FAIL() << bad;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(std::string("'") + bad + "'"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST(UpAxis, AYUpObjAndCityJsonReadAsTheirZUpTwins) {
+  // A wall and a roof, written y-up: the roof lies at y = 1, facing +y.
+  const std::string y_up_obj =
+      "o wall\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
+      "o roof\nv 0 1 0\nv 0 1 -1\nv 1 1 0\nf -3 -1 -2\n";
+  ReadOptions y_up;
+  y_up.up_axis = UpAxis::kY;
+  const CityModel model = readWavefrontObj(y_up_obj, "y_up.obj", {10, 0, 0}, y_up);
+  ASSERT_EQ(model.buildings.size(), 2u);
+  EXPECT_EQ(model.buildings[0].faces[0].kind, SurfaceKind::kWall);
+  EXPECT_EQ(model.buildings[1].faces[0].kind, SurfaceKind::kRoof);
+  // Turned, then offset: the offset is in the z-up frame.
+  EXPECT_EQ(model.buildings[0].faces[0].rings[0][2], Eigen::Vector3d(11, 0, 1));
+  EXPECT_EQ(model.buildings[1].faces[0].rings[0][1], Eigen::Vector3d(11, 0, 1));
+
+  const CityModel z_up = readCityJson(kOneCube, "z_up.json", {});
+  const CityModel turned = readCityJson(kOneCube, "y_up.json", y_up);
+  const auto& z_ring = z_up.buildings[0].faces[1].rings[0];
+  const auto& y_ring = turned.buildings[0].faces[1].rings[0];
+  ASSERT_EQ(z_ring.size(), y_ring.size());
+  for (size_t i = 0; i < z_ring.size(); ++i) {
+    EXPECT_EQ(y_ring[i], zUpPoint(z_ring[i], UpAxis::kY));
+  }
+}
+
 TEST(CityModel, EpsgCodesFromEveryAcceptedFormAndNoOther) {
   EXPECT_EQ(parseEpsgCode("EPSG:7415"), 7415);
   EXPECT_EQ(parseEpsgCode("epsg:28992"), 28992);

@@ -182,6 +182,40 @@ TEST(Loader, WriterRoleLoadsRowsButCannotChangeTheSchema) {
   EXPECT_EQ(count(writer, "SELECT count(*) FROM line"), 24);
 }
 
+TEST(Loader, AModelThatNamesNoCrsIsRefusedUnlessALocalFrameIsAllowed) {
+  // A 30 cm box in its own frame, no referenceSystem.
+  const std::string box = R"({"type":"CityJSON","version":"2.0",
+ "transform":{"scale":[0.001,0.001,0.001],"translate":[0,0,0]},
+ "CityObjects":{"box":{"type":"Building","geometry":[{"type":"Solid","lod":"2","boundaries":
+ [[[[0,3,2,1]],[[4,5,6,7]],[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]],[[3,0,4,7]]]]}]}},
+ "vertices":[[0,0,0],[300,0,0],[300,200,0],[0,200,0],[0,0,100],[300,0,100],[300,200,100],
+ [0,200,100]]})";
+  LoadOptions options;
+  try {
+    prepareModel(box, "box.city.json", InputFormat::kCityJson, options, std::nullopt);
+    FAIL() << "a model without a CRS loaded into a site";
+  } catch (const citymodel::ModelError& error) {
+    EXPECT_EQ(error.reason(), "no CRS");
+    EXPECT_NE(std::string(error.what()).find("box.city.json"), std::string::npos);
+  }
+  options.local_frame_allowed = true;
+  const PreparedModel local =
+      prepareModel(box, "box.city.json", InputFormat::kCityJson, options, std::nullopt);
+  EXPECT_EQ(local.source_epsg, 0);
+  ASSERT_EQ(local.model.buildings.size(), 1u);
+  EXPECT_TRUE(local.model.buildings[0].faces[1].rings[0][2].isApprox(
+      Eigen::Vector3d(0.3, 0.2, 0.1)));
+  EXPECT_EQ(local.lines.at(0).size(), 12u);
+  // Nor can a local frame be moved into a CRS.
+  EXPECT_THROW(prepareModel(box, "box.city.json", InputFormat::kCityJson, options, 28992),
+               citymodel::ModelError);
+  // A CRS given for it is used as before.
+  options.file_epsg = 28992;
+  EXPECT_EQ(prepareModel(box, "box.city.json", InputFormat::kCityJson, options, std::nullopt)
+                .source_epsg,
+            28992);
+}
+
 TEST(Loader, LinesQueryAndExportOfASyntheticCity) {
   test::TestDatabase database("loader_query");
   Connection connection(database.conninfo(test::DatabaseRole::kWriter));

@@ -59,7 +59,7 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
       poseOption(config.predicted_pose, config.predicted_position_sigma_m,
                  config.predicted_rotation_sigma_deg, "predicted_pose");
   ModelTracker tracker(local.model, calibration.camera,
-                       changeWorldFrame(local.R_model_local.inverse(), predicted_T_model_camera),
+                       changeWorldFrame(local.T_model_local.inverse(), predicted_T_model_camera),
                        trackerOptionsOf(config, local.local_frame));
   out << fmt::format("lineloc-track: tracking in units of {:.4g} m (scene scale)\n",
                      tracker.metresPerUnit());
@@ -84,7 +84,7 @@ OfflineTrackingSummary runOfflineTracking(const OfflineTrackingConfig& config, s
                  frame.alignment.message.empty() ? "" : ": " + frame.alignment.message);
     const int64_t stamp_ns = frame_ref.stamp_ns.value_or(summary.frames);
     const PoseWithCovariance T_model_camera =
-        changeWorldFrame(local.R_model_local, frame.T_world_camera);
+        changeWorldFrame(local.T_model_local, frame.T_world_camera);
     trajectory.write({stamp_ns, T_model_camera.pose});
     if (fix_log) {
       LoggedFix fix;

@@ -51,13 +51,13 @@ LocalModel readLocalModel(const std::string& path, std::optional<Eigen::Vector3d
   LocalModel local;
   local.local_frame = prepared.source_epsg == 0;
   if (up_axis == citymodel::UpAxis::kY) {
-    local.R_model_local.linear() =
+    local.T_model_local.linear() =
         Eigen::AngleAxisd(-M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
   }
   const Eigen::Vector3d origin_z_up =
       origin ? citymodel::zUpPoint(*origin, up_axis)
              : (local.local_frame ? Eigen::Vector3d::Zero() : lowestCorner(prepared.model));
-  local.origin = local.R_model_local.linear() * origin_z_up;
+  local.origin = local.T_model_local.linear() * origin_z_up;
   local.buildings = static_cast<int>(prepared.model.buildings.size());
   for (size_t b = 0; b < prepared.model.buildings.size(); ++b) {
     for (const citymodel::Face& face : prepared.model.buildings[b].faces) {

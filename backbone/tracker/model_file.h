@@ -22,8 +22,8 @@ struct LocalModel {
   // The file names no CRS and was given none.
   bool local_frame = false;
   // Turns the local frame's axes into the file's (identity for a z-up file):
-  // a pose in the model's own axes is changeWorldFrame(R_model_local, pose).
-  Eigen::Isometry3d R_model_local = Eigen::Isometry3d::Identity();
+  // a pose in the model's own axes is changeWorldFrame(T_model_local, pose).
+  Eigen::Isometry3d T_model_local = Eigen::Isometry3d::Identity();
   int buildings = 0;
 };
 

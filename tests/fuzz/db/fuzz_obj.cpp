@@ -1,4 +1,5 @@
-// Fuzz target: the Wavefront OBJ reader, then line extraction on what it accepts.
+// Fuzz target: the Wavefront OBJ reader, z-up and y-up, then line extraction
+// on what it accepts.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -7,15 +8,20 @@
 #include "db/citymodel/obj_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using lineloc::citymodel::UpAxis;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  try {
-    const auto model = lineloc::citymodel::readWavefrontObj(
-        text, "fuzz.obj", Eigen::Vector3d::Zero(),
-        {.lod = "", .invalid_objects = lineloc::citymodel::InvalidObjectPolicy::kSkip});
-    for (const auto& building : model.buildings) {
-      lineloc::citymodel::extractLines(building.faces);
+  for (const UpAxis up_axis : {UpAxis::kZ, UpAxis::kY}) {
+    try {
+      const auto model = lineloc::citymodel::readWavefrontObj(
+          text, "fuzz.obj", Eigen::Vector3d::Zero(),
+          {.lod = "",
+           .invalid_objects = lineloc::citymodel::InvalidObjectPolicy::kSkip,
+           .up_axis = up_axis});
+      for (const auto& building : model.buildings) {
+        lineloc::citymodel::extractLines(building.faces);
+      }
+    } catch (const lineloc::citymodel::ModelError&) {
     }
-  } catch (const lineloc::citymodel::ModelError&) {
   }
   return 0;
 }

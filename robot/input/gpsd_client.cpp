@@ -68,14 +68,17 @@ GpsdReports GpsdClient::read(int timeout_ms) {
       continue;
     }
     const gps_fix_t& fix = data.fix;
+    // A report without its altitude is no 3D fix, whatever its mode: gpsd
+    // reports an epoch's RMC alone, before the GGA that holds its height and
+    // fix quality, with the mode of the epoch before.
     if (fix.mode < MODE_3D || (data.set & LATLON_SET) == 0 || (data.set & TIME_SET) == 0 ||
-        !std::isfinite(fix.latitude) || !std::isfinite(fix.longitude)) {
+        !std::isfinite(fix.latitude) || !std::isfinite(fix.longitude) ||
+        !std::isfinite(fix.altMSL)) {
       ++reports.without_fix;
       continue;
     }
     const int64_t stamp_ns = stampNs(fix.time);
-    const GeodeticPosition where{fix.latitude, fix.longitude,
-                                 std::isfinite(fix.altMSL) ? fix.altMSL : 0.0};
+    const GeodeticPosition where{fix.latitude, fix.longitude, fix.altMSL};
     try {
       reports.readings.emplace_back(
           siteFix(stamp_ns, where, ggaQuality(fix.status), hdop_, projection_, errors_));

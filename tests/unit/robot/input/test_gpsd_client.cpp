@@ -33,11 +33,11 @@ std::string withChecksum(const std::string& body) {
 
 // Epoch k at 10:00:0k UTC on 22 November 2026, at site (10 k, 5, 2): RMC,
 // GGA (RTK fixed, HDOP 0.8), and a satellites' view (GSA, GSV) for gpsd's
-// DOPs.
+// DOPs. Epoch 5 has its RMC alone: no height, no fix quality, no fix.
 std::map<int64_t, Eigen::Vector3d> writeLog(const std::string& path, const SiteProjection& site) {
   std::ofstream log(path);
   std::map<int64_t, Eigen::Vector3d> truth;
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < 6; ++k) {
     const Eigen::Vector3d p_site(10.0 * k, 5.0, 2.0);
     const GeodeticPosition position = site.toGeodetic(p_site);
     RmcSentence rmc;
@@ -56,7 +56,11 @@ std::map<int64_t, Eigen::Vector3d> writeLog(const std::string& path, const SiteP
     gga.fix_quality = 4;
     gga.satellites = 8;
     gga.hdop = 0.8;
-    log << formatRmc(rmc) << "\n" << formatGga(gga) << "\n";
+    log << formatRmc(rmc) << "\n";
+    if (k == 5) {
+      break;
+    }
+    log << formatGga(gga) << "\n";
     log << withChecksum("GPGSA,A,3,04,05,09,12,24,25,29,31,,,,,1.6,0.8,1.4") << "\n";
     log << withChecksum("GPGSV,2,1,08,04,40,083,46,05,17,308,41,09,60,150,45,12,22,040,40") << "\n";
     log << withChecksum("GPGSV,2,2,08,24,50,200,44,25,33,260,42,29,70,100,47,31,15,010,39") << "\n";

@@ -23,6 +23,8 @@
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "sim/dataset/drive_simulation.h"
+#include "tests/support/pose_error.h"
+#include "tests/support/pose_option.h"
 
 namespace lineloc {
 namespace {
@@ -182,14 +184,7 @@ class OfflineObjectTracking : public ::testing::Test {
     start.translation() += 0.01 * Eigen::Vector3d(1.0, -2.0, 2.0) / 3.0;
     start.linear() = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d(2.0, 1.0, -2.0) / 3.0) *
                      start.linear();
-    const Eigen::Quaterniond rotation(start.linear());
-    config.predicted_pose = {start.translation().x(),
-                             start.translation().y(),
-                             start.translation().z(),
-                             rotation.x(),
-                             rotation.y(),
-                             rotation.z(),
-                             rotation.w()};
+    config.predicted_pose = test::poseOptionValues(start);
     config.predicted_position_sigma_m = 0.01;
     config.predicted_rotation_sigma_deg = 2.0;
     config.out = (folder_ / (model + ".tum")).string();
@@ -217,7 +212,8 @@ class OfflineObjectTracking : public ::testing::Test {
       EXPECT_LT(Eigen::AngleAxisd(pose.linear().transpose() * truth.linear()).angle(),
                 0.5 * M_PI / 180.0)
           << fix.stamp_ns;
-      beyond_covariance += normalizedErrorSquared(fix.T_world_camera, truth) > 20.06 ? 1 : 0;
+      beyond_covariance +=
+          normalizedErrorSquared(fix.T_world_camera, truth) > test::kChi2Six9973 ? 1 : 0;
     }
     EXPECT_LE(beyond_covariance, summary.frames / 100) << out.str();
     EXPECT_NE(out.str().find("frame = model frame minus site origin (0.000, 0.000, 0.000)"),

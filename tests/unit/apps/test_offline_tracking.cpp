@@ -18,6 +18,7 @@
 #include "common/trajectory/fix_log.h"
 #include "common/trajectory/tum_trajectory.h"
 #include "tests/support/delft_drive.h"
+#include "tests/support/pose_option.h"
 
 namespace lineloc {
 namespace {
@@ -52,14 +53,7 @@ class OfflineTracking : public ::testing::Test {
     config.drive.images = (folder_ / "dataset" / "cam0").string();
     config.drive.camera_calibration = (folder_ / "dataset" / "cam0" / "calibration.yaml").string();
     const Eigen::Isometry3d& first = frames_->truth.front();
-    const Eigen::Quaterniond rotation(first.linear());
-    config.predicted_pose = {first.translation().x(),
-                             first.translation().y(),
-                             first.translation().z(),
-                             rotation.x(),
-                             rotation.y(),
-                             rotation.z(),
-                             rotation.w()};
+    config.predicted_pose = test::poseOptionValues(first);
     config.predicted_position_sigma_m = 0.05;
     config.predicted_rotation_sigma_deg = 0.5;
     config.drive.sun_deg = {sunlight_.azimuth_deg(), sunlight_.elevation_deg()};

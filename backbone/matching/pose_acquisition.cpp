@@ -24,17 +24,35 @@ struct Verified {
   int carried_index = -1;
   Alignment alignment;
   std::vector<VisibleSegment> visible;
-  // Of the aligned pose: (C - K) / sqrt(L), its coverage C of L against the
-  // verification distance map less the image edges K it puts in open sky.
+  // Of the aligned pose: its coverage C of L against the verification
+  // distance map, its open sky, and the score (C - K) / sqrt(L) with K the
+  // sky's edge length weighed by the evidence its edges carry.
+  Coverage coverage;
+  SkyEdges sky;
   double score = 0.0;
 };
 
 // (C - K) / sqrt(L); 0 where the coverage scores nothing (too little model in view).
-double verifiedScore(const Coverage& coverage, double sky_edge_px) {
+double verifiedScore(const Coverage& coverage, const SkyEdges& sky, double sky_clutter_density,
+                     const SkyEdgeOptions& options) {
   if (coverage.score <= 0.0) {
     return 0.0;
   }
-  return (coverage.covered_px - sky_edge_px) / std::sqrt(coverage.model_px);
+  return (coverage.covered_px - weighedSkyEdgeLength(sky, sky_clutter_density, options)) /
+         std::sqrt(coverage.model_px);
+}
+
+// The frame's sky clutter density: the least of its poses' clear skies'
+// (sky_edges.h), 0 when none shows enough clear sky to measure it.
+double skyClutterDensity(const std::vector<Verified>& aligned, const SkyEdgeOptions& options) {
+  std::optional<double> least;
+  for (const Verified& candidate : aligned) {
+    const std::optional<double> density = clearSkyEdgeDensity(candidate.sky, options);
+    if (density && (!least || *density < *least)) {
+      least = density;
+    }
+  }
+  return least.value_or(0.0);
 }
 
 PoseWithCovariance hypothesisStart(const Eigen::Isometry3d& T_world_camera,
@@ -43,12 +61,13 @@ PoseWithCovariance hypothesisStart(const Eigen::Isometry3d& T_world_camera,
                                                  options.hypothesis_rotation_sigma_rad)};
 }
 
-double scorePose(const CoverageVerifier& verifier, const std::vector<ImageSegment>& image,
-                 const std::vector<VisibleSegment>& visible, const OcclusionScene& scene,
-                 const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
-                 const AcquisitionOptions& options) {
-  return verifiedScore(verifier.coverage(visible, T_world_camera),
-                       skyEdgeLength(image, T_world_camera, camera, scene, options.sky_edges));
+// Fills in the coverage and the open sky of an aligned candidate's pose.
+void measure(const CoverageVerifier& verifier, const std::vector<ImageSegment>& image,
+             const OcclusionScene& scene, const PinholeCamera& camera,
+             const AcquisitionOptions& options, Verified& candidate) {
+  const Eigen::Isometry3d& T_world_camera = candidate.alignment.T_world_camera.pose;
+  candidate.coverage = verifier.coverage(candidate.visible, T_world_camera);
+  candidate.sky = measureSkyEdges(image, T_world_camera, camera, scene, options.sky_edges);
 }
 
 // The reference view of the image segments a search takes
@@ -129,8 +148,7 @@ Verified alignFrom(const std::vector<ImageSegment>& image, const CoverageVerifie
   candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
   rejectOffTheHeight(prior, options, candidate.alignment);
   if (hasPose(candidate.alignment)) {
-    candidate.score = scorePose(verifier, image, candidate.visible, scene,
-                                candidate.alignment.T_world_camera.pose, camera, options);
+    measure(verifier, image, scene, camera, options, candidate);
   }
   return candidate;
 }
@@ -194,9 +212,14 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
     acquisition.alignment.matching_ns += candidate.alignment.matching_ns;
     acquisition.alignment.pose_ns += candidate.alignment.pose_ns;
     if (hasPose(candidate.alignment)) {
-      acquisition.summary.aligned_hypotheses.push_back(scored(candidate, options));
       aligned.push_back(std::move(candidate));
     }
+  }
+  acquisition.summary.sky_clutter_density = skyClutterDensity(aligned, options.sky_edges);
+  for (Verified& candidate : aligned) {
+    candidate.score = verifiedScore(candidate.coverage, candidate.sky,
+                                    acquisition.summary.sky_clutter_density, options.sky_edges);
+    acquisition.summary.aligned_hypotheses.push_back(scored(candidate, options));
   }
   acquisition.summary.aligned = static_cast<int>(aligned.size());
   const auto best = std::max_element(aligned.begin(), aligned.end(), byOkThenScore);
@@ -248,24 +271,28 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
 double verificationScore(const std::vector<ImageSegment>& segments,
                          const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
-                         const AcquisitionOptions& options) {
+                         double sky_clutter_density, const AcquisitionOptions& options) {
   const ReferenceView view = searchedView(segments, camera, options);
-  const std::vector<VisibleSegment> visible = visibleSegments(
-      lines, scene, hypothesisStart(T_world_camera, options), view.camera, options.visibility);
-  return scorePose(CoverageVerifier(view, options), view.segments, visible, scene, T_world_camera,
-                   view.camera, options);
+  Verified candidate;
+  candidate.alignment.T_world_camera.pose = T_world_camera;
+  candidate.visible = visibleSegments(lines, scene, hypothesisStart(T_world_camera, options),
+                                      view.camera, options.visibility);
+  measure(CoverageVerifier(view, options), view.segments, scene, view.camera, options, candidate);
+  return verifiedScore(candidate.coverage, candidate.sky, sky_clutter_density, options.sky_edges);
 }
 
 std::optional<ScoredHypothesis> alignHypothesis(
     const std::vector<ImageSegment>& segments, const std::vector<ModelSegment>& lines,
     const OcclusionScene& scene, const PoseWithCovariance& prior, const Eigen::Isometry3d& start,
-    const PinholeCamera& camera, const AcquisitionOptions& options) {
+    const PinholeCamera& camera, double sky_clutter_density, const AcquisitionOptions& options) {
   const ReferenceView view = searchedView(segments, camera, options);
-  const Verified candidate = alignFrom(view.segments, CoverageVerifier(view, options), lines, scene,
-                                       prior, start, view.camera, options);
+  Verified candidate = alignFrom(view.segments, CoverageVerifier(view, options), lines, scene,
+                                 prior, start, view.camera, options);
   if (!hasPose(candidate.alignment)) {
     return std::nullopt;
   }
+  candidate.score =
+      verifiedScore(candidate.coverage, candidate.sky, sky_clutter_density, options.sky_edges);
   return scored(candidate, options);
 }
 

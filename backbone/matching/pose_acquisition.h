@@ -4,16 +4,14 @@
 // and robust refinement, model_alignment.h) from its grid cell, with the lines
 // visible from it. Each aligned pose is scored again by (C - K) / sqrt(L): its
 // coverage C of L against a sharp distance map (a few pixels: aligned lines
-// lie on their edges), less the length K of image edges it puts in open sky
-// (sky_edges.h). The best one wins — unless another one, distinct from it,
-// scores nearly as well: then the view does not tell them apart (a
-// repetitive street, a single façade) and the answer is kAmbiguous, never the
-// likelier of two precise poses; nor is a best scoring under
-// min_verification_score, too weak for that comparison to mean anything. An
-// alignment that fits but is ill-conditioned (its covariance too wide to
-// answer with) is such a rival too, though it never wins. Inlier counts do
-// not separate them: a wrong pose near a façade full of windows finds as many
-// lines to agree with.
+// lie on their edges), less the length K of image edges in its open sky that
+// the sky's own clutter does not explain (sky_edges.h). The best one wins — unless another one,
+// distinct from it, scores nearly as well: then the view does not tell them apart (a repetitive
+// street, a single façade) and the answer is kAmbiguous, never the likelier of two precise poses;
+// nor is a best scoring under min_verification_score, too weak for that comparison to mean
+// anything. An alignment that fits but is ill-conditioned (its covariance too wide to answer with)
+// is such a rival too, though it never wins. Inlier counts do not separate them: a wrong pose near
+// a façade full of windows finds as many lines to agree with.
 //
 // A hypothesis keeps the prior's height, which a ground robot knows to a
 // decimetre; one whose alignment leaves it beyond height_gate_sigmas of that
@@ -149,6 +147,9 @@ struct SearchSummary {
   int64_t search_ns = 0;
   // Every aligned hypothesis, those from carried starts included.
   std::vector<ScoredHypothesis> aligned_hypotheses;
+  // The frame's sky clutter density (1 / px, sky_edges.h): the least of its
+  // aligned hypotheses' clear skies'.
+  double sky_clutter_density = 0.0;
 };
 
 struct Acquisition {
@@ -172,18 +173,20 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
 // One hypothesis as acquirePose aligns and scores each of its starts, from
 // `start`: for a caller that weighs a pose found in another frame in this one
 // (hypothesis_set.h). nullopt when it settles on no pose.
+// `sky_clutter_density` is the frame's (SearchSummary).
 std::optional<ScoredHypothesis> alignHypothesis(
     const std::vector<ImageSegment>& segments, const std::vector<ModelSegment>& lines,
     const OcclusionScene& scene, const PoseWithCovariance& prior, const Eigen::Isometry3d& start,
-    const PinholeCamera& camera, const AcquisitionOptions& options);
+    const PinholeCamera& camera, double sky_clutter_density, const AcquisitionOptions& options);
 
 // The score (C - K) / sqrt(L) acquisition gives its aligned hypotheses, of a
 // pose found otherwise (the tracked pose a proof search is checked against,
 // line_set_handler.h), with the model visible from it as from a hypothesis,
-// on the segments a search takes.
+// on the segments a search takes, its sky clutter density the search's of the
+// frame (SearchSummary).
 double verificationScore(const std::vector<ImageSegment>& segments,
                          const std::vector<ModelSegment>& lines, const OcclusionScene& scene,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
-                         const AcquisitionOptions& options);
+                         double sky_clutter_density, const AcquisitionOptions& options);
 
 }  // namespace lineloc

@@ -57,13 +57,14 @@ AcquisitionSession::Searched AcquisitionSession::search(const LineSetData& line_
   searched.acquisition = acquirePose(line_set.segments, map->segments, map->scene, prior,
                                      line_set.camera, acquisition, carried);
   const SearchedFrame frame{next_frame_id_++, line_set.stamp_ns, odometry};
-  frames_.emplace(frame.id, Frame{line_set.segments, line_set.camera, prior, std::move(map)});
+  frames_.emplace(frame.id, Frame{line_set.segments, line_set.camera, prior, std::move(map),
+                                  searched.acquisition.summary.sky_clutter_density});
   hypotheses_.add(frame, searched.acquisition.summary.aligned_hypotheses,
                   [&](uint64_t frame_id, const Eigen::Isometry3d& start) {
                     const Frame& earlier = frames_.at(frame_id);
                     return alignHypothesis(earlier.segments, earlier.map->segments,
                                            earlier.map->scene, earlier.prior, start, earlier.camera,
-                                           acquisition);
+                                           earlier.sky_clutter_density, acquisition);
                   });
   const std::vector<uint64_t> window = hypotheses_.windowFrames();
   std::erase_if(frames_, [&](const auto& kept) {

@@ -71,6 +71,7 @@ class AcquisitionSession {
     PinholeCamera camera;
     PoseWithCovariance prior;
     std::shared_ptr<const PreparedMap> map;
+    double sky_clutter_density = 0.0;
   };
 
   const int64_t window_ns_;

@@ -36,9 +36,10 @@ ProofVerdict judgeProof(const LineSetData& line_set, const PreparedMap& map,
   if (!ambiguous && agrees(alignment.T_world_camera.pose)) {
     return {Proof::kAgrees, "agrees with tracking", {}, true};
   }
+  const double sky_clutter_density = found.search ? found.search->sky_clutter_density : 0.0;
   const auto score = [&](const Eigen::Isometry3d& T_world_camera) {
     return verificationScore(line_set.segments, map.segments, map.scene, T_world_camera,
-                             line_set.camera, acquisition);
+                             line_set.camera, sky_clutter_density, acquisition);
   };
   const double tracked_score = score(tracked);
   const double fraction = acquisition.ambiguous_score_fraction;

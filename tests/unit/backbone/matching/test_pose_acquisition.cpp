@@ -201,6 +201,35 @@ TEST(PoseAcquisition, FaintLinesOfAViewBesideDoNotRivalTheCamera) {
   EXPECT_NE(confused.alignment.status, AlignmentStatus::kOk) << confused.alignment.message;
 }
 
+// The view with cables across the street every 2 m from 10 to 40 m ahead,
+// 7-9 m up (lines in no model, in its open sky): a search still answers the
+// camera, as its clear sky shows them to be clutter; counted as in a
+// typical street's sky, they sink its score under the floor.
+TEST(PoseAcquisition, CablesInItsSkyDoNotRejectTheCamera) {
+  const Street street = makeStreet();
+  const OcclusionScene occlusion(street.faces, street.face_building_ids);
+  std::mt19937 random(21);
+  Scene scene = render(street, occlusion, 0, random);
+  std::uniform_real_distribution<double> height_m(7.0, 9.0);
+  for (double y = 10.0; y < 40.0; y += 2.0) {
+    const double z = height_m(random);
+    const ProjectedSegment cable = projectSegment({-8.0, y, z}, {8.0, y, z}, truePose(), kCamera);
+    scene.image.push_back(observe(cable.start_px, cable.end_px, random));
+  }
+  const PoseWithCovariance prior = nearPrior(Eigen::Vector3d(0.0, 0.6, 0.0));
+  const AcquisitionOptions options;
+  const Acquisition found =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, options);
+  ASSERT_EQ(found.alignment.status, AlignmentStatus::kOk) << found.alignment.message;
+  EXPECT_LT(normalizedErrorSquared(found.alignment.T_world_camera, truePose().pose), kChi2Six999);
+  AcquisitionOptions strict = options;
+  strict.sky_edges.min_clear_area_px2 = std::numeric_limits<double>::infinity();
+  const Acquisition rejected =
+      acquirePose(scene.image, street.edges, occlusion, prior, kCamera, strict);
+  EXPECT_EQ(rejected.alignment.status, AlignmentStatus::kTooFewMatches)
+      << rejected.alignment.message;
+}
+
 // The same view seen by a camera of four times the resolution (the same
 // field of view, every pixel coordinate and its uncertainty scaled): the
 // search decides alike, at the same pose, with the same score.

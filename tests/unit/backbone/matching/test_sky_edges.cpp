@@ -1,8 +1,9 @@
 // Image edges in open sky, seen from a camera 1.5 m up looking north along a
 // street with one 10 m building on its east side: an edge on the roof line
 // (even a few pixels above it) or on the façade is no sky edge, one well above
-// the roof line is; over open land nothing below the horizon or low over it
-// counts.
+// the roof line is, and in clear sky only when more than a storey above it;
+// over open land nothing below the horizon or low over it counts. The sky's
+// area, its clutter density, and its edges weighed by the evidence they carry.
 #include <gtest/gtest.h>
 
 #include "backbone/matching/line_matcher.h"
@@ -14,9 +15,9 @@ namespace {
 
 using namespace lineloc::testing;
 
-class SkyEdges : public ::testing::Test {
+class SkyOfOneBuilding : public ::testing::Test {
  protected:
-  SkyEdges() : street_(oneBuilding()), scene_(street_.faces, street_.face_building_ids) {
+  SkyOfOneBuilding() : street_(oneBuilding()), scene_(street_.faces, street_.face_building_ids) {
     Eigen::Matrix3d R_world_camera;  // looking north, level
     R_world_camera << 1, 0, 0, 0, 0, 1, 0, -1, 0;
     T_world_camera_.linear() = R_world_camera;
@@ -41,8 +42,10 @@ class SkyEdges : public ::testing::Test {
     return segment;
   }
 
-  double skyPx(const ImageSegment& segment) const {
-    return skyEdgeLength({segment}, T_world_camera_, kCamera, scene_, SkyEdgeOptions{});
+  double skyPx(const ImageSegment& segment) const { return sky({segment}).edge_px; }
+
+  SkyEdges sky(const std::vector<ImageSegment>& image) const {
+    return measureSkyEdges(image, T_world_camera_, kCamera, scene_, SkyEdgeOptions{});
   }
 
   static double length(const ImageSegment& segment) { return (segment.end - segment.start).norm(); }
@@ -56,40 +59,77 @@ class SkyEdges : public ::testing::Test {
   Eigen::Isometry3d T_world_camera_ = Eigen::Isometry3d::Identity();
 };
 
-TEST_F(SkyEdges, TheRoofLineAndTheFacadeAreNoSky) {
+TEST_F(SkyOfOneBuilding, TheRoofLineAndTheFacadeAreNoSky) {
   EXPECT_EQ(skyPx(imageOf(roof_start_, roof_end_)), 0.0);
   // Two pixels of noise above the roof line: within the margin.
   EXPECT_EQ(skyPx(imageOf(roof_start_, roof_end_, {0.0, -2.0})), 0.0);
   EXPECT_EQ(skyPx(imageOf(facade_start_, facade_end_)), 0.0);
 }
 
-TEST_F(SkyEdges, AnEdgeWellAboveTheRoofLineIsSky) {
+TEST_F(SkyOfOneBuilding, AnEdgeWellAboveTheRoofLineIsSky) {
   const ImageSegment above = imageOf(roof_start_, roof_end_, {0.0, -30.0});
   ASSERT_GT(length(above), 100.0);
   EXPECT_NEAR(skyPx(above), length(above), 1e-3);
   // Segments add up.
   const ImageSegment half = imageOf(roof_start_, {8, 60, 10}, {0.0, -30.0});
-  EXPECT_NEAR(skyEdgeLength({above, half}, T_world_camera_, kCamera, scene_, SkyEdgeOptions{}),
-              length(above) + length(half), 1e-3);
+  EXPECT_NEAR(sky({above, half}).edge_px, length(above) + length(half), 1e-3);
 }
 
-TEST_F(SkyEdges, NothingBelowTheHorizonOrLowOverItCounts) {
-  // Over open land to the west of the street, 50 m ahead.
-  const auto across = [&](double elevation_rad) {
-    const double z = 1.5 + 50.0 * std::tan(elevation_rad);
-    return imageOf({-30, 50, z}, {-10, 50, z});
-  };
-  EXPECT_EQ(skyPx(across(-0.05)), 0.0);
-  EXPECT_EQ(skyPx(across(0.05)), 0.0);
-  const ImageSegment high = across(0.3);
-  EXPECT_NEAR(skyPx(high), length(high), 1e-3);
+TEST_F(SkyOfOneBuilding, ClearSkyIsMoreThanAStoreyAboveTheRoofLine) {
+  // 30 px above the roof line's near half: 0.06 rad, under the clear margin.
+  const ImageSegment near_roof = imageOf(roof_start_, {8, 60, 10}, {0.0, -30.0});
+  const SkyEdges open = sky({near_roof});
+  EXPECT_NEAR(open.edge_px, length(near_roof), 1e-3);
+  EXPECT_EQ(open.clear_edge_px, 0.0);
+  // 200 px above it: 0.4 rad, still above the roof when lowered by the margin.
+  const ImageSegment high = imageOf(roof_start_, roof_end_, {0.0, -200.0});
+  const SkyEdges clear = sky({high});
+  EXPECT_GT(clear.clear_edge_px, 0.5 * length(high));
+  EXPECT_NEAR(clear.clear_edge_px, clear.edge_px, 1e-3);
 }
 
-TEST_F(SkyEdges, ShortSegmentsAreNotSampled) {
-  const ImageSegment above = imageOf(roof_start_, roof_end_, {0.0, -30.0});
-  ImageSegment short_piece = above;
-  short_piece.end = short_piece.start + (above.end - above.start).normalized() * 10.0f;
-  EXPECT_EQ(skyPx(short_piece), 0.0);
+TEST_F(SkyOfOneBuilding, TheAreaOfAViewOfOpenSkyIsTheImage) {
+  // Looking west, away from the building, 40 degrees up: every ray rises
+  // more than min_elevation_rad, and none meets a face, lowered or not.
+  const Eigen::Matrix3d looking_west_level =
+      (Eigen::Matrix3d() << 0, 0, -1, 1, 0, 0, 0, -1, 0).finished();
+  const Eigen::Isometry3d up_west(Eigen::Translation3d(0.0, 0.0, 1.5) *
+                                  Eigen::AngleAxisd(40.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()) *
+                                  looking_west_level);
+  const SkyEdges open = measureSkyEdges({}, up_west, kCamera, scene_, SkyEdgeOptions{});
+  EXPECT_NEAR(open.area_px2, kCamera.width * kCamera.height, 1e-6);
+  EXPECT_NEAR(open.clear_area_px2, open.area_px2, 1e-6);
+  // Looking north, about half the image is the façade and the ground.
+  const SkyEdges north = sky({});
+  EXPECT_GT(north.area_px2, 0.2 * kCamera.width * kCamera.height);
+  EXPECT_LT(north.area_px2, 0.6 * kCamera.width * kCamera.height);
+  EXPECT_LT(north.clear_area_px2, north.area_px2);
+}
+
+TEST(ClearSkyEdgeDensity, IsMeasuredInEnoughClearSkyOnly) {
+  SkyEdgeOptions options;
+  options.min_clear_area_px2 = 2e4;
+  EXPECT_EQ(clearSkyEdgeDensity({1000.0, 1e5, 900.0, 9e4}, options), 0.01);
+  EXPECT_EQ(clearSkyEdgeDensity({1000.0, 1e5, 900.0, 1.9e4}, options), std::nullopt);
+}
+
+TEST(WeighedSkyEdges, ATypicalStreetSkyCountsInFull) {
+  const SkyEdgeOptions options;
+  const SkyEdges sky{1000.0, 1e5, 900.0, 9e4};
+  EXPECT_EQ(weighedSkyEdgeLength(sky, 0.0, options), 1000.0);
+  EXPECT_EQ(weighedSkyEdgeLength(sky, options.typical_clutter_density, options), 1000.0);
+}
+
+TEST(WeighedSkyEdges, EdgesWeighAsTheEvidenceTheyCarry) {
+  SkyEdgeOptions options;
+  options.facade_edge_density = 0.04;
+  options.typical_clutter_density = 0.01;
+  const SkyEdges sky{1000.0, 1e5, 900.0, 9e4};
+  // log(0.04 / 0.02) / log(0.04 / 0.01) = 1/2.
+  EXPECT_NEAR(weighedSkyEdgeLength(sky, 0.02, options), 500.0, 1e-9);
+  // A sky as dense in edges as a façade tells nothing.
+  EXPECT_EQ(weighedSkyEdgeLength(sky, 0.04, options), 0.0);
+  EXPECT_EQ(weighedSkyEdgeLength(sky, 0.08, options), 0.0);
 }
 
 }  // namespace

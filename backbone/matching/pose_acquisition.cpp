@@ -25,10 +25,12 @@ struct Verified {
   Alignment alignment;
   std::vector<VisibleSegment> visible;
   // Of the aligned pose: its coverage C of L against the verification
-  // distance map, its open sky, and the score (C - K) / sqrt(L) with K the
-  // sky's edge length weighed by the evidence its edges carry.
+  // distance map, the edges in its open sky and its clear sky's area, and
+  // the score (C - K) / sqrt(L) with K the sky's edge length weighed by the
+  // evidence its edges carry.
   Coverage coverage;
   SkyEdges sky;
+  double clear_sky_area_px2 = 0.0;
   double score = 0.0;
 };
 
@@ -47,7 +49,8 @@ double verifiedScore(const Coverage& coverage, const SkyEdges& sky, double sky_c
 double skyClutterDensity(const std::vector<Verified>& aligned, const SkyEdgeOptions& options) {
   std::optional<double> least;
   for (const Verified& candidate : aligned) {
-    const std::optional<double> density = clearSkyEdgeDensity(candidate.sky, options);
+    const std::optional<double> density =
+        clearSkyEdgeDensity(candidate.sky, candidate.clear_sky_area_px2, options);
     if (density && (!least || *density < *least)) {
       least = density;
     }
@@ -59,15 +62,6 @@ PoseWithCovariance hypothesisStart(const Eigen::Isometry3d& T_world_camera,
                                    const AcquisitionOptions& options) {
   return {T_world_camera, diagonalPoseCovariance(options.hypothesis_position_sigma_m,
                                                  options.hypothesis_rotation_sigma_rad)};
-}
-
-// Fills in the coverage and the open sky of an aligned candidate's pose.
-void measure(const CoverageVerifier& verifier, const std::vector<ImageSegment>& image,
-             const OcclusionScene& scene, const PinholeCamera& camera,
-             const AcquisitionOptions& options, Verified& candidate) {
-  const Eigen::Isometry3d& T_world_camera = candidate.alignment.T_world_camera.pose;
-  candidate.coverage = verifier.coverage(candidate.visible, T_world_camera);
-  candidate.sky = measureSkyEdges(image, T_world_camera, camera, scene, options.sky_edges);
 }
 
 // The reference view of the image segments a search takes
@@ -148,7 +142,9 @@ Verified alignFrom(const std::vector<ImageSegment>& image, const CoverageVerifie
   candidate.alignment = alignModel(image, candidate.visible, start, camera, options.alignment);
   rejectOffTheHeight(prior, options, candidate.alignment);
   if (hasPose(candidate.alignment)) {
-    measure(verifier, image, scene, camera, options, candidate);
+    const Eigen::Isometry3d& T_world_camera = candidate.alignment.T_world_camera.pose;
+    candidate.coverage = verifier.coverage(candidate.visible, T_world_camera);
+    candidate.sky = measureSkyEdges(image, T_world_camera, camera, scene, options.sky_edges);
   }
   return candidate;
 }
@@ -204,6 +200,10 @@ Acquisition acquirePose(const std::vector<ImageSegment>& segments,
   parallelFor(static_cast<int>(starts.size()), options.search.threads, [&](int i) {
     verified[i] =
         alignFrom(view.segments, verifier, lines, scene, prior, starts[i], view.camera, options);
+    if (hasPose(verified[i].alignment)) {
+      verified[i].clear_sky_area_px2 = clearSkyArea(verified[i].alignment.T_world_camera.pose,
+                                                    view.camera, scene, options.sky_edges);
+    }
     verified[i].carried_index =
         i < static_cast<int>(grid_starts) ? -1 : i - static_cast<int>(grid_starts);
   });
@@ -273,12 +273,12 @@ double verificationScore(const std::vector<ImageSegment>& segments,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
                          double sky_clutter_density, const AcquisitionOptions& options) {
   const ReferenceView view = searchedView(segments, camera, options);
-  Verified candidate;
-  candidate.alignment.T_world_camera.pose = T_world_camera;
-  candidate.visible = visibleSegments(lines, scene, hypothesisStart(T_world_camera, options),
-                                      view.camera, options.visibility);
-  measure(CoverageVerifier(view, options), view.segments, scene, view.camera, options, candidate);
-  return verifiedScore(candidate.coverage, candidate.sky, sky_clutter_density, options.sky_edges);
+  const std::vector<VisibleSegment> visible = visibleSegments(
+      lines, scene, hypothesisStart(T_world_camera, options), view.camera, options.visibility);
+  return verifiedScore(
+      CoverageVerifier(view, options).coverage(visible, T_world_camera),
+      measureSkyEdges(view.segments, T_world_camera, view.camera, scene, options.sky_edges),
+      sky_clutter_density, options.sky_edges);
 }
 
 std::optional<ScoredHypothesis> alignHypothesis(

@@ -4,14 +4,17 @@
 // and robust refinement, model_alignment.h) from its grid cell, with the lines
 // visible from it. Each aligned pose is scored again by (C - K) / sqrt(L): its
 // coverage C of L against a sharp distance map (a few pixels: aligned lines
-// lie on their edges), less the length K of image edges in its open sky that
-// the sky's own clutter does not explain (sky_edges.h). The best one wins — unless another one,
-// distinct from it, scores nearly as well: then the view does not tell them apart (a repetitive
-// street, a single façade) and the answer is kAmbiguous, never the likelier of two precise poses;
-// nor is a best scoring under min_verification_score, too weak for that comparison to mean
-// anything. An alignment that fits but is ill-conditioned (its covariance too wide to answer with)
-// is such a rival too, though it never wins. Inlier counts do not separate them: a wrong pose near
-// a façade full of windows finds as many lines to agree with.
+// lie on their edges), less the length K of image edges in its open sky,
+// weighed by how little the clutter of the frame's sky explains them
+// (sky_edges.h). The best one wins — unless another one, distinct from it,
+// scores nearly as well: then the view does not tell them apart (a
+// repetitive street, a single façade) and the answer is kAmbiguous, never the
+// likelier of two precise poses; nor is a best scoring under
+// min_verification_score, too weak for that comparison to mean anything. An
+// alignment that fits but is ill-conditioned (its covariance too wide to
+// answer with) is such a rival too, though it never wins. Inlier counts do
+// not separate them: a wrong pose near a façade full of windows finds as many
+// lines to agree with.
 //
 // A hypothesis keeps the prior's height, which a ground robot knows to a
 // decimetre; one whose alignment leaves it beyond height_gate_sigmas of that

@@ -51,17 +51,6 @@ class SkyClassifier {
   double reach_m_;
 };
 
-// Adds `amount` to the open sky's total, and to its clear part's.
-void add(Sky sky, double amount, double& open, double& clear) {
-  if (sky == Sky::kNone) {
-    return;
-  }
-  open += amount;
-  if (sky == Sky::kClear) {
-    clear += amount;
-  }
-}
-
 }  // namespace
 
 SkyEdges measureSkyEdges(const std::vector<ImageSegment>& image,
@@ -78,30 +67,39 @@ SkyEdges measureSkyEdges(const std::vector<ImageSegment>& image,
     }
     const int samples = std::max(1, static_cast<int>(length / options.sample_spacing_px));
     for (int i = 0; i < samples; ++i) {
-      add(classify.at(start + (end - start) * ((i + 0.5) / samples)), length / samples, sky.edge_px,
-          sky.clear_edge_px);
+      const Sky sample = classify.at(start + (end - start) * ((i + 0.5) / samples));
+      sky.edge_px += sample == Sky::kNone ? 0.0 : length / samples;
+      sky.clear_edge_px += sample == Sky::kClear ? length / samples : 0.0;
     }
   }
+  return sky;
+}
+
+double clearSkyArea(const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                    const OcclusionScene& scene, const SkyEdgeOptions& options) {
+  const SkyClassifier classify(T_world_camera, camera, scene, options);
   const int columns =
       std::max(1, static_cast<int>(std::ceil(camera.width / options.area_spacing_px)));
   const int rows =
       std::max(1, static_cast<int>(std::ceil(camera.height / options.area_spacing_px)));
   const double cell_width = static_cast<double>(camera.width) / columns;
   const double cell_height = static_cast<double>(camera.height) / rows;
+  int clear_cells = 0;
   for (int row = 0; row < rows; ++row) {
     for (int column = 0; column < columns; ++column) {
-      add(classify.at({(column + 0.5) * cell_width, (row + 0.5) * cell_height}),
-          cell_width * cell_height, sky.area_px2, sky.clear_area_px2);
+      clear_cells +=
+          classify.at({(column + 0.5) * cell_width, (row + 0.5) * cell_height}) == Sky::kClear;
     }
   }
-  return sky;
+  return clear_cells * cell_width * cell_height;
 }
 
-std::optional<double> clearSkyEdgeDensity(const SkyEdges& sky, const SkyEdgeOptions& options) {
-  if (sky.clear_area_px2 < options.min_clear_area_px2) {
+std::optional<double> clearSkyEdgeDensity(const SkyEdges& sky, double clear_area_px2,
+                                          const SkyEdgeOptions& options) {
+  if (clear_area_px2 < options.min_clear_area_px2) {
     return std::nullopt;
   }
-  return sky.clear_edge_px / sky.clear_area_px2;
+  return sky.clear_edge_px / clear_area_px2;
 }
 
 double weighedSkyEdgeLength(const SkyEdges& sky, double clutter_density,

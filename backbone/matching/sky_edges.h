@@ -54,7 +54,7 @@ struct SkyEdgeOptions {
   // Samples along each image segment, and the shortest segment sampled.
   double sample_spacing_px = 6.0;
   double min_segment_length_px = 15.0;
-  // The open sky's area is sampled on a grid of this spacing.
+  // The clear sky's area is sampled on a grid of this spacing.
   double area_spacing_px = 16.0;
   // About 11 degrees: a storey (3 m) seen from 15 m.
   double clear_margin_rad = 0.2;
@@ -70,25 +70,27 @@ struct SkyEdgeOptions {
   double reach_m = 1000.0;
 };
 
-// A pose's open sky in an image: the edge length (pixels) in it and its area
-// (pixels^2), in all of it and in its clear part.
+// The image edge length (pixels) in a pose's open sky, and in its clear part.
 struct SkyEdges {
   double edge_px = 0.0;
-  double area_px2 = 0.0;
   double clear_edge_px = 0.0;
-  double clear_area_px2 = 0.0;
 };
 
-// The open sky seen from T_world_camera: edges sampled along the image
-// segments every options.sample_spacing_px, area on a grid of
-// options.area_spacing_px.
+// The open sky seen from T_world_camera, sampled along the image segments
+// every options.sample_spacing_px.
 SkyEdges measureSkyEdges(const std::vector<ImageSegment>& image,
                          const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
                          const OcclusionScene& scene, const SkyEdgeOptions& options);
 
+// The area (pixels^2) of the image's clear sky seen from T_world_camera,
+// sampled on a grid of options.area_spacing_px.
+double clearSkyArea(const Eigen::Isometry3d& T_world_camera, const PinholeCamera& camera,
+                    const OcclusionScene& scene, const SkyEdgeOptions& options);
+
 // K_clear / A_clear, or nothing when the clear sky is smaller than
 // options.min_clear_area_px2.
-std::optional<double> clearSkyEdgeDensity(const SkyEdges& sky, const SkyEdgeOptions& options);
+std::optional<double> clearSkyEdgeDensity(const SkyEdges& sky, double clear_area_px2,
+                                          const SkyEdgeOptions& options);
 
 // K_weighed: the sky's edge length weighed by the evidence an edge carries
 // in a sky of clutter density `clutter_density` (1 / px).

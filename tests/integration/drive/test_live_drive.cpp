@@ -206,7 +206,8 @@ TEST_F(LiveDrive, TheRobotOnLiveSensorsKnowsItsPoseAsItDoesReplayingTheDataset) 
   // robot names its place in the video.
   const int first_sent = countIn(robot_log, R"(sending from frame ([0-9]+))");
   const auto fused = poses("live-raw-fused.tum");
-  ASSERT_TRUE(first_sent >= 0 && !fused.empty()) << robot_log;
+  ASSERT_TRUE(first_sent >= 0 && !fused.empty()) << robot_log << "gpsfake:\n"
+                                                 << readFile(work_ / "gpsfake.log");
   const int64_t offset_ns = fused.begin()->first - frame_stamps_ns_.at(first_sent);
   fmt::print("camera stamped {:.1f} ms after the IMU and compass streams' time\n",
              toMilliseconds(offset_ns - (start_wall_ns - frame_stamps_ns_[0])));

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -24,19 +25,42 @@ void addToTally(const std::vector<StampedPose>& ground_truth, int64_t stamp_ns,
   }
   const double nees = normalizedErrorSquared(estimate, *truth);
   tally.nees.push_back(nees);
-  tally.beyond_bound += nees > options.nees_bound ? 1 : 0;
+  if (nees <= options.nees_bound) {
+    return;
+  }
+  const Eigen::Vector3d error_m = estimate.pose.translation() - truth->translation();
+  const Eigen::Vector3d direction = error_m.normalized();
+  const double variance_along =
+      direction.dot(estimate.covariance.topLeftCorner<3, 3>() * direction);
+  tally.beyond_bound.push_back(
+      {1e-9 * static_cast<double>(stamp_ns - ground_truth.front().stamp_ns), nees, error_m.norm(),
+       std::sqrt(std::max(0.0, variance_along))});
 }
 
 // "NEES median x, p99 y; K beyond chi2_6(0.9973) = b (MEANING, z % of N with
-// ground truth)" over a non-empty tally.
+// ground truth)\n" over a non-empty tally, then a line for each of the worst
+// beyond the bound: "  beyond at t s: NEES n, e m off, sigma s m along it".
 std::string formatTally(const NeesTally& tally, const FixConsistencyOptions& options,
                         std::string_view meaning) {
-  return fmt::format(
+  const size_t beyond = tally.beyond_bound.size();
+  std::string text = fmt::format(
       "NEES median {:.1f}, p99 {:.1f}; {} beyond chi2_6(0.9973) = {:.2f} ({}, {:.2f} % of {} "
-      "with ground truth)",
-      percentile(tally.nees, 50), percentile(tally.nees, 99), tally.beyond_bound,
-      options.nees_bound, meaning,
-      100.0 * tally.beyond_bound / static_cast<double>(tally.nees.size()), tally.nees.size());
+      "with ground truth)\n",
+      percentile(tally.nees, 50), percentile(tally.nees, 99), beyond, options.nees_bound, meaning,
+      100.0 * static_cast<double>(beyond) / static_cast<double>(tally.nees.size()),
+      tally.nees.size());
+  std::vector<BeyondBound> worst = tally.beyond_bound;
+  const auto listed = worst.begin() + std::min<ptrdiff_t>(kListedBeyondBound, worst.size());
+  std::partial_sort(worst.begin(), listed, worst.end(),
+                    [](const BeyondBound& a, const BeyondBound& b) { return a.nees > b.nees; });
+  std::sort(worst.begin(), listed,
+            [](const BeyondBound& a, const BeyondBound& b) { return a.time_s < b.time_s; });
+  for (auto it = worst.begin(); it != listed; ++it) {
+    text +=
+        fmt::format("  beyond at {:.3f} s: NEES {:.1f}, {:.3f} m off, sigma {:.3f} m along it\n",
+                    it->time_s, it->nees, it->position_error_m, it->sigma_along_error_m);
+  }
+  return text;
 }
 
 }  // namespace
@@ -84,7 +108,7 @@ std::string formatFixConsistency(const FixConsistency& consistency,
   if (consistency.tally.nees.empty()) {
     return fmt::format("fixes: {}, none with ground truth\n", formatAnswers(consistency));
   }
-  return fmt::format("fixes: {}; {}\n", formatAnswers(consistency),
+  return fmt::format("fixes: {}; {}", formatAnswers(consistency),
                      formatTally(consistency.tally, options, "precise wrong poses"));
 }
 
@@ -107,7 +131,7 @@ std::string formatStateConsistency(const StateConsistency& consistency,
   if (consistency.tally.nees.empty()) {
     return fmt::format("robot states: {}, none with ground truth\n", consistency.states);
   }
-  return fmt::format("robot states: {} from the first OK fix on; {}\n", consistency.states,
+  return fmt::format("robot states: {} from the first OK fix on; {}", consistency.states,
                      formatTally(consistency.tally, options, "the robot sure of a wrong pose"));
 }
 

@@ -18,6 +18,8 @@
 
 namespace lineloc {
 
+inline constexpr int kListedBeyondBound = 5;
+
 struct FixConsistencyOptions {
   // Ground truth is not interpolated across gaps longer than this (s).
   double max_ground_truth_gap_s = 0.5;
@@ -25,11 +27,22 @@ struct FixConsistencyOptions {
   double nees_bound = 20.06;
 };
 
+// An estimate beyond the bound: when, how far off its position was, and how
+// sure of it along that error it was.
+struct BeyondBound {
+  // Its stamp, in seconds after the first ground-truth pose.
+  double time_s = 0.0;
+  double nees = 0.0;
+  double position_error_m = 0.0;
+  // sqrt(u^T Sigma_p u), u the position error's direction.
+  double sigma_along_error_m = 0.0;
+};
+
 // The NEES of estimates against ground truth, in log order (those without
-// ground truth at their stamp left out), and how many lie beyond the bound.
+// ground truth at their stamp left out), and the ones beyond the bound.
 struct NeesTally {
   std::vector<double> nees;
-  int beyond_bound = 0;
+  std::vector<BeyondBound> beyond_bound;
 };
 
 struct FixConsistency {
@@ -51,7 +64,8 @@ FixConsistency evaluateFixConsistency(const std::vector<StampedPose>& ground_tru
                                       const FixConsistencyOptions& options);
 
 // One line: answers, OK fixes (and their share of the answers from the first
-// OK fix on), NEES median and p99, fixes beyond the bound.
+// OK fix on), NEES median and p99, fixes beyond the bound; then one line for
+// each of the kListedBeyondBound worst of those.
 std::string formatFixConsistency(const FixConsistency& consistency,
                                  const FixConsistencyOptions& options);
 
@@ -66,7 +80,8 @@ StateConsistency evaluateStateConsistency(const std::vector<StampedPose>& ground
                                           const std::vector<StampedPoseWithCovariance>& states,
                                           int64_t from_ns, const FixConsistencyOptions& options);
 
-// One line: states, NEES median and p99, states beyond the bound.
+// One line: states, NEES median and p99, states beyond the bound; then their
+// worst, as for fixes.
 std::string formatStateConsistency(const StateConsistency& consistency,
                                    const FixConsistencyOptions& options);
 

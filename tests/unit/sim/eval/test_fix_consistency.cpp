@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "sim/eval/fix_consistency.h"
@@ -45,7 +46,12 @@ TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
   ASSERT_EQ(consistency.tally.nees.size(), 2u);
   EXPECT_NEAR(consistency.tally.nees[0], 4.0, 1e-6);
   EXPECT_NEAR(consistency.tally.nees[1], 25.0, 1e-6);
-  EXPECT_EQ(consistency.tally.beyond_bound, 1);
+  ASSERT_EQ(consistency.tally.beyond_bound.size(), 1u);
+  const BeyondBound& wrong = consistency.tally.beyond_bound.front();
+  EXPECT_NEAR(wrong.time_s, 3.05, 1e-9);
+  EXPECT_NEAR(wrong.nees, 25.0, 1e-6);
+  EXPECT_NEAR(wrong.position_error_m, 0.1, 1e-9);
+  EXPECT_NEAR(wrong.sigma_along_error_m, 0.02, 1e-9);
   EXPECT_EQ(consistency.first_ok_received_ns, 2'050'000'000 + 4'500'000);
   // The frames from the first OK one on: 3 of 4 OK.
   EXPECT_EQ(consistency.answers_from_first_ok, 4);
@@ -54,6 +60,31 @@ TEST(FixConsistency, CountsOkFixesBeyondThreeSigmaAgainstInterpolatedTruth) {
             std::string::npos)
       << line;
   EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;
+  EXPECT_NE(line.find("\n  beyond at 3.050 s: NEES 25.0, 0.100 m off, sigma 0.020 m along it\n"),
+            std::string::npos)
+      << line;
+}
+
+// Of many fixes beyond the bound, the worst kListedBeyondBound are listed, in
+// the order they came.
+TEST(FixConsistency, ListsTheWorstFixesBeyondTheBoundInTimeOrder) {
+  std::vector<LoggedFix> fixes;
+  for (int64_t i = 1; i <= 8; ++i) {
+    // 4 + i sigmas off at i s: the last five are the worst.
+    fixes.push_back(fixOff(i * 1'000'000'000 + 50'000'000, 4.0 + static_cast<double>(i)));
+  }
+  const std::string line =
+      formatFixConsistency(evaluateFixConsistency(straightDrive(), fixes, {}), {});
+  EXPECT_NE(line.find("8 beyond chi2_6(0.9973)"), std::string::npos) << line;
+  size_t at = 0;
+  for (int i = 8 - kListedBeyondBound + 1; i <= 8; ++i) {
+    const size_t found =
+        line.find(fmt::format("  beyond at {}.050 s: NEES {:.1f}", i, (4.0 + i) * (4.0 + i)));
+    ASSERT_NE(found, std::string::npos) << line;
+    EXPECT_GT(found, at) << line;
+    at = found;
+  }
+  EXPECT_EQ(line.find("beyond at 3.050 s"), std::string::npos) << line;
 }
 
 TEST(FixConsistency, SaysSoWhenNoFixHasGroundTruth) {
@@ -95,7 +126,8 @@ TEST(StateConsistency, CountsStatesBeyondThreeSigmaFromTheFirstFix) {
   ASSERT_EQ(consistency.tally.nees.size(), 2u);
   EXPECT_NEAR(consistency.tally.nees[0], 1.0, 1e-6);
   EXPECT_NEAR(consistency.tally.nees[1], 36.0, 1e-6);
-  EXPECT_EQ(consistency.tally.beyond_bound, 1);
+  ASSERT_EQ(consistency.tally.beyond_bound.size(), 1u);
+  EXPECT_NEAR(consistency.tally.beyond_bound.front().nees, 36.0, 1e-6);
   const std::string line = formatStateConsistency(consistency, options);
   EXPECT_NE(line.find("robot states: 3 from the first OK fix on; "), std::string::npos) << line;
   EXPECT_NE(line.find("1 beyond chi2_6(0.9973) = 20.06"), std::string::npos) << line;

@@ -48,6 +48,8 @@ inline constexpr int kDriveSeconds = 30;
 inline constexpr double kMaxPositionRmseM = 0.05;
 inline constexpr double kMaxAttitudeRmseDeg = 0.2;
 inline constexpr double kMinFixedFraction = 0.95;
+// The share of a consistent estimator's estimates beyond chi2_6(0.9973).
+inline constexpr double kConsistentShareBeyond = 0.0027;
 // The first fix answers its frame after a search of one to two seconds, and
 // the robot's predictions include it only once it has arrived: accuracy is
 // checked from this long after the first fixed frame.
@@ -281,11 +283,12 @@ class CityDrive : public ::testing::Test {
   }
 
   // Robot `robot_id`'s drive through `dataset`, once it has ended: one answer
-  // per frame sent, a fix on nearly every frame from the first fix on, and no
-  // precise wrong fix; returns the accuracy from kSettleSeconds after the
-  // first fix.
+  // per frame sent, a fix on nearly every frame from the first fix on, and at
+  // most `max_share_beyond` of its OK fixes precise wrong poses (none by
+  // default); returns the accuracy from kSettleSeconds after the first fix.
   Accuracy expectFoundAndAnswered(const std::string& robot_id = "drive",
-                                  const fs::path& dataset = "dataset") const {
+                                  const fs::path& dataset = "dataset",
+                                  double max_share_beyond = 0.0) const {
     const std::string robot_log = readFile(work_ / (robot_id + ".log"));
     const int sent = countIn(robot_log, R"(([0-9]+) frames sent)");
     EXPECT_GT(sent, kDriveSeconds * 10) << robot_log;
@@ -313,7 +316,8 @@ class CityDrive : public ::testing::Test {
     EXPECT_GT(accuracy.frames, 0);
     EXPECT_GE(fixes_after / frames_after, kMinFixedFraction) << robot_id;
     const std::string report = consistencyReport(robot_id, dataset);
-    EXPECT_EQ(fixesBeyondThreeSigma(report), 0) << report;
+    EXPECT_LE(fixesBeyondThreeSigma(report), max_share_beyond * fixesWithGroundTruth(report))
+        << report;
     return accuracy;
   }
 
@@ -374,6 +378,9 @@ class CityDrive : public ::testing::Test {
   }
   static int statesBeyondThreeSigma(const std::string& report) {
     return countIn(report, R"(robot states: [^\n]*; ([0-9]+) beyond)");
+  }
+  static int fixesWithGroundTruth(const std::string& report) {
+    return countIn(report, R"(fixes: [^\n]*% of ([0-9]+) with ground truth)");
   }
 
   // From the report: how long after the robot first moved its first OK fix

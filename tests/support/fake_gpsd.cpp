@@ -46,7 +46,7 @@ FakeGpsd::FakeGpsd(const std::string& nmea_log, double cycle_s, const std::strin
   port_ = std::to_string(port);
   process_ = std::make_unique<ChildProcess>(
       "/usr/bin/gpsfake",
-      std::vector<std::string>{"-q", "-P", port_, "-c", fmt::format("{}", cycle_s), nmea_log},
+      std::vector<std::string>{"-v", "-P", port_, "-c", fmt::format("{}", cycle_s), nmea_log},
       log_path);
   for (int attempt = 0; attempt < 600; ++attempt) {
     if (listening(port)) {

@@ -13,7 +13,8 @@ namespace lineloc::test {
 class FakeGpsd {
  public:
   // Starts gpsfake on `nmea_log`, one sentence every `cycle_s` seconds, over
-  // and over; gpsd waits for its first client before the log starts. Throws
+  // and over; gpsd waits for its first client before the log starts. gpsfake
+  // logs to `log_path` each time it starts the log again. Throws
   // std::runtime_error when gpsd does not listen within 30 s.
   FakeGpsd(const std::string& nmea_log, double cycle_s, const std::string& log_path);
 

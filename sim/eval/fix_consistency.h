@@ -18,6 +18,7 @@
 
 namespace lineloc {
 
+// How many of the estimates beyond the bound a report lists, the worst.
 inline constexpr int kListedBeyondBound = 5;
 
 struct FixConsistencyOptions {
@@ -34,7 +35,8 @@ struct BeyondBound {
   double time_s = 0.0;
   double nees = 0.0;
   double position_error_m = 0.0;
-  // sqrt(u^T Sigma_p u), u the position error's direction.
+  // sqrt(u^T Sigma_p u), u the position error's direction (0 when the
+  // position is exact and the rotation is what is beyond).
   double sigma_along_error_m = 0.0;
 };
 

@@ -10,8 +10,7 @@
 // Its position RMSE and the states it reported beyond three sigma are
 // printed, not asserted. Through Den Haag's turns these do not yet hold
 // Delft's bounds (5 cm; no fix or state beyond) on every run: a view there
-// now and then leaves a fix just beyond (NEES 22-26, 10-30 cm off with 3-9 cm
-// along the error), more often when the machine is loaded.
+// now and then leaves a fix just beyond.
 #include "tests/integration/drive/city_drive.h"
 
 namespace lineloc {

@@ -15,7 +15,8 @@
 // when the truncation is a few pixels. The maps are kept at 1 / downsample of
 // the image resolution: cell (i, j) holds the point (i, j) * downsample; and
 // in bytes, the distance d as round(255 d / truncation_px), which quantises it
-// to truncation / 510 either way (0.006 px for the sharpest map, 3 px): eight
+// to truncation / 510 either way (0.006 px for the sharpest map, 3 px; d is
+// computed in single precision, to 1e-4 px): eight
 // float maps of a 640 x 480 image are 9.8 MB to fill for every frame, eight
 // byte maps 2.5 MB.
 #pragma once

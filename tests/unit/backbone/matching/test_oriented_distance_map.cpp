@@ -15,7 +15,9 @@ namespace {
 constexpr double kHorizontal = 0.0;
 constexpr double kVertical = M_PI / 2.0;
 // The maps below truncate at 10 px and keep distances in 255 levels.
-constexpr double kHalfLevelPx = 10.0 / 255.0 / 2.0;
+// Half a level of the 10 px truncation, plus the single-precision rounding of
+// the distance (oriented_distance_map.h).
+constexpr double kHalfLevelPx = 10.0 / 255.0 / 2.0 + 1e-4;
 
 ImageSegment segment(float x0, float y0, float x1, float y1) {
   ImageSegment s;
@@ -73,7 +75,7 @@ TEST(OrientedDistanceMap, EveryCellHoldsTheExactTruncatedDistance) {
           for (const ImageSegment& s : segments) {
             exact = std::min(exact, distanceToSegment(q, s));
           }
-          ASSERT_NEAR(map.distance(q, direction), exact, 10.0 / 255.0 / 2.0 + 1e-9)
+          ASSERT_NEAR(map.distance(q, direction), exact, kHalfLevelPx)
               << direction_deg << " deg, downsample " << downsample << ", cell " << col << ", "
               << row;
         }
